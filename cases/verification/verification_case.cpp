@@ -1,0 +1,85 @@
+#include "cases/verification/verification_case.hpp"
+
+#include <cmath>
+
+namespace mpile::verification {
+
+double Check::error() const {
+  return std::abs(measured - reference) / scale;
+}
+
+bool Report::passed() const {
+  for (const Check& c : checks) {
+    if (!c.passed()) {
+      return false;
+    }
+  }
+  return !checks.empty();
+}
+
+const std::vector<Case>& all_cases() {
+  static const std::vector<Case> cases = {
+      {"V1", "axial vibrating bar (axisymmetric)", run_vibrating_bar},
+      {"V2", "single material point vibration", run_single_point},
+      {"V3", "Lame thick cylinder under internal pressure", run_lame_cylinder},
+      {"V4", "radial patch test through the axis", run_radial_patch},
+      {"V4p", "plane-strain patch test", run_plane_strain_patch},
+      {"V5", "solid cylinder in uniaxial compression", run_uniaxial_cylinder},
+      {"V6", "shaft torsion", run_shaft_torsion},
+      {"V8", "self-weight column, gravity loading", run_self_weight_column},
+      {"V8k0", "self-weight column, K0 state stays put", run_k0_column},
+  };
+  return cases;
+}
+
+const Case* find_case(const std::string& id) {
+  for (const Case& c : all_cases()) {
+    if (c.id == id) {
+      return &c;
+    }
+  }
+  return nullptr;
+}
+
+Grid uniform_grid(double r0, double r1, int nr, double y0, double y1, int ny) {
+  return Grid(GradedAxis::uniform(r0, r1, nr), GradedAxis::uniform(y0, y1, ny));
+}
+
+SolverSettings apply_options(SolverSettings settings, const Options& options) {
+  if (options.bbar) {
+    settings.bbar = *options.bbar;
+  }
+  if (options.flip_fraction) {
+    settings.flip_fraction = *options.flip_fraction;
+  }
+  if (options.courant_number) {
+    settings.courant_number = *options.courant_number;
+  }
+  settings.block_cells = options.block_cells;
+  return settings;
+}
+
+} // namespace mpile::verification
+
+namespace mpile::verification {
+
+std::array<double, 2> fit_two_functions(const std::vector<double>& f1,
+                                        const std::vector<double>& f2,
+                                        const std::vector<double>& y) {
+  double a11 = 0.0, a12 = 0.0, a22 = 0.0, b1 = 0.0, b2 = 0.0;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    a11 += f1[i] * f1[i];
+    a12 += f1[i] * f2[i];
+    a22 += f2[i] * f2[i];
+    b1 += f1[i] * y[i];
+    b2 += f2[i] * y[i];
+  }
+  const double det = a11 * a22 - a12 * a12;
+  return {(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det};
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace mpile::verification

@@ -1,0 +1,90 @@
+#pragma once
+
+// Verification cases (../docs/verification.md): scenes with a closed-form or published reference,
+// built at a chosen resolution, run, and compared. The unit tests and `mpile verify` share them.
+
+#include "engine/scene.hpp"
+#include "solver/solver_settings.hpp"
+
+#include <array>
+#include <chrono>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mpile::verification {
+
+/// One compared quantity: error = |measured - reference| / scale, where scale is |reference|
+/// unless the reference is zero or a natural magnitude is more meaningful (stated per check).
+struct Check {
+  std::string quantity;
+  std::string unit;
+  double measured = 0.0;
+  double reference = 0.0;
+  double scale = 1.0;
+  double tolerance = 0.0; // on the relative error, from the reference case's table
+  double error() const;
+  bool passed() const { return error() <= tolerance; }
+};
+
+/// Choices a user or a convergence study can change; each case documents its defaults.
+struct Options {
+  int refinement = 1;                  // multiplies the case's base number of cells per direction
+  int particles_per_direction = 2;     // particles per cell = this squared
+  std::optional<bool> bbar;            // default: on
+  std::optional<double> flip_fraction; // default: per case
+  std::optional<double> poisson_ratio; // for the cases with a nu-dependent closed form
+  std::optional<double> courant_number;
+  int block_cells = 8;
+};
+
+struct Report {
+  std::string id;
+  std::string title;
+  std::vector<Check> checks;
+  std::size_t particles = 0;
+  long steps = 0;
+  double wall_seconds = 0.0;
+  std::vector<std::string> warnings;
+  bool passed() const;
+};
+
+struct Case {
+  std::string id;
+  std::string title;
+  std::function<Report(const Options&)> run;
+};
+
+const std::vector<Case>& all_cases();
+const Case* find_case(const std::string& id);
+
+/// A uniform grid from (r0, y0) to (r1, y1) with nr x ny cells.
+Grid uniform_grid(double r0, double r1, int nr, double y0, double y1, int ny);
+
+/// Solver settings of a case with the user's options applied on top.
+SolverSettings apply_options(SolverSettings settings, const Options& options);
+
+Report run_vibrating_bar(const Options& options);
+Report run_single_point(const Options& options);
+Report run_lame_cylinder(const Options& options);
+Report run_radial_patch(const Options& options);
+Report run_plane_strain_patch(const Options& options);
+Report run_uniaxial_cylinder(const Options& options);
+Report run_shaft_torsion(const Options& options);
+Report run_self_weight_column(const Options& options);
+Report run_k0_column(const Options& options);
+
+} // namespace mpile::verification
+
+namespace mpile::verification {
+
+/// Least-squares coefficients (c1, c2) of y ~ c1 f1 + c2 f2 over samples.
+std::array<double, 2> fit_two_functions(const std::vector<double>& f1,
+                                        const std::vector<double>& f2,
+                                        const std::vector<double>& y);
+
+/// Wall-clock seconds since start, for reports.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+} // namespace mpile::verification

@@ -1,0 +1,121 @@
+#include "engine/boundary_conditions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace mpile {
+
+std::vector<int> nodes_on_r_line(const Grid& grid, int ir, double y_from, double y_to) {
+  std::vector<int> nodes;
+  for (int iy = 0; iy < grid.nodes_y(); ++iy) {
+    const double y = grid.y_axis().node(iy);
+    if (y >= y_from && y <= y_to) {
+      nodes.push_back(grid.node_index(ir, iy));
+    }
+  }
+  return nodes;
+}
+
+std::vector<int> nodes_on_y_line(const Grid& grid, int iy, double r_from, double r_to) {
+  std::vector<int> nodes;
+  for (int ir = 0; ir < grid.nodes_r(); ++ir) {
+    const double r = grid.r_axis().node(ir);
+    if (r >= r_from && r <= r_to) {
+      nodes.push_back(grid.node_index(ir, iy));
+    }
+  }
+  return nodes;
+}
+
+std::vector<int> nodes_on_face(const Grid& grid, GridFace face) {
+  const double inf = std::numeric_limits<double>::infinity();
+  switch (face) {
+  case GridFace::r_min:
+    return nodes_on_r_line(grid, 0, -inf, inf);
+  case GridFace::r_max:
+    return nodes_on_r_line(grid, grid.nodes_r() - 1, -inf, inf);
+  case GridFace::y_min:
+    return nodes_on_y_line(grid, 0, -inf, inf);
+  case GridFace::y_max:
+    return nodes_on_y_line(grid, grid.nodes_y() - 1, -inf, inf);
+  }
+  return {};
+}
+
+NodeConstraint face_constraint(const Grid& grid, GeometryMode mode, GridFace face,
+                               FaceCondition condition) {
+  static const char* face_names[] = {"r_min", "r_max", "y_min", "y_max"};
+  NodeConstraint c;
+  c.name = face_names[static_cast<int>(face)];
+  c.nodes = nodes_on_face(grid, face);
+  const std::uint8_t normal = (face == GridFace::r_min || face == GridFace::r_max) ? DOF_R : DOF_Y;
+  const std::uint8_t all = has_theta(mode) ? DOF_R | DOF_Y | DOF_THETA : DOF_R | DOF_Y;
+  switch (condition) {
+  case FaceCondition::free:
+    c.dofs = 0;
+    break;
+  case FaceCondition::roller:
+    c.dofs = normal;
+    break;
+  case FaceCondition::fixed:
+    c.dofs = all;
+    break;
+  }
+  return c;
+}
+
+NodeConstraint axis_constraint(const Grid& grid) {
+  NodeConstraint c;
+  c.name = "axis";
+  c.nodes = nodes_on_face(grid, GridFace::r_min);
+  c.dofs = DOF_R | DOF_THETA;
+  return c;
+}
+
+NodalLoad line_load(const Grid& grid, GeometryMode mode, const std::vector<int>& nodes,
+                    int component, TimeFunction traction, std::string name) {
+  NodalLoad load;
+  load.name = std::move(name);
+  load.nodes = nodes;
+  load.component = component;
+  load.traction = std::move(traction);
+  load.weight.assign(nodes.size(), 0.0);
+  const bool axisymmetric = mode == GeometryMode::axisymmetric;
+  // Consistent load of each segment between consecutive nodes: for a linear N, the integral of
+  // N_a r over the segment is L (2 r_a + r_b) / 6 (L / 2 without the r weight).
+  for (std::size_t k = 1; k < nodes.size(); ++k) {
+    const double ra = grid.node_r(nodes[k - 1]);
+    const double rb = grid.node_r(nodes[k]);
+    const double length = std::hypot(rb - ra, grid.node_y(nodes[k]) - grid.node_y(nodes[k - 1]));
+    if (axisymmetric) {
+      load.weight[k - 1] += length * (2.0 * ra + rb) / 6.0;
+      load.weight[k] += length * (ra + 2.0 * rb) / 6.0;
+    } else {
+      load.weight[k - 1] += 0.5 * length;
+      load.weight[k] += 0.5 * length;
+    }
+  }
+  return load;
+}
+
+void Boundaries::mark_constrained_dofs(Grid& grid) const {
+  std::fill(grid.constrained.begin(), grid.constrained.end(), std::uint8_t{0});
+  for (const NodeConstraint& c : constraints) {
+    for (const int node : c.nodes) {
+      grid.constrained[static_cast<std::size_t>(node)] |= c.dofs;
+    }
+  }
+}
+
+const NodeConstraint& Boundaries::constraint(const std::string& name) const {
+  for (const NodeConstraint& c : constraints) {
+    if (c.name == name) {
+      return c;
+    }
+  }
+  throw std::out_of_range("no constraint named " + name);
+}
+
+} // namespace mpile

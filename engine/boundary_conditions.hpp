@@ -1,0 +1,72 @@
+#pragma once
+
+#include "engine/geometry_mode.hpp"
+#include "engine/grid.hpp"
+#include "engine/time_function.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mpile {
+
+/// Constrained nodal velocities on a set of grid nodes, with the reaction it takes to hold them.
+/// A DOF in the mask without a velocity function is held at rest. With theta_is_rotation the theta
+/// function is an angular velocity (rad/s) and the node gets v_theta = omega(t) r_node: a rigid
+/// rotation of the node set about the axis.
+struct NodeConstraint {
+  std::string name;
+  std::vector<int> nodes;
+  std::uint8_t dofs = 0; // DofBit mask
+  std::array<std::optional<TimeFunction>, 3> velocity;
+  bool theta_is_rotation = false;
+
+  /// Reaction of the last step: the force the support exerts on the material, summed over the node
+  /// set (N, or N/rad in axisymmetric mode), and its torque about the axis (N m/rad).
+  std::array<double, 3> reaction{0.0, 0.0, 0.0};
+  double torque = 0.0;
+};
+
+/// A distributed load on a set of grid nodes: nodal force = weight_i * traction(t) along one
+/// component. The weights are the consistent nodal shares of the loaded face (times r in
+/// axisymmetric mode), so a uniform traction gives the exact resultant.
+struct NodalLoad {
+  std::string name;
+  std::vector<int> nodes;
+  std::vector<double> weight;
+  int component = 0; // 0 = r, 1 = y, 2 = theta
+  TimeFunction traction;
+};
+
+enum class GridFace { r_min, r_max, y_min, y_max };
+enum class FaceCondition { free, roller, fixed };
+
+/// Node indices along a grid line: the column of nodes at r-index ir (direction y) or the row at
+/// y-index iy (direction r), limited to coordinates within [from, to].
+std::vector<int> nodes_on_r_line(const Grid& grid, int ir, double y_from, double y_to);
+std::vector<int> nodes_on_y_line(const Grid& grid, int iy, double r_from, double r_to);
+std::vector<int> nodes_on_face(const Grid& grid, GridFace face);
+
+/// fixed: every DOF of the mode at rest; roller: the normal DOF at rest; free: no constraint.
+NodeConstraint face_constraint(const Grid& grid, GeometryMode mode, GridFace face,
+                               FaceCondition condition);
+
+/// u_r = u_theta = 0 on the axis (the r = 0 nodes) in axisymmetric mode.
+NodeConstraint axis_constraint(const Grid& grid);
+
+/// A normal traction (tension positive, Pa) on a straight run of nodes along a grid line, with
+/// consistent weights: for axisymmetric mode the integral of N_i r over the face.
+NodalLoad line_load(const Grid& grid, GeometryMode mode, const std::vector<int>& nodes,
+                    int component, TimeFunction traction, std::string name);
+
+struct Boundaries {
+  std::vector<NodeConstraint> constraints;
+  std::vector<NodalLoad> loads;
+
+  /// Sets grid.constrained from the constraints (the DOFs that local damping leaves alone).
+  void mark_constrained_dofs(Grid& grid) const;
+  const NodeConstraint& constraint(const std::string& name) const;
+};
+
+} // namespace mpile

@@ -1,0 +1,67 @@
+#pragma once
+
+#include "engine/graded_axis.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace mpile {
+
+/// One grid node in one cache line, so that a particle's scatter to its four nodes touches four
+/// lines. The grid update converts the accumulated momentum and force in place:
+///   during particle-to-grid:  momentum = sum N m v,   force = f_ext - f_int
+///   after the grid update:    momentum = velocity v^{n+1},  force = velocity increment v^{n+1} -
+///   v^n
+/// Component order is (r, y, theta); plane strain leaves the theta slot untouched.
+struct alignas(64) GridNode {
+  double mass = 0.0;
+  double momentum[3] = {0.0, 0.0, 0.0};
+  double force[3] = {0.0, 0.0, 0.0};
+  double unused = 0.0;
+};
+static_assert(sizeof(GridNode) == 64);
+
+/// Bit mask of constrained nodal degrees of freedom.
+enum DofBit : std::uint8_t { DOF_R = 1, DOF_Y = 2, DOF_THETA = 4 };
+
+/// A rectilinear background grid with graded spacing in r and y. Nodes are numbered r-fastest:
+/// node(ir, iy) = ir + nodes_r * iy; cells likewise with cells_r.
+class Grid {
+public:
+  Grid() = default;
+  Grid(GradedAxis r_axis, GradedAxis y_axis);
+
+  const GradedAxis& r_axis() const { return r_axis_; }
+  const GradedAxis& y_axis() const { return y_axis_; }
+  int cells_r() const { return r_axis_.cell_count(); }
+  int cells_y() const { return y_axis_.cell_count(); }
+  int nodes_r() const { return r_axis_.node_count(); }
+  int nodes_y() const { return y_axis_.node_count(); }
+  std::size_t node_count() const { return nodes.size(); }
+  int node_index(int ir, int iy) const { return ir + nodes_r() * iy; }
+  double node_r(int node) const { return r_axis_.node(node % nodes_r()); }
+  double node_y(int node) const { return y_axis_.node(node / nodes_r()); }
+
+  /// 1 / cell size per cell column and row, read by every particle pass.
+  double inverse_cell_size_r(int cr) const { return inverse_size_r_[static_cast<std::size_t>(cr)]; }
+  double inverse_cell_size_y(int cy) const { return inverse_size_y_[static_cast<std::size_t>(cy)]; }
+  double cell_min_size(int cr, int cy) const;
+
+  /// Moves the y-lines (the moving mesh); cell sizes and the lookup follow.
+  void set_y_nodes(std::vector<double> y_nodes);
+
+  std::vector<GridNode> nodes;
+  /// Constrained DOFs per node (DofBit mask), set from the boundary conditions. Local damping
+  /// skips constrained DOFs so that reactions at moving supports are not polluted by it.
+  std::vector<std::uint8_t> constrained;
+
+private:
+  void update_cell_sizes();
+
+  GradedAxis r_axis_;
+  GradedAxis y_axis_;
+  std::vector<double> inverse_size_r_;
+  std::vector<double> inverse_size_y_;
+};
+
+} // namespace mpile

@@ -1,0 +1,53 @@
+#pragma once
+
+#include "engine/tensor.hpp"
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mpile {
+
+/// A run of material points of one material handed to its stress update. Strain increments and the
+/// constrained modulus are per entry of the run; stress and state are the particles' own.
+struct StressUpdateBatch {
+  std::span<const std::int32_t> particles; // particle indices
+  std::span<const StrainIncrement> strain; // per entry: engineering shear, tension positive
+  std::span<double> constrained_modulus;   // per entry, out: current M for the time step
+  Stress* stress = nullptr;                // indexed by particle
+  double* state = nullptr;                 // indexed by particle * state_stride
+  int state_stride = 0;
+};
+
+/// A constitutive model: a function of (stress, strain increment, state) returning the new stress
+/// and state. A new model is a new file with a class derived from this one plus one registration
+/// in material_registry.cpp; the solver knows nothing else about it.
+class Material {
+public:
+  virtual ~Material() = default;
+
+  /// Registered type name (as written in a case file).
+  virtual std::string_view type() const = 0;
+  /// Initial density (kg/m^3), for particle masses.
+  virtual double density() const = 0;
+
+  /// Names of the per-particle state variables; a model without state carries none.
+  virtual std::span<const std::string> state_names() const { return {}; }
+  std::size_t state_size() const { return state_names().size(); }
+  /// Sets the state consistent with a given initial stress (for example after a K0 procedure).
+  virtual void initialise_state(const Stress& /*stress*/, double* /*state*/) const {}
+
+  /// Advances stress and state of every particle of the batch by its strain increment, and writes
+  /// the current constrained modulus used by the time step.
+  virtual void update_stress(const StressUpdateBatch& batch) const = 0;
+
+  /// Constrained (P-wave) modulus at a stress state, for the initial time step (Pa).
+  virtual double constrained_modulus(const Stress& stress, const double* state) const = 0;
+
+  /// Recoverable (elastic) energy per unit volume stored at a stress state (J/m^3).
+  virtual double elastic_energy_density(const Stress& stress, const double* state) const = 0;
+};
+
+} // namespace mpile

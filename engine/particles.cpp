@@ -1,0 +1,75 @@
+#include "engine/particles.hpp"
+
+#include <tbb/parallel_for.h>
+
+namespace mpile {
+
+void Particles::add(double r_pos, double y_pos, double particle_mass, double particle_volume,
+                    std::uint16_t material_index, std::uint16_t body_index) {
+  r.push_back(r_pos);
+  y.push_back(y_pos);
+  r0.push_back(r_pos);
+  y0.push_back(y_pos);
+  v_r.push_back(0.0);
+  v_y.push_back(0.0);
+  if (has_theta(mode)) {
+    v_theta.push_back(0.0);
+    u_theta.push_back(0.0);
+  }
+  mass.push_back(particle_mass);
+  volume.push_back(particle_volume);
+  stress.push_back(Stress{});
+  state.resize(state.size() + static_cast<std::size_t>(state_stride), 0.0);
+  material.push_back(material_index);
+  body.push_back(body_index);
+  cell_r.push_back(-1);
+  cell_y.push_back(-1);
+  du_r.push_back(0.0);
+  du_y.push_back(0.0);
+}
+
+namespace {
+
+template <class T>
+void permute_array(std::vector<T>& values, std::span<const std::int32_t> order, std::size_t width) {
+  if (values.empty()) {
+    return;
+  }
+  std::vector<T> sorted(values.size());
+  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t k) {
+    const auto from = static_cast<std::size_t>(order[k]) * width;
+    for (std::size_t j = 0; j < width; ++j) {
+      sorted[k * width + j] = values[from + j];
+    }
+  });
+  values.swap(sorted);
+}
+
+} // namespace
+
+void Particles::permute(std::span<const std::int32_t> order) {
+  for (auto* field :
+       {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &du_r, &du_y}) {
+    permute_array(*field, order, 1);
+  }
+  permute_array(stress, order, 1);
+  permute_array(state, order, static_cast<std::size_t>(state_stride));
+  permute_array(material, order, 1);
+  permute_array(body, order, 1);
+  permute_array(cell_r, order, 1);
+  permute_array(cell_y, order, 1);
+}
+
+std::size_t Particles::bytes() const {
+  std::size_t total = 0;
+  for (const auto* field :
+       {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &du_r, &du_y, &state}) {
+    total += field->capacity() * sizeof(double);
+  }
+  total += stress.capacity() * sizeof(Stress);
+  total += (material.capacity() + body.capacity()) * sizeof(std::uint16_t);
+  total += (cell_r.capacity() + cell_y.capacity()) * sizeof(std::int32_t);
+  return total;
+}
+
+} // namespace mpile

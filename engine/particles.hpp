@@ -1,0 +1,52 @@
+#pragma once
+
+#include "engine/geometry_mode.hpp"
+#include "engine/tensor.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mpile {
+
+/// Material points as flat arrays (one array per field), kept sorted by cell. In axisymmetric mode
+/// mass and volume are per radian (m = rho A r, Omega = A r); positions use the r slot for x in
+/// plane strain. Theta fields exist only in axisymmetric mode.
+struct Particles {
+  // Kinematics.
+  std::vector<double> r, y;     // current position (m)
+  std::vector<double> r0, y0;   // initial position (m), for displacements
+  std::vector<double> v_r, v_y; // velocity (m/s)
+  std::vector<double> v_theta;  // circumferential velocity (m/s), axisymmetric only
+  std::vector<double> u_theta;  // circumferential displacement (m), axisymmetric only
+  // Mass and integration weight.
+  std::vector<double> mass;   // kg (per radian in axisymmetric mode)
+  std::vector<double> volume; // Omega (m^3, per radian in axisymmetric mode)
+  // Constitutive state.
+  std::vector<Stress> stress; // Cauchy, tension positive (Pa)
+  std::vector<double> state;  // material state variables, state_stride per particle
+  int state_stride = 0;
+  // Identity.
+  std::vector<std::uint16_t> material; // index into the scene's materials
+  std::vector<std::uint16_t> body;     // index into the scene's bodies
+  // Location: the cell holding the particle, found in O(1) from the graded axes.
+  std::vector<std::int32_t> cell_r, cell_y;
+  // Scratch of one step: position increment from grid-to-particle, applied after the stress
+  // update so that every pass of the step uses the shape functions at the old position.
+  std::vector<double> du_r, du_y;
+
+  std::size_t size() const { return r.size(); }
+  GeometryMode mode = GeometryMode::axisymmetric;
+
+  /// Appends one particle at rest with zero stress; cell indices are set by the caller (binning).
+  void add(double r_pos, double y_pos, double particle_mass, double particle_volume,
+           std::uint16_t material_index, std::uint16_t body_index);
+
+  /// Reorders every per-particle array so that new index k holds old particle order[k].
+  void permute(std::span<const std::int32_t> order);
+
+  /// Bytes held by the particle arrays (capacity), for memory reports.
+  std::size_t bytes() const;
+};
+
+} // namespace mpile

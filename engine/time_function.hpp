@@ -1,0 +1,51 @@
+#pragma once
+
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace mpile {
+
+/// A scalar function of time for loads and prescribed motions: constant, piecewise-linear table
+/// (a ramp is a two-point table), harmonic A sin(2 pi f t + phase), and a train of half-sine pulses
+/// (amplitude, pulse duration, interval between pulse starts). Each has an exact integral, so that
+/// a prescribed velocity or load applied as its mean over a time step gives the exact displacement
+/// or impulse whatever the step size.
+class TimeFunction {
+public:
+  TimeFunction() : TimeFunction(constant(0.0)) {}
+
+  static TimeFunction constant(double value);
+  /// Linear from 0 at t = 0 to value at t = duration, then held.
+  static TimeFunction ramp(double value, double duration);
+  /// Points (t, value) with increasing t; the first value holds before, the last after.
+  static TimeFunction table(std::vector<std::pair<double, double>> points);
+  static TimeFunction harmonic(double amplitude, double frequency, double phase = 0.0);
+  static TimeFunction pulse_train(double amplitude, double pulse_duration, double interval);
+
+  double value(double t) const;
+  /// Integral of the function from 0 to t.
+  double primitive(double t) const;
+  /// Mean value over [t0, t1] (the value at t0 when the interval is empty).
+  double mean(double t0, double t1) const;
+
+private:
+  struct Constant {
+    double value;
+  };
+  struct Table {
+    std::vector<std::pair<double, double>> points;
+  };
+  struct Harmonic {
+    double amplitude, frequency, phase;
+  };
+  struct PulseTrain {
+    double amplitude, duration, interval;
+  };
+  using Variant = std::variant<Constant, Table, Harmonic, PulseTrain>;
+  explicit TimeFunction(Variant function) : function_(std::move(function)) {}
+
+  Variant function_;
+};
+
+} // namespace mpile

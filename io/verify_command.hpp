@@ -1,0 +1,16 @@
+#pragma once
+
+#include "cases/verification/verification_case.hpp"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace mpile {
+
+/// Runs verification cases by id ("all" for every one) and prints, for each, the compared
+/// quantities with their reference, error and tolerance. Returns the number of failed cases.
+int run_verification(const std::vector<std::string>& ids, const verification::Options& options,
+                     std::ostream& out);
+
+} // namespace mpile

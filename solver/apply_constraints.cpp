@@ -1,0 +1,89 @@
+// Boundary conditions on the grid. Reads node mass and velocity; writes the velocity (and, after
+// the momentum balance, the velocity increment and each constraint's reaction). Constraint node
+// sets are small (faces and lines), so this runs serially, which also fixes the summation order of
+// the reactions.
+#include "solver/passes.hpp"
+
+namespace mpile::passes {
+
+namespace {
+
+void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_increment) {
+  Grid& grid = scene.grid;
+  const double t_mid = step.time + 0.5 * step.dt;
+  for (std::size_t i = 0; i < grid.nodes.size(); ++i) {
+    GridNode& node = grid.nodes[i];
+    if (node.mass <= step.mass_floor) {
+      continue;
+    }
+    const double r = grid.node_r(static_cast<int>(i));
+    const double y = grid.node_y(static_cast<int>(i));
+    const auto v = scene.velocity_field(r, y, t_mid);
+    const auto v_before = scene.velocity_field(r, y, t_mid - step.dt);
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (record_increment) {
+        node.force[d] = v[d] - v_before[d];
+      }
+      node.momentum[d] = v[d];
+    }
+  }
+}
+
+} // namespace
+
+void apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                       bool record_reactions) {
+  Grid& grid = scene.grid;
+  const double inertia_per_dt = settings.mass_scaling / step.dt;
+  for (NodeConstraint& c : scene.boundaries.constraints) {
+    if (c.dofs == 0) {
+      continue;
+    }
+    // The prescribed velocity is the mean over the step, so displacements are exact. The FLIP
+    // velocity increment of a constrained DOF is the change of the prescribed velocity (the
+    // prescribed acceleration times dt), never the jump from the velocity mapped from particles:
+    // that jump would drag particles next to a support towards its velocity.
+    double prescribed[3] = {0.0, 0.0, 0.0};
+    double prescribed_change[3] = {0.0, 0.0, 0.0};
+    for (int d = 0; d < 3; ++d) {
+      const auto& f = c.velocity[static_cast<std::size_t>(d)];
+      if (f) {
+        prescribed[d] = f->mean(step.time, step.time + step.dt);
+        prescribed_change[d] = prescribed[d] - f->mean(step.time - step.dt, step.time);
+      }
+    }
+    if (record_reactions) {
+      c.reaction = {0.0, 0.0, 0.0};
+      c.torque = 0.0;
+    }
+    for (const int index : c.nodes) {
+      GridNode& node = grid.nodes[static_cast<std::size_t>(index)];
+      if (node.mass <= step.mass_floor) {
+        continue;
+      }
+      const double r = grid.node_r(index);
+      for (int d = 0; d < 3; ++d) {
+        if ((c.dofs & (1u << d)) == 0) {
+          continue;
+        }
+        const double scale = (d == 2 && c.theta_is_rotation) ? r : 1.0;
+        const double target = prescribed[d] * scale;
+        const double change = target - node.momentum[d];
+        if (record_reactions) {
+          node.force[d] = prescribed_change[d] * scale;
+          const double reaction = node.mass * change * inertia_per_dt;
+          c.reaction[static_cast<std::size_t>(d)] += reaction;
+          if (d == 2) {
+            c.torque += r * reaction;
+          }
+        }
+        node.momentum[d] = target;
+      }
+    }
+  }
+  if (scene.velocity_field) {
+    apply_velocity_field(scene, step, record_reactions);
+  }
+}
+
+} // namespace mpile::passes

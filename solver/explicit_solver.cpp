@@ -1,0 +1,188 @@
+#include "solver/explicit_solver.hpp"
+
+#include "solver/passes.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace mpile {
+
+namespace {
+
+class PassTimer {
+public:
+  explicit PassTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~PassTimer() {
+    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  PassTimer(const PassTimer&) = delete;
+  PassTimer& operator=(const PassTimer&) = delete;
+
+private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+std::string position_of(const Particles& p, std::size_t i) {
+  std::ostringstream s;
+  s << "particle " << i << " at (r, y) = (" << p.r[i] << ", " << p.y[i] << ")";
+  return s.str();
+}
+
+} // namespace
+
+ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log)
+    : scene_(scene), settings_(settings), log_(log) {
+  settings_.validate();
+  Particles& p = scene_.particles;
+  if (p.size() == 0) {
+    throw std::invalid_argument("the scene has no particles");
+  }
+  double min_mass = p.mass[0];
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!(p.mass[i] > 0.0) || !(p.volume[i] > 0.0)) {
+      throw std::invalid_argument(position_of(p, i) + " has no mass or volume");
+    }
+    if (scene_.mode == GeometryMode::axisymmetric && !(p.r[i] > 0.0)) {
+      throw std::invalid_argument(position_of(p, i) +
+                                  " lies on or behind the axis (r must be > 0)");
+    }
+    min_mass = std::min(min_mass, p.mass[i]);
+  }
+  // A node holding less than this is empty: its velocity would be noise divided by nearly zero.
+  mass_floor_ = 1e-9 * min_mass;
+  scene_.boundaries.mark_constrained_dofs(scene_.grid);
+  bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
+  locate_all_particles();
+  rebin();
+  sort_particles_by_cell();
+  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
+                        settings_.max_time_step);
+  report_settings();
+}
+
+void ExplicitSolver::report_settings() {
+  if (settings_.mass_scaling != 1.0) {
+    std::ostringstream s;
+    s << "mass scaling x" << settings_.mass_scaling
+      << " is on: inertia is distorted (dt grows by sqrt of it); valid for quasi-static work only";
+    log_.warn(s.str());
+  }
+}
+
+void ExplicitSolver::change_settings(const SolverSettings& settings) {
+  settings.validate();
+  const bool rebin_needed = settings.block_cells != settings_.block_cells;
+  const bool scaling_changed = settings.mass_scaling != settings_.mass_scaling;
+  settings_ = settings;
+  if (rebin_needed) {
+    bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
+    rebin();
+  }
+  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
+                        settings_.max_time_step);
+  if (scaling_changed) {
+    report_settings();
+  }
+}
+
+void ExplicitSolver::locate_all_particles() {
+  Particles& p = scene_.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int cr = scene_.grid.r_axis().locate(p.r[i]);
+    const int cy = scene_.grid.y_axis().locate(p.y[i]);
+    if (cr < 0 || cy < 0) {
+      throw std::invalid_argument(position_of(p, i) + " lies outside the grid");
+    }
+    p.cell_r[i] = cr;
+    p.cell_y[i] = cy;
+  }
+}
+
+void ExplicitSolver::rebin() {
+  bins_.rebuild(scene_.particles.cell_r, scene_.particles.cell_y);
+  // Physically re-sort once the visiting order jumps around in memory too often (on average
+  // less than 32 particles in a row), so that the passes keep streaming through the arrays.
+  if (bins_.order_breaks() * 32 > scene_.particles.size()) {
+    sort_particles_by_cell();
+  }
+}
+
+void ExplicitSolver::sort_particles_by_cell() {
+  const auto order = bins_.cell_sorted_order(scene_.particles.cell_r, scene_.particles.cell_y);
+  scene_.particles.permute(order);
+  bins_.reset_to_identity();
+}
+
+void ExplicitSolver::step(double max_dt) {
+  const double dt = std::min(stable_dt_, max_dt);
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    std::ostringstream s;
+    s << "step " << steps_ << ", t = " << time_ << " s: the time step is " << dt
+      << " s (not a positive finite number)";
+    throw SimulationError(s.str());
+  }
+  if (scene_.mode == GeometryMode::axisymmetric) {
+    step_in_mode<GeometryMode::axisymmetric>(dt);
+  } else {
+    step_in_mode<GeometryMode::plane_strain>(dt);
+  }
+}
+
+void ExplicitSolver::advance_to(double end_time) {
+  // Steps shorter than this fraction of dt are merged into the previous one.
+  constexpr double merge_fraction = 1e-6;
+  while (time_ < end_time * (1.0 - 1e-15)) {
+    const double remaining = end_time - time_;
+    step(remaining <= stable_dt_ * (1.0 + merge_fraction) ? remaining : stable_dt_);
+  }
+}
+
+template <GeometryMode mode> void ExplicitSolver::step_in_mode(double dt) {
+  const passes::StepParameters step{time_, dt, mass_floor_};
+  {
+    PassTimer timer(timings_.particle_to_grid);
+    passes::particle_to_grid<mode>(scene_, bins_, settings_);
+  }
+  {
+    PassTimer timer(timings_.grid_update);
+    passes::apply_nodal_loads(scene_, step);
+    passes::update_grid_velocities<mode>(scene_, settings_, step);
+    passes::apply_constraints(scene_, settings_, step, true);
+  }
+  {
+    PassTimer timer(timings_.grid_to_particle);
+    passes::grid_to_particle<mode>(scene_, bins_, settings_, step);
+  }
+  {
+    PassTimer timer(timings_.momentum_remap);
+    passes::remap_momentum<mode>(scene_, bins_, step);
+    passes::apply_constraints(scene_, settings_, step, false);
+  }
+  passes::StressPassResult result;
+  {
+    PassTimer timer(timings_.stress_update);
+    result = passes::update_stress_and_positions<mode>(scene_, bins_, settings_, step);
+  }
+  time_ += dt;
+  ++steps_;
+  if (result.particle_outside >= 0) {
+    std::ostringstream s;
+    s << "step " << steps_ << ", t = " << time_
+      << " s: " << position_of(scene_.particles, static_cast<std::size_t>(result.particle_outside))
+      << " left the grid";
+    throw SimulationError(s.str());
+  }
+  stable_dt_ =
+      std::min(settings_.courant_number * result.min_crossing_time, settings_.max_time_step);
+  if (result.block_changed) {
+    PassTimer timer(timings_.binning);
+    rebin();
+  }
+}
+
+} // namespace mpile

@@ -1,0 +1,70 @@
+#pragma once
+
+#include "engine/particle_bins.hpp"
+#include "engine/scene.hpp"
+#include "solver/run_log.hpp"
+#include "solver/solver_settings.hpp"
+
+#include <stdexcept>
+
+namespace mpile {
+
+/// A run that cannot go on (a particle left the grid, the time step collapsed); the message names
+/// the cause, the step and where.
+class SimulationError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Wall time spent in each pass since the solver was made (s).
+struct PassTimings {
+  double binning = 0.0;
+  double particle_to_grid = 0.0;
+  double grid_update = 0.0;
+  double grid_to_particle = 0.0;
+  double momentum_remap = 0.0;
+  double stress_update = 0.0;
+};
+
+/// The explicit MPM time integrator (MUSL, physics.md section 3) over a scene.
+class ExplicitSolver {
+public:
+  /// Locates and bins the particles and checks the scene; throws std::invalid_argument for a
+  /// particle outside the grid or on the axis, or settings out of range.
+  ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log);
+
+  /// One explicit step of length min(stable dt, max_dt).
+  void step(double max_dt = std::numeric_limits<double>::infinity());
+  /// Steps until end_time; the last step is shortened to land on it.
+  void advance_to(double end_time);
+
+  double time() const { return time_; }
+  long step_count() const { return steps_; }
+  /// Stable time step for the next step (s).
+  double stable_time_step() const { return stable_dt_; }
+  const SolverSettings& settings() const { return settings_; }
+  /// Replaces the settings between phases (damping on or off, for example).
+  void change_settings(const SolverSettings& settings);
+  const ParticleBins& bins() const { return bins_; }
+  const PassTimings& timings() const { return timings_; }
+  const Scene& scene() const { return scene_; }
+
+private:
+  template <GeometryMode mode> void step_in_mode(double dt);
+  void locate_all_particles();
+  void rebin();
+  void sort_particles_by_cell();
+  void report_settings();
+
+  Scene& scene_;
+  SolverSettings settings_;
+  RunLog& log_;
+  ParticleBins bins_;
+  PassTimings timings_;
+  double time_ = 0.0;
+  double stable_dt_ = 0.0;
+  double mass_floor_ = 0.0;
+  long steps_ = 0;
+};
+
+} // namespace mpile

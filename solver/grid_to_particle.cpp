@@ -1,0 +1,50 @@
+// Grid-to-particle. Reads node velocity v^{n+1} and velocity increment; writes particle velocity
+// (FLIP/PIC blend), the position increment du (applied after the stress update, so that every pass
+// of the step uses the shape functions at x^n) and the circumferential displacement.
+#include "engine/shape_functions.hpp"
+#include "solver/passes.hpp"
+
+namespace mpile::passes {
+
+template <GeometryMode mode>
+void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                      const StepParameters& step) {
+  const Grid& grid = scene.grid;
+  Particles& p = scene.particles;
+  const double flip = settings.flip_fraction;
+  const double pic = 1.0 - flip;
+  const double dt = step.dt;
+  bins.for_each_block([&](int, std::span<const std::int32_t> particles) {
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
+      double velocity[3] = {0.0, 0.0, 0.0};
+      double increment[3] = {0.0, 0.0, 0.0};
+      constexpr int dofs = has_theta(mode) ? 3 : 2;
+      for (int k = 0; k < 4; ++k) {
+        const GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[k])];
+        for (int d = 0; d < dofs; ++d) {
+          velocity[d] += w.N[k] * node.momentum[d];
+          increment[d] += w.N[k] * node.force[d];
+        }
+      }
+      p.v_r[i] = flip * (p.v_r[i] + increment[0]) + pic * velocity[0];
+      p.v_y[i] = flip * (p.v_y[i] + increment[1]) + pic * velocity[1];
+      p.du_r[i] = dt * velocity[0];
+      p.du_y[i] = dt * velocity[1];
+      if constexpr (has_theta(mode)) {
+        p.v_theta[i] = flip * (p.v_theta[i] + increment[2]) + pic * velocity[2];
+        p.u_theta[i] += dt * velocity[2];
+      }
+    }
+  });
+}
+
+template void grid_to_particle<GeometryMode::axisymmetric>(Scene&, const ParticleBins&,
+                                                           const SolverSettings&,
+                                                           const StepParameters&);
+template void grid_to_particle<GeometryMode::plane_strain>(Scene&, const ParticleBins&,
+                                                           const SolverSettings&,
+                                                           const StepParameters&);
+
+} // namespace mpile::passes

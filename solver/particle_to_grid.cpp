@@ -1,0 +1,65 @@
+// Particle-to-grid. Reads particle position, cell, mass, volume, velocity and stress; writes node
+// mass, momentum and force (f_ext - f_int, physics.md section 2) with a colored scatter.
+#include "engine/shape_functions.hpp"
+#include "solver/passes.hpp"
+
+#include <tbb/parallel_for.h>
+
+namespace mpile::passes {
+
+template <GeometryMode mode>
+void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings) {
+  Grid& grid = scene.grid;
+  const Particles& p = scene.particles;
+  tbb::parallel_for(std::size_t{0}, grid.nodes.size(),
+                    [&](std::size_t i) { grid.nodes[i] = GridNode{}; });
+
+  const double g_r = settings.gravity[0];
+  const double g_y = settings.gravity[1];
+  bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
+      const double m = p.mass[i];
+      const double omega = p.volume[i];
+      const Stress& s = p.stress[i];
+      const double m_v_r = m * p.v_r[i];
+      const double m_v_y = m * p.v_y[i];
+      // Stresses times the integration weight, so that each node needs only multiply-adds.
+      const double w_rr = omega * s[RR];
+      const double w_yy = omega * s[YY];
+      const double w_ry = omega * s[RY];
+      for (int k = 0; k < 4; ++k) {
+        GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[k])];
+        const double n = w.N[k];
+        node.mass += n * m;
+        node.momentum[0] += n * m_v_r;
+        node.momentum[1] += n * m_v_y;
+        node.force[0] += n * m * g_r - (w.dN_dr[k] * w_rr + w.dN_dy[k] * w_ry);
+        node.force[1] += n * m * g_y - (w.dN_dy[k] * w_yy + w.dN_dr[k] * w_ry);
+      }
+      if constexpr (has_theta(mode)) {
+        // Hoop stress in the r row, and the theta row with its -N/r term (seed eq. 8).
+        const double inverse_r = 1.0 / p.r[i];
+        const double w_hoop = omega * s[TT] * inverse_r;
+        const double w_yt = omega * s[YT];
+        const double w_rt = omega * s[RT];
+        const double m_v_t = m * p.v_theta[i];
+        for (int k = 0; k < 4; ++k) {
+          GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[k])];
+          const double n = w.N[k];
+          node.force[0] -= n * w_hoop;
+          node.momentum[2] += n * m_v_t;
+          node.force[2] -= w.dN_dy[k] * w_yt + (w.dN_dr[k] - n * inverse_r) * w_rt;
+        }
+      }
+    }
+  });
+}
+
+template void particle_to_grid<GeometryMode::axisymmetric>(Scene&, const ParticleBins&,
+                                                           const SolverSettings&);
+template void particle_to_grid<GeometryMode::plane_strain>(Scene&, const ParticleBins&,
+                                                           const SolverSettings&);
+
+} // namespace mpile::passes

@@ -1,0 +1,58 @@
+#pragma once
+
+// The passes of one explicit MUSL step (physics.md section 3), each in its own file. Every pass
+// says at its top which fields it reads and which it writes.
+
+#include "engine/geometry_mode.hpp"
+#include "engine/particle_bins.hpp"
+#include "engine/scene.hpp"
+#include "solver/solver_settings.hpp"
+
+#include <cstdint>
+
+namespace mpile::passes {
+
+/// Node masses at or below this are treated as empty (no velocity).
+struct StepParameters {
+  double time = 0.0;
+  double dt = 0.0;
+  double mass_floor = 0.0;
+};
+
+template <GeometryMode mode>
+void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings);
+
+void apply_nodal_loads(Scene& scene, const StepParameters& step);
+
+template <GeometryMode mode>
+void update_grid_velocities(Scene& scene, const SolverSettings& settings,
+                            const StepParameters& step);
+
+/// Sets constrained DOFs to their prescribed velocities. With record_reactions, also the velocity
+/// increment and the reaction of each constraint (after the momentum balance); without, only the
+/// velocities (after the MUSL remap).
+void apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                       bool record_reactions);
+
+template <GeometryMode mode>
+void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                      const StepParameters& step);
+
+template <GeometryMode mode>
+void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step);
+
+struct StressPassResult {
+  double min_crossing_time = 0.0;     // min over particles of h_cell / (c_p + |v_p|)
+  bool block_changed = false;         // a particle moved into another scatter block
+  std::int64_t particle_outside = -1; // lowest index of a particle that left the grid, or -1
+};
+
+template <GeometryMode mode>
+StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& bins,
+                                             const SolverSettings& settings,
+                                             const StepParameters& step);
+
+/// min over particles of h_cell / (c_p + |v_p|) from the materials' current stiffness.
+double min_crossing_time(const Scene& scene, const SolverSettings& settings);
+
+} // namespace mpile::passes

@@ -1,0 +1,32 @@
+#include "solver/solver_settings.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mpile {
+
+namespace {
+void require(bool condition, const std::string& message) {
+  if (!condition) {
+    throw std::invalid_argument(message);
+  }
+}
+} // namespace
+
+void SolverSettings::validate() const {
+  require(courant_number > 0.0 && courant_number <= 2.0,
+          "courant_number must lie in (0, 2], got " + std::to_string(courant_number));
+  require(max_time_step > 0.0, "max_time_step must be positive");
+  require(flip_fraction >= 0.0 && flip_fraction <= 1.0,
+          "flip_fraction must lie in [0, 1], got " + std::to_string(flip_fraction));
+  require(local_damping >= 0.0 && local_damping < 1.0,
+          "local_damping must lie in [0, 1), got " + std::to_string(local_damping));
+  require(mass_scaling >= 1.0,
+          "mass_scaling must be at least 1, got " + std::to_string(mass_scaling));
+  require(std::isfinite(gravity[0]) && std::isfinite(gravity[1]), "gravity must be finite");
+  require(block_cells >= 1 && block_cells <= 16,
+          "block_cells must lie in [1, 16], got " + std::to_string(block_cells));
+}
+
+} // namespace mpile

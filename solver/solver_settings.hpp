@@ -1,0 +1,34 @@
+#pragma once
+
+#include <array>
+#include <limits>
+
+namespace mpile {
+
+/// Numerical choices of a run (physics.md sections 3, 4 and 8).
+struct SolverSettings {
+  /// dt = courant_number * min over particles of h_cell / (c_p + |v_p|).
+  double courant_number = 0.8;
+  /// Upper bound on dt (s), for loads that need a finer sampling than the stability limit.
+  double max_time_step = std::numeric_limits<double>::infinity();
+  /// Particle velocity update: 1 = FLIP (no numerical dissipation), 0 = PIC, between: a blend.
+  double flip_fraction = 1.0;
+  /// Replace each particle's volumetric strain increment by its cell's volume-weighted mean.
+  bool bbar = true;
+  /// Co-rotate stress with the in-plane spin (Jaumann rate) for large rotations.
+  bool jaumann_rate = true;
+  /// Local (Cundall) damping coefficient alpha: f_damp = -alpha |f_unbalanced| sign(v).
+  double local_damping = 0.0;
+  /// Density multiplier beta for inertia only (gravity keeps the true mass); dt grows by
+  /// sqrt(beta). Quasi-static work only: the run log warns when it is not 1.
+  double mass_scaling = 1.0;
+  /// Gravitational acceleration (r, y) in m/s^2; physics.md puts gravity along -y.
+  std::array<double, 2> gravity{0.0, 0.0};
+  /// Cells per side of a scatter block (colored scatter).
+  int block_cells = 8;
+
+  /// Throws std::invalid_argument naming the setting that is out of range.
+  void validate() const;
+};
+
+} // namespace mpile

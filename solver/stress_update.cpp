@@ -1,0 +1,195 @@
+// Strain increment, B-bar, objective rate, constitutive update, then volume and position update.
+// Reads node velocities (MUSL-remapped) and particle position, cell, du, volume, stress, state;
+// writes particle stress, state, volume, position and cell. Runs per block without coloring: it
+// writes only to its own particles and to the B-bar sums of its own cells.
+#include "engine/shape_functions.hpp"
+#include "solver/passes.hpp"
+
+#include <tbb/combinable.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace mpile::passes {
+
+namespace {
+
+/// Per-thread work arrays of one block, kept between steps to avoid allocation in the loop.
+struct BlockScratch {
+  std::vector<StrainIncrement> strain;
+  std::vector<double> spin;
+  std::vector<double> modulus;
+  void resize(std::size_t n) {
+    strain.resize(n);
+    spin.resize(n);
+    modulus.resize(n);
+  }
+};
+
+/// sigma += W sigma - sigma W with the in-plane spin angle w = (dv_r/dy - dv_y/dr) dt / 2.
+void rotate_in_plane(Stress& s, double w) {
+  const Stress old = s;
+  s[RR] += 2.0 * w * old[RY];
+  s[YY] -= 2.0 * w * old[RY];
+  s[RY] += w * (old[YY] - old[RR]);
+  s[RT] += w * old[YT];
+  s[YT] -= w * old[RT];
+}
+
+} // namespace
+
+template <GeometryMode mode>
+StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& bins,
+                                             const SolverSettings& settings,
+                                             const StepParameters& step) {
+  const Grid& grid = scene.grid;
+  Particles& p = scene.particles;
+  const double dt = step.dt;
+  const int block_cells = bins.block_cells();
+  const double inverse_beta = 1.0 / settings.mass_scaling;
+
+  tbb::combinable<double> min_time([] { return std::numeric_limits<double>::infinity(); });
+  tbb::combinable<bool> block_changed([] { return false; });
+  tbb::combinable<std::int64_t> outside([] { return std::numeric_limits<std::int64_t>::max(); });
+
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    thread_local BlockScratch scratch;
+    scratch.resize(particles.size());
+    const auto [cr0, cy0] = bins.block_origin(block);
+    constexpr std::size_t max_cells = ParticleBins::max_block_cells * ParticleBins::max_block_cells;
+    std::array<double, max_cells> cell_volumetric;
+    std::array<double, max_cells> cell_weight;
+    if (settings.bbar) {
+      std::fill_n(cell_volumetric.begin(), block_cells * block_cells, 0.0);
+      std::fill_n(cell_weight.begin(), block_cells * block_cells, 0.0);
+    }
+
+    // 1. Strain increment and spin from the nodal velocities at x^n (physics.md section 2).
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const auto i = static_cast<std::size_t>(particles[k]);
+      const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
+      double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
+      double dtr = 0.0, dty = 0.0, vt = 0.0;
+      for (int n = 0; n < 4; ++n) {
+        const GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[n])];
+        drr += w.dN_dr[n] * node.momentum[0];
+        dry += w.dN_dy[n] * node.momentum[0];
+        dyr += w.dN_dr[n] * node.momentum[1];
+        dyy += w.dN_dy[n] * node.momentum[1];
+        if constexpr (has_theta(mode)) {
+          vr += w.N[n] * node.momentum[0];
+          dtr += w.dN_dr[n] * node.momentum[2];
+          dty += w.dN_dy[n] * node.momentum[2];
+          vt += w.N[n] * node.momentum[2];
+        }
+      }
+      StrainIncrement& de = scratch.strain[k];
+      if constexpr (has_theta(mode)) {
+        const double inverse_r = 1.0 / p.r[i];
+        de = {dt * drr,         dt * dyy, dt * vr * inverse_r,
+              dt * (dry + dyr), dt * dty, dt * (dtr - vt * inverse_r)};
+      } else {
+        de = {dt * drr, dt * dyy, 0.0, dt * (dry + dyr), 0.0, 0.0};
+      }
+      scratch.spin[k] = 0.5 * dt * (dry - dyr);
+      if (settings.bbar) {
+        const auto cell =
+            static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
+        cell_volumetric[cell] += p.volume[i] * (de[RR] + de[YY] + de[TT]);
+        cell_weight[cell] += p.volume[i];
+      }
+    }
+
+    // 2. B-bar: the volumetric part (hoop included) becomes the cell's volume-weighted mean.
+    if (settings.bbar) {
+      for (std::size_t k = 0; k < particles.size(); ++k) {
+        const auto i = static_cast<std::size_t>(particles[k]);
+        const auto cell =
+            static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
+        StrainIncrement& de = scratch.strain[k];
+        const double correction =
+            (cell_volumetric[cell] / cell_weight[cell] - (de[RR] + de[YY] + de[TT])) / 3.0;
+        de[RR] += correction;
+        de[YY] += correction;
+        de[TT] += correction;
+      }
+    }
+
+    // 3. Objective rate: co-rotate the stress with the in-plane spin before the increment.
+    if (settings.jaumann_rate) {
+      for (std::size_t k = 0; k < particles.size(); ++k) {
+        rotate_in_plane(p.stress[static_cast<std::size_t>(particles[k])], scratch.spin[k]);
+      }
+    }
+
+    // 4. Constitutive update, one call per run of particles with the same material.
+    for (std::size_t begin = 0; begin < particles.size();) {
+      const std::uint16_t material = p.material[static_cast<std::size_t>(particles[begin])];
+      std::size_t end = begin + 1;
+      while (end < particles.size() &&
+             p.material[static_cast<std::size_t>(particles[end])] == material) {
+        ++end;
+      }
+      const std::size_t count = end - begin;
+      StressUpdateBatch batch;
+      batch.particles = particles.subspan(begin, count);
+      batch.strain = std::span<const StrainIncrement>(scratch.strain.data() + begin, count);
+      batch.constrained_modulus = std::span<double>(scratch.modulus.data() + begin, count);
+      batch.stress = p.stress.data();
+      batch.state = p.state.data();
+      batch.state_stride = p.state_stride;
+      scene.materials[material]->update_stress(batch);
+      begin = end;
+    }
+
+    // 5. Volume and position, the new cell, and the particle's limit on the next time step.
+    double block_min_time = std::numeric_limits<double>::infinity();
+    bool changed = false;
+    std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const auto i = static_cast<std::size_t>(particles[k]);
+      const StrainIncrement& de = scratch.strain[k];
+      p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
+      p.r[i] += p.du_r[i];
+      p.y[i] += p.du_y[i];
+      const int cr = grid.r_axis().locate(p.r[i]);
+      const int cy = grid.y_axis().locate(p.y[i]);
+      if (cr < 0 || cy < 0) {
+        first_outside = std::min(first_outside, static_cast<std::int64_t>(i));
+        continue;
+      }
+      changed = changed || bins.block_of(cr, cy) != block;
+      p.cell_r[i] = cr;
+      p.cell_y[i] = cy;
+      const double density = p.mass[i] / p.volume[i];
+      const double wave_speed = std::sqrt(scratch.modulus[k] * inverse_beta / density);
+      double speed = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
+      if constexpr (has_theta(mode)) {
+        speed += p.v_theta[i] * p.v_theta[i];
+      }
+      block_min_time =
+          std::min(block_min_time, grid.cell_min_size(cr, cy) / (wave_speed + std::sqrt(speed)));
+    }
+    min_time.local() = std::min(min_time.local(), block_min_time);
+    block_changed.local() = block_changed.local() || changed;
+    outside.local() = std::min(outside.local(), first_outside);
+  });
+
+  StressPassResult result;
+  result.min_crossing_time = min_time.combine([](double a, double b) { return std::min(a, b); });
+  result.block_changed = block_changed.combine([](bool a, bool b) { return a || b; });
+  const std::int64_t first =
+      outside.combine([](std::int64_t a, std::int64_t b) { return std::min(a, b); });
+  result.particle_outside = first == std::numeric_limits<std::int64_t>::max() ? -1 : first;
+  return result;
+}
+
+template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template StressPassResult update_stress_and_positions<GeometryMode::plane_strain>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+
+} // namespace mpile::passes
