@@ -1,7 +1,5 @@
 #include "engine/particle_bins.hpp"
 
-#include <tbb/parallel_reduce.h>
-
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -35,7 +33,7 @@ void ParticleBins::rebuild(std::span<const std::int32_t> cell_r,
 
   // Histogram per chunk; counts[c * blocks + b].
   std::vector<std::int32_t> counts(chunks * blocks, 0);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+  parallel_for(chunks, [&](std::size_t c) {
     std::int32_t* count = counts.data() + c * blocks;
     const std::size_t end = std::min(n, (c + 1) * chunk_size);
     for (std::size_t p = c * chunk_size; p < end; ++p) {
@@ -57,7 +55,7 @@ void ParticleBins::rebuild(std::span<const std::int32_t> cell_r,
   block_start_[blocks] = running;
 
   order_.resize(n);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+  parallel_for(chunks, [&](std::size_t c) {
     std::int32_t* offset = counts.data() + c * blocks;
     const std::size_t end = std::min(n, (c + 1) * chunk_size);
     for (std::size_t p = c * chunk_size; p < end; ++p) {
@@ -112,10 +110,10 @@ void ParticleBins::reset_to_identity() {
 }
 
 std::size_t ParticleBins::order_breaks() const {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(1, std::max<std::size_t>(order_.size(), 1)), std::size_t{0},
-      [&](const tbb::blocked_range<std::size_t>& range, std::size_t breaks) {
-        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+  return parallel_reduce(
+      order_.size(), std::size_t{0},
+      [&](std::size_t begin, std::size_t end, std::size_t breaks) {
+        for (std::size_t k = std::max<std::size_t>(begin, 1); k < end; ++k) {
           breaks += order_[k] != order_[k - 1] + 1 ? 1 : 0;
         }
         return breaks;

@@ -1,7 +1,6 @@
 #pragma once
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "engine/parallel.hpp"
 
 #include <array>
 #include <cstdint>
@@ -24,6 +23,7 @@ public:
 
   int block_cells() const { return block_cells_; }
   int block_count() const { return blocks_r_ * blocks_y_; }
+  std::span<const std::int32_t> non_empty_blocks() const { return non_empty_blocks_; }
   int block_of(int cr, int cy) const { return cr / block_cells_ + blocks_r_ * (cy / block_cells_); }
   /// First cell (cr, cy) of a block.
   std::array<int, 2> block_origin(int block) const {
@@ -64,12 +64,7 @@ public:
 
 private:
   template <class F> void run_blocks(const std::vector<std::int32_t>& blocks, F& f) const {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks.size()),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          f(blocks[i], particles_in(blocks[i]));
-                        }
-                      });
+    parallel_for(blocks.size(), [&](std::size_t i) { f(blocks[i], particles_in(blocks[i])); });
   }
 
   int block_cells_ = 8;

@@ -1,6 +1,6 @@
 #include "engine/particles.hpp"
 
-#include <tbb/parallel_for.h>
+#include "engine/parallel.hpp"
 
 namespace mpile {
 
@@ -36,7 +36,7 @@ void permute_array(std::vector<T>& values, std::span<const std::int32_t> order, 
     return;
   }
   std::vector<T> sorted(values.size());
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t k) {
+  parallel_for(order.size(), [&](std::size_t k) {
     const auto from = static_cast<std::size_t>(order[k]) * width;
     for (std::size_t j = 0; j < width; ++j) {
       sorted[k * width + j] = values[from + j];

@@ -2,8 +2,7 @@
 // same for any thread count.
 #include "solver/diagnostics.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
+#include "engine/parallel.hpp"
 
 namespace mpile {
 
@@ -12,15 +11,15 @@ namespace {
 constexpr std::size_t grain = 4096;
 
 template <class Term> double deterministic_sum(std::size_t n, Term term) {
-  return tbb::parallel_deterministic_reduce(
-      tbb::blocked_range<std::size_t>(0, n, grain), 0.0,
-      [&](const tbb::blocked_range<std::size_t>& range, double sum) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+  return parallel_reduce(
+      n, 0.0,
+      [&](std::size_t begin, std::size_t end, double sum) {
+        for (std::size_t i = begin; i != end; ++i) {
           sum += term(i);
         }
         return sum;
       },
-      [](double a, double b) { return a + b; });
+      [](double a, double b) { return a + b; }, true, grain);
 }
 
 } // namespace

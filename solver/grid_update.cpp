@@ -3,8 +3,6 @@
 // slot) and the velocity increment v^{n+1} - v^n (in the force slot).
 #include "solver/passes.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
 namespace mpile::passes {
@@ -27,7 +25,7 @@ void update_grid_velocities(Scene& scene, const SolverSettings& settings,
   Grid& grid = scene.grid;
   const double alpha = settings.local_damping;
   const double dt_over_beta = step.dt / settings.mass_scaling;
-  tbb::parallel_for(std::size_t{0}, grid.nodes.size(), [&](std::size_t i) {
+  parallel_for(grid.nodes.size(), [&](std::size_t i) {
     GridNode& node = grid.nodes[i];
     if (node.mass <= step.mass_floor) {
       node = GridNode{};

@@ -3,16 +3,13 @@
 #include "engine/shape_functions.hpp"
 #include "solver/passes.hpp"
 
-#include <tbb/parallel_for.h>
-
 namespace mpile::passes {
 
 template <GeometryMode mode>
 void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings) {
   Grid& grid = scene.grid;
   const Particles& p = scene.particles;
-  tbb::parallel_for(std::size_t{0}, grid.nodes.size(),
-                    [&](std::size_t i) { grid.nodes[i] = GridNode{}; });
+  parallel_for(grid.nodes.size(), [&](std::size_t i) { grid.nodes[i] = GridNode{}; });
 
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];

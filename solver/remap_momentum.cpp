@@ -4,8 +4,6 @@
 #include "engine/shape_functions.hpp"
 #include "solver/passes.hpp"
 
-#include <tbb/parallel_for.h>
-
 namespace mpile::passes {
 
 template <GeometryMode mode>
@@ -13,7 +11,7 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   const Particles& p = scene.particles;
-  tbb::parallel_for(std::size_t{0}, grid.nodes.size(), [&](std::size_t i) {
+  parallel_for(grid.nodes.size(), [&](std::size_t i) {
     for (int d = 0; d < dofs; ++d) {
       grid.nodes[i].momentum[d] = 0.0;
     }
@@ -35,7 +33,7 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
       }
     }
   });
-  tbb::parallel_for(std::size_t{0}, grid.nodes.size(), [&](std::size_t i) {
+  parallel_for(grid.nodes.size(), [&](std::size_t i) {
     GridNode& node = grid.nodes[i];
     const double inverse_mass = node.mass > step.mass_floor ? 1.0 / node.mass : 0.0;
     for (int d = 0; d < dofs; ++d) {

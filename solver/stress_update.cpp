@@ -5,8 +5,6 @@
 #include "engine/shape_functions.hpp"
 #include "solver/passes.hpp"
 
-#include <tbb/combinable.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -51,9 +49,13 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
   const int block_cells = bins.block_cells();
   const double inverse_beta = 1.0 / settings.mass_scaling;
 
-  tbb::combinable<double> min_time([] { return std::numeric_limits<double>::infinity(); });
-  tbb::combinable<bool> block_changed([] { return false; });
-  tbb::combinable<std::int64_t> outside([] { return std::numeric_limits<std::int64_t>::max(); });
+  // One result per block, reduced serially afterwards: no shared writes, and a fixed order.
+  struct BlockResult {
+    double min_time = std::numeric_limits<double>::infinity();
+    bool changed = false;
+    std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
+  };
+  std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
 
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
     thread_local BlockScratch scratch;
@@ -146,9 +148,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
     }
 
     // 5. Volume and position, the new cell, and the particle's limit on the next time step.
-    double block_min_time = std::numeric_limits<double>::infinity();
-    bool changed = false;
-    std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
+    BlockResult& out = block_results[static_cast<std::size_t>(block)];
     for (std::size_t k = 0; k < particles.size(); ++k) {
       const auto i = static_cast<std::size_t>(particles[k]);
       const StrainIncrement& de = scratch.strain[k];
@@ -158,10 +158,10 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       const int cr = grid.r_axis().locate(p.r[i]);
       const int cy = grid.y_axis().locate(p.y[i]);
       if (cr < 0 || cy < 0) {
-        first_outside = std::min(first_outside, static_cast<std::int64_t>(i));
+        out.first_outside = std::min(out.first_outside, static_cast<std::int64_t>(i));
         continue;
       }
-      changed = changed || bins.block_of(cr, cy) != block;
+      out.changed = out.changed || bins.block_of(cr, cy) != block;
       p.cell_r[i] = cr;
       p.cell_y[i] = cy;
       const double density = p.mass[i] / p.volume[i];
@@ -170,20 +170,22 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       if constexpr (has_theta(mode)) {
         speed += p.v_theta[i] * p.v_theta[i];
       }
-      block_min_time =
-          std::min(block_min_time, grid.cell_min_size(cr, cy) / (wave_speed + std::sqrt(speed)));
+      out.min_time =
+          std::min(out.min_time, grid.cell_min_size(cr, cy) / (wave_speed + std::sqrt(speed)));
     }
-    min_time.local() = std::min(min_time.local(), block_min_time);
-    block_changed.local() = block_changed.local() || changed;
-    outside.local() = std::min(outside.local(), first_outside);
   });
 
   StressPassResult result;
-  result.min_crossing_time = min_time.combine([](double a, double b) { return std::min(a, b); });
-  result.block_changed = block_changed.combine([](bool a, bool b) { return a || b; });
-  const std::int64_t first =
-      outside.combine([](std::int64_t a, std::int64_t b) { return std::min(a, b); });
-  result.particle_outside = first == std::numeric_limits<std::int64_t>::max() ? -1 : first;
+  result.min_crossing_time = std::numeric_limits<double>::infinity();
+  std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
+  for (const std::int32_t block : bins.non_empty_blocks()) {
+    const BlockResult& out = block_results[static_cast<std::size_t>(block)];
+    result.min_crossing_time = std::min(result.min_crossing_time, out.min_time);
+    result.block_changed = result.block_changed || out.changed;
+    first_outside = std::min(first_outside, out.first_outside);
+  }
+  result.particle_outside =
+      first_outside == std::numeric_limits<std::int64_t>::max() ? -1 : first_outside;
   return result;
 }
 

@@ -3,8 +3,7 @@
 // mass, volume, velocity, stress and state.
 #include "solver/passes.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
+#include "engine/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,10 +14,10 @@ namespace mpile::passes {
 double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
   const Particles& p = scene.particles;
   const bool theta = has_theta(scene.mode);
-  return tbb::parallel_reduce(
-      tbb::blocked_range<std::size_t>(0, p.size()), std::numeric_limits<double>::infinity(),
-      [&](const tbb::blocked_range<std::size_t>& range, double limit) {
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+  return parallel_reduce(
+      p.size(), std::numeric_limits<double>::infinity(),
+      [&](std::size_t begin, std::size_t end, double limit) {
+        for (std::size_t i = begin; i != end; ++i) {
           const Material& material = *scene.materials[p.material[i]];
           const double modulus = material.constrained_modulus(
               p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
