@@ -8,7 +8,7 @@
 #include "cases/verification/verification_case.hpp"
 #include "engine/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
-#include "solver/explicit_solver.hpp"
+#include "solver/equilibrium.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -67,7 +67,7 @@ Report run_self_weight_column(const Options& options) {
   settings = apply_options(settings, options);
   RunLog log;
   ExplicitSolver solver(scene, settings, log);
-  solver.advance_to(0.3);
+  const EquilibriumResult rest = advance_to_equilibrium(solver, equilibrium_tolerance, 4.0);
 
   const Particles& p = scene.particles;
   const double e_oed = oedometer_modulus();
@@ -120,6 +120,7 @@ Report run_self_weight_column(const Options& options) {
       {"max |sigma_rr - sigma_thth| / |sigma_v| (interior)", "-", max_hoop_split, 0.0, 1.0, 0.01},
       {"settlement of the top particles", "m", settlement, exact_settlement,
        std::abs(exact_settlement), 0.02},
+      equilibrium_check(rest),
   };
   report.wall_seconds = seconds_since(start);
   return report;

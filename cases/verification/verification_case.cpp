@@ -78,6 +78,15 @@ std::array<double, 2> fit_two_functions(const std::vector<double>& f1,
   return {(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det};
 }
 
+Check equilibrium_check(const EquilibriumResult& result) {
+  return {"kinetic / elastic energy at the end (equilibrium)",
+          "-",
+          result.kinetic_ratio,
+          0.0,
+          1.0,
+          equilibrium_tolerance};
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

@@ -4,6 +4,7 @@
 // built at a chosen resolution, run, and compared. The unit tests and `mpile verify` share them.
 
 #include "engine/scene.hpp"
+#include "solver/equilibrium.hpp"
 #include "solver/solver_settings.hpp"
 
 #include <array>
@@ -83,6 +84,12 @@ namespace mpile::verification {
 std::array<double, 2> fit_two_functions(const std::vector<double>& f1,
                                         const std::vector<double>& f2,
                                         const std::vector<double>& y);
+
+/// Quasi-static cases are relaxed until kinetic energy < this times the elastic energy.
+inline constexpr double equilibrium_tolerance = 1e-9;
+
+/// The check that a quasi-static case reached equilibrium before it was compared.
+Check equilibrium_check(const EquilibriumResult& result);
 
 /// Wall-clock seconds since start, for reports.
 double seconds_since(std::chrono::steady_clock::time_point start);
