@@ -65,7 +65,21 @@ double table_primitive(const std::vector<std::pair<double, double>>& p, double t
 
 } // namespace
 
+TimeFunction TimeFunction::starting_at(double start) const {
+  TimeFunction shifted = *this;
+  shifted.start_ = start;
+  return shifted;
+}
+
 double TimeFunction::value(double t) const {
+  return t < start_ ? 0.0 : local_value(t - start_);
+}
+
+double TimeFunction::primitive(double t) const {
+  return t < start_ ? 0.0 : local_primitive(t - start_);
+}
+
+double TimeFunction::local_value(double t) const {
   return std::visit(
       [t](const auto& f) -> double {
         using T = std::decay_t<decltype(f)>;
@@ -96,7 +110,7 @@ double TimeFunction::value(double t) const {
       function_);
 }
 
-double TimeFunction::primitive(double t) const {
+double TimeFunction::local_primitive(double t) const {
   return std::visit(
       [t](const auto& f) -> double {
         using T = std::decay_t<decltype(f)>;

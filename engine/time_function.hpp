@@ -6,7 +6,8 @@
 
 namespace mpile {
 
-/// A scalar function of time for loads and prescribed motions: constant, piecewise-linear table
+/// A scalar function of time for loads and prescribed motions, zero before its start time (0 unless
+/// moved with starting_at): constant, piecewise-linear table
 /// (a ramp is a two-point table), harmonic A sin(2 pi f t + phase), and a train of half-sine pulses
 /// (amplitude, pulse duration, interval between pulse starts). Each has an exact integral, so that
 /// a prescribed velocity or load applied as its mean over a time step gives the exact displacement
@@ -22,6 +23,10 @@ public:
   static TimeFunction table(std::vector<std::pair<double, double>> points);
   static TimeFunction harmonic(double amplitude, double frequency, double phase = 0.0);
   static TimeFunction pulse_train(double amplitude, double pulse_duration, double interval);
+
+  /// The same function started at time start: zero before it, f(t - start) after.
+  TimeFunction starting_at(double start) const;
+  double start() const { return start_; }
 
   double value(double t) const;
   /// Integral of the function from 0 to t.
@@ -45,7 +50,11 @@ private:
   using Variant = std::variant<Constant, Table, Harmonic, PulseTrain>;
   explicit TimeFunction(Variant function) : function_(std::move(function)) {}
 
+  double local_value(double t) const;
+  double local_primitive(double t) const;
+
   Variant function_;
+  double start_ = 0.0;
 };
 
 } // namespace mpile

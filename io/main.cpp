@@ -1,4 +1,5 @@
 // mpile: the command line.
+#include "io/run_command.hpp"
 #include "io/verify_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -16,11 +17,27 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
 
+  mpile::RunOptions run_options;
+  auto* run = app.add_subcommand("run", "run a case file");
+  run->add_option("case", run_options.case_path, "the case file (TOML)")->required();
+  run->add_option("--threads", threads, "worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--out", run_options.output_directory,
+                  "output directory (default: [output].directory, else out/<case name>)");
+  run->add_option("--restart", run_options.restart, "continue from this checkpoint file");
+
+  auto* check = app.add_subcommand("check", "validate a case and estimate its cost");
+  check->add_option("case", run_options.case_path, "the case file (TOML)")->required();
+  check->add_option("--threads", threads, "worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
+
   auto* verify = app.add_subcommand("verify", "run verification cases against their references");
   std::vector<std::string> ids{"all"};
   bool list = false;
   mpile::verification::Options options;
   verify->add_option("cases", ids, "case ids (V1, V2, ...), or all")->capture_default_str();
+  verify->add_option("--threads", threads, "worker threads (default: all cores)")
+      ->check(CLI::PositiveNumber);
   verify->add_flag("--list", list, "list the cases and exit");
   verify->add_option("--refinement", options.refinement, "cells per direction multiplier")
       ->check(CLI::PositiveNumber)
@@ -35,27 +52,35 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(-0.99, 0.4999));
   verify->add_option("--courant", options.courant_number, "Courant number");
 
-  CLI11_PARSE(app, argc, argv);
-
-  std::unique_ptr<tbb::global_control> thread_limit;
-  const int cores = tbb::info::default_concurrency();
-  thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                       threads > 0 ? threads : cores);
-
   try {
-    if (verify->parsed()) {
-      if (list) {
-        for (const auto& c : mpile::verification::all_cases()) {
-          std::cout << c.id << "\t" << c.title << '\n';
-        }
-        return 0;
-      }
-      std::cout << "mpile verify on " << (threads > 0 ? threads : cores) << " thread(s)\n";
-      return mpile::run_verification(ids, options, std::cout) == 0 ? 0 : 1;
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : mpile::exit_bad_input;
+  }
+
+  const int cores = tbb::info::default_concurrency();
+  run_options.threads = threads > 0 ? threads : cores;
+  const tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism,
+                                         static_cast<std::size_t>(run_options.threads));
+  try {
+    if (run->parsed()) {
+      return mpile::run_case(run_options, std::cout, std::cerr);
     }
+    if (check->parsed()) {
+      return mpile::check_case(run_options, std::cout, std::cerr);
+    }
+    if (list) {
+      for (const auto& c : mpile::verification::all_cases()) {
+        std::cout << c.id << "\t" << c.title << '\n';
+      }
+      return 0;
+    }
+    std::cout << "mpile verify on " << run_options.threads << " thread(s)\n";
+    return mpile::run_verification(ids, options, std::cout) == 0 ? mpile::exit_success
+                                                                 : mpile::exit_failure;
   } catch (const std::exception& e) {
     std::cerr << "mpile: " << e.what() << '\n';
-    return 2;
+    return mpile::exit_failure;
   }
-  return 0;
 }

@@ -31,9 +31,10 @@ void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_
 
 } // namespace
 
-void apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                       bool record_reactions) {
+double apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                         bool record_reactions) {
   Grid& grid = scene.grid;
+  double work = 0.0;
   const double inertia_per_dt = settings.mass_scaling / step.dt;
   for (NodeConstraint& c : scene.boundaries.constraints) {
     if (c.dofs == 0) {
@@ -73,6 +74,7 @@ void apply_constraints(Scene& scene, const SolverSettings& settings, const StepP
           node.force[d] = prescribed_change[d] * scale;
           const double reaction = node.mass * change * inertia_per_dt;
           c.reaction[static_cast<std::size_t>(d)] += reaction;
+          work += reaction * target * step.dt;
           if (d == 2) {
             c.torque += r * reaction;
           }
@@ -84,6 +86,19 @@ void apply_constraints(Scene& scene, const SolverSettings& settings, const StepP
   if (scene.velocity_field) {
     apply_velocity_field(scene, step, record_reactions);
   }
+  return work;
+}
+
+double nodal_load_work(const Scene& scene, const StepParameters& step) {
+  double work = 0.0;
+  for (const NodalLoad& load : scene.boundaries.loads) {
+    const double traction = load.traction.mean(step.time, step.time + step.dt);
+    for (std::size_t k = 0; k < load.nodes.size(); ++k) {
+      const GridNode& node = scene.grid.nodes[static_cast<std::size_t>(load.nodes[k])];
+      work += load.weight[k] * traction * node.momentum[load.component] * step.dt;
+    }
+  }
+  return work;
 }
 
 } // namespace mpile::passes

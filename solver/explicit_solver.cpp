@@ -37,6 +37,26 @@ std::string position_of(const Particles& p, std::size_t i) {
 
 ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log)
     : scene_(scene), settings_(settings), log_(log) {
+  prepare();
+  sort_particles_by_cell();
+  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
+                        settings_.max_time_step);
+  report_settings();
+}
+
+ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log,
+                               const SolverState& restored)
+    : scene_(scene), settings_(settings), log_(log) {
+  prepare();
+  time_ = restored.time;
+  steps_ = restored.steps;
+  stable_dt_ = restored.stable_dt;
+  last_dt_ = restored.last_dt;
+  external_work_ = restored.external_work;
+  report_settings();
+}
+
+void ExplicitSolver::prepare() {
   settings_.validate();
   Particles& p = scene_.particles;
   if (p.size() == 0) {
@@ -59,10 +79,6 @@ ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& lo
   bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
   locate_all_particles();
   rebin();
-  sort_particles_by_cell();
-  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
-                        settings_.max_time_step);
-  report_settings();
 }
 
 void ExplicitSolver::report_settings() {
@@ -152,7 +168,10 @@ template <GeometryMode mode> void ExplicitSolver::step_in_mode(double dt) {
     PassTimer timer(timings_.grid_update);
     passes::apply_nodal_loads(scene_, step);
     passes::update_grid_velocities<mode>(scene_, settings_, step);
-    passes::apply_constraints(scene_, settings_, step, true);
+    external_work_ += passes::apply_constraints(scene_, settings_, step, true);
+    if (!scene_.boundaries.loads.empty()) {
+      external_work_ += passes::nodal_load_work(scene_, step);
+    }
   }
   {
     PassTimer timer(timings_.grid_to_particle);
@@ -169,7 +188,9 @@ template <GeometryMode mode> void ExplicitSolver::step_in_mode(double dt) {
     result = passes::update_stress_and_positions<mode>(scene_, bins_, settings_, step);
   }
   time_ += dt;
+  last_dt_ = dt;
   ++steps_;
+  external_work_ += result.gravity_work;
   if (result.particle_outside >= 0) {
     std::ostringstream s;
     s << "step " << steps_ << ", t = " << time_

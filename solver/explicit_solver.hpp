@@ -26,12 +26,23 @@ struct PassTimings {
   double stress_update = 0.0;
 };
 
+/// What a checkpoint must keep of the integrator to continue a run bitwise identically.
+struct SolverState {
+  double time = 0.0;
+  long steps = 0;
+  double stable_dt = 0.0;
+  double last_dt = 0.0;
+  double external_work = 0.0;
+};
+
 /// The explicit MPM time integrator (MUSL, physics.md section 3) over a scene.
 class ExplicitSolver {
 public:
-  /// Locates and bins the particles and checks the scene; throws std::invalid_argument for a
-  /// particle outside the grid or on the axis, or settings out of range.
+  /// Locates and bins the particles, sorts them by cell and checks the scene; throws
+  /// std::invalid_argument for a particle outside the grid or on the axis, or settings out of range.
   ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log);
+  /// Continues a run from a checkpoint: the particles keep their order and the step its size.
+  ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log, const SolverState& restored);
 
   /// One explicit step of length min(stable dt, max_dt).
   void step(double max_dt = std::numeric_limits<double>::infinity());
@@ -40,8 +51,14 @@ public:
 
   double time() const { return time_; }
   long step_count() const { return steps_; }
+  /// Work done on the material since the start by gravity, loads and supports (J, per radian in
+  /// axisymmetric mode).
+  double external_work() const { return external_work_; }
   /// Stable time step for the next step (s).
   double stable_time_step() const { return stable_dt_; }
+  /// Length of the last step taken (s).
+  double last_time_step() const { return last_dt_; }
+  SolverState state() const { return {time_, steps_, stable_dt_, last_dt_, external_work_}; }
   const SolverSettings& settings() const { return settings_; }
   /// Replaces the settings between phases (damping on or off, for example).
   void change_settings(const SolverSettings& settings);
@@ -51,6 +68,7 @@ public:
 
 private:
   template <GeometryMode mode> void step_in_mode(double dt);
+  void prepare();
   void locate_all_particles();
   void rebin();
   void sort_particles_by_cell();
@@ -64,6 +82,8 @@ private:
   double time_ = 0.0;
   double stable_dt_ = 0.0;
   double mass_floor_ = 0.0;
+  double external_work_ = 0.0;
+  double last_dt_ = 0.0;
   long steps_ = 0;
 };
 

@@ -29,10 +29,13 @@ void update_grid_velocities(Scene& scene, const SolverSettings& settings,
                             const StepParameters& step);
 
 /// Sets constrained DOFs to their prescribed velocities. With record_reactions, also the velocity
-/// increment and the reaction of each constraint (after the momentum balance); without, only the
-/// velocities (after the MUSL remap).
-void apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                       bool record_reactions);
+/// increment and the reaction of each constraint (after the momentum balance) and returns the work
+/// the reactions do over the step; without, only the velocities (after the MUSL remap).
+double apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                         bool record_reactions);
+
+/// Work of the nodal loads over the step, from the updated nodal velocities.
+double nodal_load_work(const Scene& scene, const StepParameters& step);
 
 template <GeometryMode mode>
 void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
@@ -45,6 +48,7 @@ struct StressPassResult {
   double min_crossing_time = 0.0;     // min over particles of h_cell / (c_p + |v_p|)
   bool block_changed = false;         // a particle moved into another scatter block
   std::int64_t particle_outside = -1; // lowest index of a particle that left the grid, or -1
+  double gravity_work = 0.0;          // sum of m g . du over the particles
 };
 
 template <GeometryMode mode>

@@ -48,12 +48,15 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
   const double dt = step.dt;
   const int block_cells = bins.block_cells();
   const double inverse_beta = 1.0 / settings.mass_scaling;
+  const double g_r = settings.gravity[0];
+  const double g_y = settings.gravity[1];
 
   // One result per block, reduced serially afterwards: no shared writes, and a fixed order.
   struct BlockResult {
     double min_time = std::numeric_limits<double>::infinity();
     bool changed = false;
     std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
+    double gravity_work = 0.0;
   };
   std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
 
@@ -153,6 +156,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       const auto i = static_cast<std::size_t>(particles[k]);
       const StrainIncrement& de = scratch.strain[k];
       p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
+      out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
       p.r[i] += p.du_r[i];
       p.y[i] += p.du_y[i];
       const int cr = grid.r_axis().locate(p.r[i]);
@@ -183,6 +187,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
     result.min_crossing_time = std::min(result.min_crossing_time, out.min_time);
     result.block_changed = result.block_changed || out.changed;
     first_outside = std::min(first_outside, out.first_outside);
+    result.gravity_work += out.gravity_work;
   }
   result.particle_outside =
       first_outside == std::numeric_limits<std::int64_t>::max() ? -1 : first_outside;

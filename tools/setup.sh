@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libtbb-dev libhdf5-dev libvtk9-dev
   libgtest-dev libgmock-dev
   libcli11-dev libfmt-dev libtoml11-dev
-  python3-numpy python3-h5py python3-matplotlib
+  python3-numpy python3-h5py python3-matplotlib python3-vtk9
 )
 
 missing=()

@@ -1,0 +1,175 @@
+#include "io/case_builder.hpp"
+
+#include "io/case_error.hpp"
+
+#include <cmath>
+
+namespace mpile {
+
+namespace {
+
+std::vector<int> line_nodes(const Grid& grid, const NodeLineSpec& line) {
+  const double tolerance = 1e-9;
+  if (line.along_y) {
+    for (int ir = 0; ir < grid.nodes_r(); ++ir) {
+      if (std::abs(grid.r_axis().node(ir) - line.at) <=
+          tolerance * std::max(1.0, std::abs(line.at))) {
+        return nodes_on_r_line(grid, ir, line.from - tolerance, line.to + tolerance);
+      }
+    }
+  } else {
+    for (int iy = 0; iy < grid.nodes_y(); ++iy) {
+      if (std::abs(grid.y_axis().node(iy) - line.at) <=
+          tolerance * std::max(1.0, std::abs(line.at))) {
+        return nodes_on_y_line(grid, iy, line.from - tolerance, line.to + tolerance);
+      }
+    }
+  }
+  return {};
+}
+
+std::size_t phase_of(const CaseSpec& spec, const std::string& name) {
+  for (std::size_t p = 0; p < spec.phases.size(); ++p) {
+    if (spec.phases[p].name == name) {
+      return p;
+    }
+  }
+  return 0;
+}
+
+} // namespace
+
+std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
+  auto scene =
+      std::make_unique<Scene>(spec.mode, Grid(GradedAxis(spec.r_zones), GradedAxis(spec.y_zones)));
+  for (const MaterialSpec& material : spec.materials) {
+    scene->add_material(create_material(material.type, material.parameters));
+  }
+  for (const BodySpec& body : spec.bodies) {
+    std::uint16_t material = 0;
+    for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+      if (spec.materials[m].name == body.material) {
+        material = static_cast<std::uint16_t>(m);
+      }
+    }
+    const std::uint16_t index = scene->add_body(body.name);
+    const std::size_t first = scene->particles.size();
+    const std::size_t added =
+        fill_rectangle(*scene, body.region, body.particles_per_direction, material, index);
+    if (added == 0) {
+      throw CaseError(spec.file + ": body '" + body.name +
+                      "': its region holds no particle position (smaller than a cell?)");
+    }
+    Particles& p = scene->particles;
+    for (std::size_t i = first; i < p.size(); ++i) {
+      p.v_r[i] = body.velocity[0];
+      p.v_y[i] = body.velocity[1];
+      if (has_theta(spec.mode)) {
+        p.v_theta[i] = body.velocity[2];
+      }
+    }
+  }
+
+  Boundaries& boundaries = scene->boundaries;
+  const GridFace faces[] = {GridFace::r_min, GridFace::r_max, GridFace::y_min, GridFace::y_max};
+  for (std::size_t f = 0; f < 4; ++f) {
+    if (spec.faces[f] != FaceCondition::free) {
+      boundaries.constraints.push_back(
+          face_constraint(scene->grid, spec.mode, faces[f], spec.faces[f]));
+    }
+  }
+  if (spec.mode == GeometryMode::axisymmetric && scene->grid.r_axis().start() == 0.0) {
+    boundaries.constraints.push_back(axis_constraint(scene->grid));
+  }
+  for (const MotionSpec& motion : spec.motions) {
+    NodeConstraint c;
+    c.name = motion.name;
+    c.nodes = line_nodes(scene->grid, motion.nodes);
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (motion.velocity[d]) {
+        c.dofs |= static_cast<std::uint8_t>(1u << d);
+        c.velocity[d] = motion.velocity[d];
+      }
+    }
+    c.theta_is_rotation = motion.theta_is_rotation;
+    boundaries.constraints.push_back(std::move(c));
+  }
+  for (const LoadSpec& load : spec.loads) {
+    boundaries.loads.push_back(line_load(scene->grid, spec.mode,
+                                         line_nodes(scene->grid, load.nodes), load.component,
+                                         load.traction, load.name));
+  }
+  // Until their phase starts, motions hold their DOFs at rest and loads are off.
+  activate_phase_boundaries(*scene, spec, 0, 0.0);
+  return scene;
+}
+
+void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t phase_index,
+                               double start_time) {
+  constexpr double never = 1e300;
+  for (const MotionSpec& motion : spec.motions) {
+    const std::size_t starts = phase_of(spec, motion.phase);
+    for (NodeConstraint& c : scene.boundaries.constraints) {
+      if (c.name != motion.name) {
+        continue;
+      }
+      for (std::size_t d = 0; d < 3; ++d) {
+        if (motion.velocity[d] && (starts == phase_index || phase_index == 0)) {
+          c.velocity[d] =
+              motion.velocity[d]->starting_at(starts == phase_index ? start_time : never);
+        }
+      }
+    }
+  }
+  for (const LoadSpec& spec_load : spec.loads) {
+    const std::size_t starts = phase_of(spec, spec_load.phase);
+    for (NodalLoad& load : scene.boundaries.loads) {
+      if (load.name == spec_load.name && (starts == phase_index || phase_index == 0)) {
+        load.traction = spec_load.traction.starting_at(starts == phase_index ? start_time : never);
+      }
+    }
+  }
+}
+
+void apply_k0(Scene& scene, const CaseSpec& spec, const PhaseSpec& phase) {
+  const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
+  for (const K0Spec& k0 : phase.k0) {
+    for (std::size_t b = 0; b < scene.body_names.size(); ++b) {
+      if (scene.body_names[b] != k0.body) {
+        continue;
+      }
+      for (const BodySpec& body : spec.bodies) {
+        if (body.name != k0.body) {
+          continue;
+        }
+        for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+          if (spec.materials[m].name == body.material) {
+            const double unit_weight = scene.materials[m]->density() * g;
+            initialise_geostatic_stress(scene, static_cast<std::uint16_t>(b), k0.surface,
+                                        unit_weight, k0.k0);
+          }
+        }
+      }
+    }
+  }
+}
+
+SolverSettings phase_settings(const CaseSpec& spec, const PhaseSpec& phase) {
+  SolverSettings s = spec.solver;
+  s.local_damping = phase.local_damping;
+  if (!phase.gravity) {
+    s.gravity = {0.0, 0.0};
+  }
+  if (phase.flip_fraction) {
+    s.flip_fraction = *phase.flip_fraction;
+  }
+  if (phase.mass_scaling) {
+    s.mass_scaling = *phase.mass_scaling;
+  }
+  if (phase.courant_number) {
+    s.courant_number = *phase.courant_number;
+  }
+  return s;
+}
+
+} // namespace mpile

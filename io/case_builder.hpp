@@ -1,0 +1,26 @@
+#pragma once
+
+#include "engine/scene.hpp"
+#include "io/case_spec.hpp"
+
+#include <memory>
+
+namespace mpile {
+
+/// Builds the scene a case describes: grid, materials, bodies (particles with their initial
+/// velocity), face and axis constraints, prescribed motions and loads (inactive until their phase
+/// starts: activate_phase_boundaries does that).
+std::unique_ptr<Scene> build_scene(const CaseSpec& spec);
+
+/// Starts the prescribed motions and loads that begin with phase `phase_index`: their time
+/// functions count from start_time. Motions and loads without a phase start with the first.
+void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t phase_index,
+                               double start_time);
+
+/// Applies the K0 procedures of a phase (geostatic stress from each body's density and gravity).
+void apply_k0(Scene& scene, const CaseSpec& spec, const PhaseSpec& phase);
+
+/// The solver settings in force during a phase.
+SolverSettings phase_settings(const CaseSpec& spec, const PhaseSpec& phase);
+
+} // namespace mpile

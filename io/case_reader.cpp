@@ -1,0 +1,557 @@
+// The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
+// keys, wrong types and physically invalid values are errors that name file, line, key and reason.
+#include "io/case_spec.hpp"
+#include "io/toml_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace mpile {
+
+namespace {
+
+std::string format_number(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key) {
+  std::vector<AxisZone> zones;
+  for (TomlTable& zone : grid.tables(key)) {
+    AxisZone z;
+    z.start = zone.number("start");
+    z.end = zone.number("end");
+    const long cells = zone.integer("cells");
+    if (cells < 1 || cells > 100000) {
+      zone.fail("cells", "must lie between 1 and 100000, got " + std::to_string(cells));
+    }
+    z.cells = static_cast<int>(cells);
+    if (!(z.end > z.start)) {
+      zone.fail("end", "must be greater than start (" + format_number(z.start) + ")");
+    }
+    zone.finish();
+    zones.push_back(z);
+  }
+  if (zones.empty()) {
+    grid.fail(key, "missing (required): at least one zone {start, end, cells}");
+  }
+  try {
+    GradedAxis axis(zones);
+  } catch (const std::invalid_argument& e) {
+    grid.fail(key, e.what());
+  }
+  return zones;
+}
+
+TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
+  const TomlValue& raw = parent.raw(key);
+  if (raw.is_floating() || raw.is_integer()) {
+    return TimeFunction::constant(parent.number(key));
+  }
+  TomlTable f = parent.table(key);
+  const std::string type = f.string("type");
+  TimeFunction result;
+  try {
+    if (type == "constant") {
+      result = TimeFunction::constant(f.number("value"));
+    } else if (type == "ramp") {
+      result = TimeFunction::ramp(f.number("value"), f.positive("duration"));
+    } else if (type == "table") {
+      const TomlValue& points = f.raw("points");
+      std::vector<std::pair<double, double>> table;
+      bool ok = points.is_array() && !points.as_array().empty();
+      if (ok) {
+        for (const TomlValue& point : points.as_array()) {
+          if (!point.is_array() || point.as_array().size() != 2) {
+            ok = false;
+            break;
+          }
+          const auto& pair = point.as_array();
+          auto number = [&](const TomlValue& v) {
+            if (v.is_integer()) {
+              return static_cast<double>(v.as_integer());
+            }
+            if (!v.is_floating()) {
+              ok = false;
+              return 0.0;
+            }
+            return v.as_floating();
+          };
+          table.emplace_back(number(pair[0]), number(pair[1]));
+        }
+      }
+      if (!ok) {
+        f.fail("points", "expected [[t0, value0], [t1, value1], ...] with numbers");
+      }
+      try {
+        result = TimeFunction::table(std::move(table));
+      } catch (const std::invalid_argument& e) {
+        f.fail("points", e.what());
+      }
+    } else if (type == "harmonic") {
+      result = TimeFunction::harmonic(f.number("amplitude"), f.positive("frequency"),
+                                      f.number_or("phase", 0.0));
+    } else if (type == "pulse_train") {
+      const double amplitude = f.number("amplitude");
+      const double duration = f.positive("duration");
+      const double interval = f.positive("interval");
+      if (interval < duration) {
+        f.fail("interval", "must not be shorter than the pulse duration");
+      }
+      result = TimeFunction::pulse_train(amplitude, duration, interval);
+    } else {
+      f.fail("type",
+             "unknown time function '" + type + "' (constant, ramp, table, harmonic, pulse_train)");
+    }
+  } catch (const std::invalid_argument& e) {
+    f.fail("type", e.what());
+  }
+  f.finish();
+  return result;
+}
+
+struct Axes {
+  GradedAxis r;
+  GradedAxis y;
+};
+
+bool on_grid_line(const GradedAxis& axis, double x) {
+  const double tolerance = 1e-9 * std::max(1.0, axis.end() - axis.start());
+  for (const double node : axis.nodes()) {
+    if (std::abs(node - x) <= tolerance) {
+      return true;
+    }
+  }
+  return false;
+}
+
+NodeLineSpec read_node_line(TomlTable& owner, const Axes& axes) {
+  TomlTable nodes = owner.table("nodes");
+  NodeLineSpec line;
+  const bool has_r = nodes.has("r"), has_y = nodes.has("y");
+  auto is_number = [&](const std::string& key) {
+    const TomlValue& v = nodes.raw(key);
+    return v.is_floating() || v.is_integer();
+  };
+  if (has_r && is_number("r")) {
+    line.along_y = true;
+    line.at = nodes.number("r");
+    if (!on_grid_line(axes.r, line.at)) {
+      nodes.fail("r", format_number(line.at) + " is not on a grid line of r");
+    }
+    line.from = axes.y.start();
+    line.to = axes.y.end();
+    if (has_y) {
+      const auto range = nodes.numbers("y", 2);
+      line.from = range[0];
+      line.to = range[1];
+    }
+  } else if (has_y && is_number("y")) {
+    line.along_y = false;
+    line.at = nodes.number("y");
+    if (!on_grid_line(axes.y, line.at)) {
+      nodes.fail("y", format_number(line.at) + " is not on a grid line of y");
+    }
+    line.from = axes.r.start();
+    line.to = axes.r.end();
+    if (has_r) {
+      const auto range = nodes.numbers("r", 2);
+      line.from = range[0];
+      line.to = range[1];
+    }
+  } else {
+    owner.fail("nodes", "needs r = <grid line> or y = <grid line> (the other may be a range)");
+  }
+  if (!(line.to >= line.from)) {
+    nodes.fail(line.along_y ? "y" : "r", "range must be increasing");
+  }
+  nodes.finish();
+  return line;
+}
+
+int component_index(TomlTable& table, const std::string& key) {
+  const std::string name = table.string(key);
+  if (name == "r") {
+    return 0;
+  }
+  if (name == "y") {
+    return 1;
+  }
+  if (name == "theta") {
+    return 2;
+  }
+  table.fail(key, "must be \"r\", \"y\" or \"theta\", got \"" + name + "\"");
+}
+
+FaceCondition read_face(TomlTable& table, const std::string& key) {
+  const std::string name = table.string_or(key, "free");
+  if (name == "free") {
+    return FaceCondition::free;
+  }
+  if (name == "roller") {
+    return FaceCondition::roller;
+  }
+  if (name == "fixed") {
+    return FaceCondition::fixed;
+  }
+  table.fail(key, "must be \"free\", \"roller\" or \"fixed\", got \"" + name + "\"");
+}
+
+void read_materials(TomlTable& top, CaseSpec& spec) {
+  for (auto& [name, table] : top.named_tables("materials")) {
+    MaterialSpec material;
+    material.name = name;
+    material.type = table.string("type");
+    const MaterialType* type = nullptr;
+    std::string known;
+    for (const MaterialType& t : material_types()) {
+      known += (known.empty() ? "" : ", ") + t.name;
+      if (t.name == material.type) {
+        type = &t;
+      }
+    }
+    if (type == nullptr) {
+      table.fail("type", "unknown material type '" + material.type + "' (known: " + known + ")");
+    }
+    for (const MaterialParameterSpec& parameter : type->parameters) {
+      if (table.has(parameter.name)) {
+        material.parameters[parameter.name] = table.number(parameter.name);
+      } else if (!parameter.default_value) {
+        table.fail(parameter.name,
+                   "missing (required): " + parameter.meaning + ", in " + parameter.unit);
+      }
+    }
+    table.finish();
+    try {
+      create_material(material.type, material.parameters);
+    } catch (const std::invalid_argument& e) {
+      // Point at the parameter the model complains about.
+      const std::string message = e.what();
+      for (const MaterialParameterSpec& parameter : type->parameters) {
+        if (message.find(parameter.name) != std::string::npos) {
+          table.fail(parameter.name, message);
+        }
+      }
+      table.fail("type", message);
+    }
+    spec.materials.push_back(std::move(material));
+  }
+  if (spec.materials.empty()) {
+    top.fail("materials", "missing (required): at least one [materials.<name>] table");
+  }
+}
+
+void read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes) {
+  std::set<std::string> names;
+  for (TomlTable& table : top.tables("bodies")) {
+    BodySpec body;
+    body.name = table.string("name");
+    if (!names.insert(body.name).second) {
+      table.fail("name", "a body named '" + body.name + "' already exists");
+    }
+    body.material = table.string("material");
+    const bool known = std::any_of(spec.materials.begin(), spec.materials.end(),
+                                   [&](const MaterialSpec& m) { return m.name == body.material; });
+    if (!known) {
+      table.fail("material", "no material named '" + body.material + "' in [materials]");
+    }
+    TomlTable region = table.table("region");
+    const auto r = region.numbers("r", 2);
+    const auto y = region.numbers("y", 2);
+    if (!(r[1] > r[0])) {
+      region.fail("r", "must be [r_min, r_max] with r_max > r_min");
+    }
+    if (!(y[1] > y[0])) {
+      region.fail("y", "must be [y_min, y_max] with y_max > y_min");
+    }
+    region.finish();
+    body.region = {r[0], r[1], y[0], y[1]};
+    if (spec.mode == GeometryMode::axisymmetric && r[0] < 0.0) {
+      table.fail("region", "reaches r < 0, behind the axis");
+    }
+    if (r[0] < axes.r.start() || r[1] > axes.r.end() || y[0] < axes.y.start() ||
+        y[1] > axes.y.end()) {
+      table.fail("region", "lies outside the grid (r from " + format_number(axes.r.start()) +
+                               " to " + format_number(axes.r.end()) + ", y from " +
+                               format_number(axes.y.start()) + " to " +
+                               format_number(axes.y.end()) + ")");
+    }
+    const long per_direction = table.integer_or("particles_per_cell", 2);
+    if (per_direction < 1 || per_direction > 8) {
+      table.fail("particles_per_cell",
+                 "must lie between 1 and 8 (particles per cell direction), got " +
+                     std::to_string(per_direction));
+    }
+    body.particles_per_direction = static_cast<int>(per_direction);
+    if (table.has("velocity")) {
+      const auto v = table.numbers("velocity", 3);
+      body.velocity = {v[0], v[1], v[2]};
+      if (spec.mode == GeometryMode::plane_strain && v[2] != 0.0) {
+        table.fail("velocity", "plane strain has no theta velocity");
+      }
+    }
+    table.finish();
+    spec.bodies.push_back(std::move(body));
+  }
+  if (spec.bodies.empty()) {
+    top.fail("bodies", "missing (required): at least one [[bodies]] table");
+  }
+}
+
+std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
+  const std::string phase = table.string_or("phase", "");
+  const bool known =
+      phase.empty() || std::any_of(spec.phases.begin(), spec.phases.end(),
+                                   [&](const PhaseSpec& p) { return p.name == phase; });
+  if (!known) {
+    table.fail("phase", "no phase named '" + phase + "' in [[phases]]");
+  }
+  return phase;
+}
+
+void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
+  const bool theta = has_theta(spec.mode);
+  std::set<std::string> names;
+  auto unique_name = [&](TomlTable& table) {
+    std::string name = table.string("name");
+    if (!names.insert(name).second) {
+      table.fail("name", "a prescribed motion or load named '" + name + "' already exists");
+    }
+    return name;
+  };
+  for (TomlTable& table : top.tables("prescribed")) {
+    MotionSpec motion;
+    motion.name = unique_name(table);
+    motion.nodes = read_node_line(table, axes);
+    const char* keys[] = {"velocity_r", "velocity_y", "velocity_theta"};
+    for (std::size_t d = 0; d < 3; ++d) {
+      if (table.has(keys[d])) {
+        if (d == 2 && !theta) {
+          table.fail(keys[d], "plane strain has no theta velocity");
+        }
+        motion.velocity[d] = read_time_function(table, keys[d]);
+      }
+    }
+    if (table.has("angular_velocity")) {
+      if (!theta) {
+        table.fail("angular_velocity", "plane strain has no rotation about the axis");
+      }
+      if (motion.velocity[2]) {
+        table.fail("angular_velocity", "give either velocity_theta or angular_velocity, not both");
+      }
+      motion.velocity[2] = read_time_function(table, "angular_velocity");
+      motion.theta_is_rotation = true;
+    }
+    if (!motion.velocity[0] && !motion.velocity[1] && !motion.velocity[2]) {
+      table.fail("name", "prescribes nothing: give velocity_r, velocity_y, velocity_theta or "
+                         "angular_velocity");
+    }
+    motion.phase = read_phase_reference(table, spec);
+    table.finish();
+    spec.motions.push_back(std::move(motion));
+  }
+  for (TomlTable& table : top.tables("loads")) {
+    LoadSpec load;
+    load.name = unique_name(table);
+    load.nodes = read_node_line(table, axes);
+    load.component = component_index(table, "component");
+    if (load.component == 2 && !theta) {
+      table.fail("component", "plane strain has no theta direction");
+    }
+    load.traction = read_time_function(table, "traction");
+    load.phase = read_phase_reference(table, spec);
+    table.finish();
+    spec.loads.push_back(std::move(load));
+  }
+}
+
+void read_solver(TomlTable& top, CaseSpec& spec) {
+  SolverSettings& s = spec.solver;
+  std::optional<TomlTable> table = top.optional_table("solver");
+  if (!table) {
+    return;
+  }
+  s.courant_number = table->number_or("courant_number", s.courant_number);
+  if (table->has("max_time_step")) {
+    s.max_time_step = table->positive("max_time_step");
+  }
+  s.flip_fraction = table->number_or("flip_fraction", s.flip_fraction);
+  s.bbar = table->boolean_or("bbar", s.bbar);
+  s.jaumann_rate = table->boolean_or("jaumann_rate", s.jaumann_rate);
+  s.mass_scaling = table->number_or("mass_scaling", s.mass_scaling);
+  if (table->has("gravity")) {
+    const auto g = table->numbers("gravity", 2);
+    s.gravity = {g[0], g[1]};
+  }
+  s.block_cells = static_cast<int>(table->integer_or("block_cells", s.block_cells));
+  try {
+    s.validate();
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    for (const char* key : {"courant_number", "max_time_step", "flip_fraction", "mass_scaling",
+                            "gravity", "block_cells"}) {
+      if (message.rfind(key, 0) == 0) {
+        table->fail(key, message);
+      }
+    }
+    table->fail("", message);
+  }
+  table->finish();
+}
+
+void read_phases(TomlTable& top, CaseSpec& spec) {
+  std::set<std::string> names;
+  for (TomlTable& table : top.tables("phases")) {
+    PhaseSpec phase;
+    phase.name = table.string("name");
+    if (!names.insert(phase.name).second) {
+      table.fail("name", "a phase named '" + phase.name + "' already exists");
+    }
+    phase.duration = table.positive("duration");
+    phase.local_damping = table.number_or("local_damping", 0.0);
+    if (phase.local_damping < 0.0 || phase.local_damping >= 1.0) {
+      table.fail("local_damping", "must lie in [0, 1), got " + format_number(phase.local_damping));
+    }
+    phase.gravity = table.boolean_or("gravity", true);
+    if (table.has("equilibrium_tolerance")) {
+      phase.equilibrium_tolerance = table.positive("equilibrium_tolerance");
+    }
+    if (table.has("flip_fraction")) {
+      phase.flip_fraction = table.number("flip_fraction");
+      if (*phase.flip_fraction < 0.0 || *phase.flip_fraction > 1.0) {
+        table.fail("flip_fraction", "must lie in [0, 1]");
+      }
+    }
+    if (table.has("mass_scaling")) {
+      phase.mass_scaling = table.number("mass_scaling");
+      if (*phase.mass_scaling < 1.0) {
+        table.fail("mass_scaling", "must be at least 1");
+      }
+    }
+    if (table.has("courant_number")) {
+      phase.courant_number = table.positive("courant_number");
+      if (*phase.courant_number > 2.0) {
+        table.fail("courant_number", "must not exceed 2");
+      }
+    }
+    for (TomlTable& k0 : table.tables("k0")) {
+      K0Spec init;
+      init.body = k0.string("body");
+      const bool known = std::any_of(spec.bodies.begin(), spec.bodies.end(),
+                                     [&](const BodySpec& b) { return b.name == init.body; });
+      if (!known) {
+        k0.fail("body", "no body named '" + init.body + "'");
+      }
+      init.surface = k0.number("surface");
+      init.k0 = k0.positive("k0");
+      k0.finish();
+      phase.k0.push_back(init);
+    }
+    table.finish();
+    spec.phases.push_back(std::move(phase));
+  }
+  if (spec.phases.empty()) {
+    top.fail("phases", "missing (required): at least one [[phases]] table with a duration");
+  }
+}
+
+void read_output(TomlTable& top, CaseSpec& spec) {
+  std::optional<TomlTable> table = top.optional_table("output");
+  if (!table) {
+    return;
+  }
+  OutputSpec& out = spec.output;
+  out.directory = table->string_or("directory", "");
+  if (table->has("snapshot_interval")) {
+    out.snapshot_interval = table->non_negative("snapshot_interval");
+  }
+  out.snapshot_times = table->numbers_or("snapshot_times", {});
+  for (const double t : out.snapshot_times) {
+    if (t < 0.0) {
+      table->fail("snapshot_times", "times must not be negative");
+    }
+  }
+  if (table->has("history_interval")) {
+    out.history_interval = table->non_negative("history_interval");
+  }
+  if (table->has("checkpoint_interval")) {
+    out.checkpoint_interval = table->non_negative("checkpoint_interval");
+  }
+  out.grid_snapshots = table->boolean_or("grid_snapshots", false);
+  table->finish();
+}
+
+} // namespace
+
+double CaseSpec::end_time() const {
+  double total = 0.0;
+  for (const PhaseSpec& phase : phases) {
+    total += phase.duration;
+  }
+  return total;
+}
+
+CaseSpec read_case_text(const std::string& text, const std::string& file) {
+  const TomlValue root = parse_toml(text, file);
+  TomlTable top(root, "", file);
+  CaseSpec spec;
+  spec.file = file;
+  spec.text = text;
+  spec.title = top.string_or("title", std::filesystem::path(file).stem().string());
+  const std::string geometry = top.string_or("geometry", "axisymmetric");
+  if (geometry == "axisymmetric") {
+    spec.mode = GeometryMode::axisymmetric;
+  } else if (geometry == "plane_strain") {
+    spec.mode = GeometryMode::plane_strain;
+  } else {
+    top.fail("geometry", "must be \"axisymmetric\" or \"plane_strain\", got \"" + geometry + "\"");
+  }
+
+  TomlTable grid = top.table("grid");
+  spec.r_zones = read_zones(grid, "r");
+  spec.y_zones = read_zones(grid, "y");
+  grid.finish();
+  const Axes axes{GradedAxis(spec.r_zones), GradedAxis(spec.y_zones)};
+  if (spec.mode == GeometryMode::axisymmetric && axes.r.start() < 0.0) {
+    grid.fail("r", "starts at r = " + format_number(axes.r.start()) +
+                       " < 0; an axisymmetric grid starts at the axis or beyond it");
+  }
+
+  read_materials(top, spec);
+  read_bodies(top, spec, axes);
+  if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
+    const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
+    for (std::size_t f = 0; f < 4; ++f) {
+      spec.faces[f] = read_face(*boundaries, keys[f]);
+    }
+    if (spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0 &&
+        boundaries->has("r_min")) {
+      boundaries->fail("r_min", "the grid starts on the axis, which is constrained "
+                                "(u_r = u_theta = 0) automatically; remove this key");
+    }
+    boundaries->finish();
+  }
+  read_solver(top, spec);
+  read_phases(top, spec);
+  read_motions_and_loads(top, spec, axes);
+  read_output(top, spec);
+  top.finish();
+  return spec;
+}
+
+CaseSpec read_case_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) {
+    throw CaseError(path + ": cannot open the case file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return read_case_text(text.str(), path);
+}
+
+} // namespace mpile

@@ -1,0 +1,112 @@
+#pragma once
+
+// A run as described by a case file, read and validated (io/case_reader.cpp), before it becomes a
+// scene (io/case_builder.cpp). Units SI; docs/case-format.md documents every key.
+
+#include "engine/boundary_conditions.hpp"
+#include "engine/geometry_mode.hpp"
+#include "engine/graded_axis.hpp"
+#include "engine/material_registry.hpp"
+#include "engine/particle_fill.hpp"
+#include "engine/time_function.hpp"
+#include "solver/solver_settings.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mpile {
+
+struct MaterialSpec {
+  std::string name;
+  std::string type;
+  MaterialParameters parameters;
+};
+
+struct BodySpec {
+  std::string name;
+  std::string material;
+  Rectangle region;
+  int particles_per_direction = 2;
+  std::array<double, 3> velocity{0.0, 0.0, 0.0};
+};
+
+/// Grid nodes on one grid line: r = at (all y within [from, to]) or y = at (r within [from, to]).
+struct NodeLineSpec {
+  bool along_y = true; // true: the line r = at; false: the line y = at
+  double at = 0.0;
+  double from = 0.0;
+  double to = 0.0;
+};
+
+/// Prescribed nodal velocities (m/s; for theta optionally an angular velocity in rad/s).
+struct MotionSpec {
+  std::string name;
+  NodeLineSpec nodes;
+  std::array<std::optional<TimeFunction>, 3> velocity;
+  bool theta_is_rotation = false;
+  std::string phase; // starts with this phase (its time functions count from its start)
+};
+
+/// A normal or tangential traction (Pa) on a grid line.
+struct LoadSpec {
+  std::string name;
+  NodeLineSpec nodes;
+  int component = 0;
+  TimeFunction traction;
+  std::string phase;
+};
+
+struct K0Spec {
+  std::string body;
+  double surface = 0.0;
+  double k0 = 0.5;
+};
+
+struct PhaseSpec {
+  std::string name;
+  double duration = 0.0;
+  double local_damping = 0.0;
+  bool gravity = true;
+  std::optional<double> equilibrium_tolerance;
+  std::optional<double> flip_fraction;
+  std::optional<double> mass_scaling;
+  std::optional<double> courant_number;
+  std::vector<K0Spec> k0;
+};
+
+struct OutputSpec {
+  std::string directory;          // empty: out/<case file stem>
+  double snapshot_interval = 0.0; // s of simulated time; 0: first and last only
+  std::vector<double> snapshot_times;
+  double history_interval = 0.0;    // s; 0: every step
+  double checkpoint_interval = 0.0; // s of simulated time; 0: only when stopped
+  bool grid_snapshots = false;
+};
+
+struct CaseSpec {
+  std::string file;
+  std::string text;
+  std::string title;
+  GeometryMode mode = GeometryMode::axisymmetric;
+  std::vector<AxisZone> r_zones;
+  std::vector<AxisZone> y_zones;
+  std::vector<MaterialSpec> materials;
+  std::vector<BodySpec> bodies;
+  std::array<FaceCondition, 4> faces{FaceCondition::free, FaceCondition::free, FaceCondition::free,
+                                     FaceCondition::free};
+  std::vector<MotionSpec> motions;
+  std::vector<LoadSpec> loads;
+  SolverSettings solver;
+  std::vector<PhaseSpec> phases;
+  OutputSpec output;
+
+  double end_time() const; // sum of the phase durations (the longest the run can take)
+};
+
+/// Reads and validates a case file; throws CaseError naming file, line, key and reason.
+CaseSpec read_case_file(const std::string& path);
+CaseSpec read_case_text(const std::string& text, const std::string& file);
+
+} // namespace mpile

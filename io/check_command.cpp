@@ -1,0 +1,89 @@
+#include "io/case_builder.hpp"
+#include "io/case_error.hpp"
+#include "io/run_command.hpp"
+#include "solver/explicit_solver.hpp"
+
+#include <chrono>
+#include <iomanip>
+#include <ostream>
+
+namespace mpile {
+
+namespace {
+
+void print_axis(std::ostream& out, const char* name, const GradedAxis& axis) {
+  double largest = 0.0;
+  for (int c = 0; c < axis.cell_count(); ++c) {
+    largest = std::max(largest, axis.cell_size(c));
+  }
+  out << "  " << name << ": " << axis.start() << " to " << axis.end() << " m, " << axis.cell_count()
+      << " cells, sizes " << axis.min_cell_size() << " to " << largest << " m\n";
+}
+
+} // namespace
+
+int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  CaseSpec spec;
+  std::unique_ptr<Scene> scene;
+  try {
+    spec = read_case_file(options.case_path);
+    scene = build_scene(spec);
+  } catch (const std::exception& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  out << spec.file << ": " << spec.title << " ("
+      << (spec.mode == GeometryMode::axisymmetric ? "axisymmetric" : "plane strain") << ")\n";
+  out << "grid: " << scene->grid.cells_r() << " x " << scene->grid.cells_y() << " cells, "
+      << scene->grid.node_count() << " nodes\n";
+  print_axis(out, "r", scene->grid.r_axis());
+  print_axis(out, "y", scene->grid.y_axis());
+  out << "particles: " << scene->particles.size() << "\n";
+  for (std::size_t b = 0; b < scene->body_names.size(); ++b) {
+    std::size_t count = 0;
+    for (const auto body : scene->particles.body) {
+      count += body == b ? 1 : 0;
+    }
+    out << "  " << scene->body_names[b] << ": " << count << " (material " << spec.bodies[b].material
+        << ")\n";
+  }
+  out << "boundary conditions: " << scene->boundaries.constraints.size()
+      << " node sets, loads: " << scene->boundaries.loads.size() << "\n";
+
+  RunLog log(&out);
+  apply_k0(*scene, spec, spec.phases.front());
+  try {
+    ExplicitSolver solver(*scene, phase_settings(spec, spec.phases.front()), log);
+    const double dt = solver.stable_time_step();
+    const double steps = spec.end_time() / dt;
+    // A short trial run on a copy of the particles measures this machine's step rate.
+    const auto start = std::chrono::steady_clock::now();
+    int trial = 0;
+    while (trial < 20 &&
+           std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1500)) {
+      solver.step();
+      ++trial;
+    }
+    const double per_step =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / trial;
+    const double memory = static_cast<double>(scene->particles.bytes()) +
+                          static_cast<double>(scene->grid.node_count()) * (sizeof(GridNode) + 1) +
+                          4.0 * static_cast<double>(scene->particles.size());
+    out << "time step: " << std::setprecision(4) << dt << " s (Courant number "
+        << spec.solver.courant_number << ")\n";
+    out << "phases: " << spec.phases.size() << ", " << spec.end_time()
+        << " s of simulated time at most\n";
+    out << "estimated steps: " << std::setprecision(3) << steps << " (at the first step's size)\n";
+    out << "estimated run time: " << std::setprecision(3) << steps * per_step << " s ("
+        << per_step * 1e3 << " ms per step measured over " << trial << " steps)\n";
+    out << "estimated memory: " << std::setprecision(3) << memory / 1048576.0 << " MiB ("
+        << std::setprecision(0) << std::fixed
+        << memory / static_cast<double>(scene->particles.size()) << " bytes per particle)\n";
+  } catch (const std::exception& e) {
+    err << "mpile: " << spec.file << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  return exit_success;
+}
+
+} // namespace mpile

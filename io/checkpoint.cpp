@@ -1,0 +1,136 @@
+#include "io/checkpoint.hpp"
+
+#include "io/case_error.hpp"
+#include "io/hdf5_file.hpp"
+
+#include <filesystem>
+
+namespace mpile {
+
+namespace {
+
+constexpr const char* format_version = "mpile checkpoint 1";
+
+// Every per-particle double array, by name; the order is the file's layout.
+template <class P> auto double_fields(P& p) {
+  return std::vector<std::pair<const char*, decltype(&p.r)>>{
+      {"r", &p.r},       {"y", &p.y},           {"r0", &p.r0},           {"y0", &p.y0},
+      {"v_r", &p.v_r},   {"v_y", &p.v_y},       {"v_theta", &p.v_theta}, {"u_theta", &p.u_theta},
+      {"mass", &p.mass}, {"volume", &p.volume}, {"state", &p.state},     {"du_r", &p.du_r},
+      {"du_y", &p.du_y}};
+}
+
+} // namespace
+
+void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene& scene,
+                      const SolverState& solver, const RunProgress& progress) {
+  const std::string temporary = path + ".tmp";
+  {
+    Hdf5File file(temporary, Hdf5File::Mode::create);
+    file.set_attribute("/", "format", format_version);
+    file.set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
+    file.set_attribute("/", "case_text", spec.text);
+    const Particles& p = scene.particles;
+    for (const auto& [name, field] : double_fields(p)) {
+      file.write(std::string("/particles/") + name, *field, "SI");
+    }
+    const std::vector<double> stress(p.stress.front().data(),
+                                     p.stress.front().data() + 6 * p.size());
+    file.write("/particles/stress", stress, "Pa", {p.size(), 6});
+    file.write("/particles/material", p.material);
+    file.write("/particles/body", p.body);
+    file.write("/particles/cell_r", p.cell_r);
+    file.write("/particles/cell_y", p.cell_y);
+    file.write(
+        "/grid/y_nodes",
+        std::vector<double>(scene.grid.y_axis().nodes().begin(), scene.grid.y_axis().nodes().end()),
+        "m");
+    file.write("/solver/state",
+               std::vector<double>{solver.time, static_cast<double>(solver.steps), solver.stable_dt,
+                                   solver.last_dt, solver.external_work},
+               "time, steps, stable dt, last dt, external work");
+    file.write("/run/counters",
+               std::vector<double>{static_cast<double>(progress.phase),
+                                   static_cast<double>(progress.history_rows),
+                                   progress.next_history_time, progress.next_snapshot_time,
+                                   static_cast<double>(progress.next_listed_snapshot),
+                                   progress.next_checkpoint_time},
+               "phase, history rows, next history time, next snapshot time, next listed "
+               "snapshot, next checkpoint time");
+    file.write("/run/phase_starts", progress.phase_starts, "s");
+    std::vector<double> snapshot_times;
+    std::string snapshot_files;
+    for (const auto& [time, name] : progress.snapshots) {
+      snapshot_times.push_back(time);
+      snapshot_files += name + "\n";
+    }
+    file.write("/run/snapshot_times", snapshot_times, "s");
+    file.set_attribute("/run/snapshot_times", "files", snapshot_files);
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene& scene) {
+  if (!std::filesystem::exists(path)) {
+    throw CaseError(path + ": no such checkpoint");
+  }
+  Hdf5File file(path, Hdf5File::Mode::read);
+  auto refuse = [&](const std::string& why) { throw CaseError(path + ": cannot restart: " + why); };
+  if (!file.exists("/particles/r")) {
+    refuse("not an mpile checkpoint");
+  }
+  if (file.string_attribute("/", "format") != format_version) {
+    refuse("written in another checkpoint format");
+  }
+  if (file.string_attribute("/", "program") != std::string("mpile ") + MPILE_VERSION) {
+    refuse("written by " + file.string_attribute("/", "program") + ", this is mpile " +
+           MPILE_VERSION);
+  }
+  if (file.string_attribute("/", "case_text") != spec.text) {
+    refuse("it belongs to another case (or " + spec.file + " was edited since)");
+  }
+  Particles& p = scene.particles;
+  const std::size_t n = file.read_doubles("/particles/r").size();
+  if (n != p.size()) {
+    refuse("it holds " + std::to_string(n) + " particles, the case makes " +
+           std::to_string(p.size()));
+  }
+  for (const auto& [name, field] : double_fields(p)) {
+    *field = file.read_doubles(std::string("/particles/") + name);
+  }
+  const std::vector<double> stress = file.read_doubles("/particles/stress");
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t c = 0; c < 6; ++c) {
+      p.stress[i][c] = stress[6 * i + c];
+    }
+  }
+  p.material = file.read_uint16("/particles/material");
+  p.body = file.read_uint16("/particles/body");
+  p.cell_r = file.read_int32("/particles/cell_r");
+  p.cell_y = file.read_int32("/particles/cell_y");
+  scene.grid.set_y_nodes(file.read_doubles("/grid/y_nodes"));
+
+  Checkpoint checkpoint;
+  const auto s = file.read_doubles("/solver/state");
+  checkpoint.solver = {s.at(0), static_cast<long>(s.at(1)), s.at(2), s.at(3), s.at(4)};
+  const auto c = file.read_doubles("/run/counters");
+  RunProgress& progress = checkpoint.progress;
+  progress.phase = static_cast<std::size_t>(c.at(0));
+  progress.history_rows = static_cast<std::size_t>(c.at(1));
+  progress.next_history_time = c.at(2);
+  progress.next_snapshot_time = c.at(3);
+  progress.next_listed_snapshot = static_cast<std::size_t>(c.at(4));
+  progress.next_checkpoint_time = c.at(5);
+  progress.phase_starts = file.read_doubles("/run/phase_starts");
+  const auto times = file.read_doubles("/run/snapshot_times");
+  const std::string files = file.string_attribute("/run/snapshot_times", "files");
+  std::size_t position = 0;
+  for (const double time : times) {
+    const std::size_t end = files.find('\n', position);
+    progress.snapshots.emplace_back(time, files.substr(position, end - position));
+    position = end + 1;
+  }
+  return checkpoint;
+}
+
+} // namespace mpile

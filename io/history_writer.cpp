@@ -1,0 +1,122 @@
+#include "io/history_writer.hpp"
+
+#include "solver/diagnostics.hpp"
+
+#include <cctype>
+
+namespace mpile {
+
+std::string dataset_name(const std::string& name) {
+  std::string out;
+  for (const char c : name) {
+    out += std::isalnum(static_cast<unsigned char>(c)) != 0 ? c : '_';
+  }
+  return out;
+}
+
+namespace {
+
+struct Units {
+  std::string energy, force, moment;
+};
+
+Units units_of(GeometryMode mode) {
+  if (mode == GeometryMode::axisymmetric) {
+    return {"J/rad", "N/rad", "N m/rad"};
+  }
+  return {"J/m", "N/m", "N m/m"};
+}
+
+} // namespace
+
+HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, const Scene& scene,
+                             int threads, std::size_t rows)
+    : rows_(rows), reopened_(rows > 0), last_flush_(std::chrono::steady_clock::now()) {
+  file_ =
+      std::make_unique<Hdf5File>(path, reopened_ ? Hdf5File::Mode::append : Hdf5File::Mode::create);
+  if (!reopened_) {
+    file_->set_attribute("/", "case_file", spec.file);
+    file_->set_attribute("/", "case_text", spec.text);
+    file_->set_attribute("/", "title", spec.title);
+    file_->set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
+    file_->set_attribute("/", "geometry",
+                         spec.mode == GeometryMode::axisymmetric
+                             ? "axisymmetric: extensive quantities per radian"
+                             : "plane strain: extensive quantities per metre");
+    file_->set_attribute("/", "status", "running");
+  }
+  file_->set_attribute("/", "threads", static_cast<double>(threads));
+  const Units u = units_of(scene.mode);
+  series("/time", "s");
+  series("/dt", "s");
+  series("/step", "-");
+  series("/phase", "index into the case's [[phases]]");
+  series("/energy/kinetic", u.energy);
+  series("/energy/internal", u.energy);
+  series("/energy/external_work", u.energy);
+  for (const NodeConstraint& c : scene.boundaries.constraints) {
+    const std::string base = "/boundaries/" + dataset_name(c.name);
+    series(base + "/F_r", u.force);
+    series(base + "/F_y", u.force);
+    if (has_theta(scene.mode)) {
+      series(base + "/F_theta", u.force);
+      series(base + "/M_theta", u.moment);
+    }
+  }
+  file_->flush();
+}
+
+Hdf5Series& HistoryWriter::series(const std::string& name, const std::string& unit) {
+  auto found = series_.find(name);
+  if (found == series_.end()) {
+    found = reopened_ ? series_.emplace(name, Hdf5Series(*file_, name, rows_)).first
+                      : series_.emplace(name, Hdf5Series(*file_, name, unit)).first;
+    order_.push_back(name);
+  }
+  return found->second;
+}
+
+void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase) {
+  const Scene& scene = solver.scene();
+  series_.at("/time").append(solver.time());
+  series_.at("/dt").append(solver.last_time_step());
+  series_.at("/step").append(static_cast<double>(solver.step_count()));
+  series_.at("/phase").append(static_cast<double>(phase));
+  series_.at("/energy/kinetic").append(kinetic_energy(scene));
+  series_.at("/energy/internal").append(elastic_energy(scene));
+  series_.at("/energy/external_work").append(solver.external_work());
+  for (const NodeConstraint& c : scene.boundaries.constraints) {
+    const std::string base = "/boundaries/" + dataset_name(c.name);
+    series_.at(base + "/F_r").append(c.reaction[0]);
+    series_.at(base + "/F_y").append(c.reaction[1]);
+    if (has_theta(scene.mode)) {
+      series_.at(base + "/F_theta").append(c.reaction[2]);
+      series_.at(base + "/M_theta").append(c.torque);
+    }
+  }
+  ++rows_;
+  flush_if_due();
+}
+
+void HistoryWriter::flush_if_due() {
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_flush_ < std::chrono::seconds(2)) {
+    return;
+  }
+  for (const std::string& name : order_) {
+    series_.at(name).flush();
+  }
+  file_->flush();
+  last_flush_ = now;
+}
+
+void HistoryWriter::close(double wall_seconds, const std::string& status) {
+  for (const std::string& name : order_) {
+    series_.at(name).flush();
+  }
+  file_->set_attribute("/", "wall_time", wall_seconds);
+  file_->set_attribute("/", "status", status);
+  file_->flush();
+}
+
+} // namespace mpile

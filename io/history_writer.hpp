@@ -1,0 +1,44 @@
+#pragma once
+
+#include "io/case_spec.hpp"
+#include "io/hdf5_file.hpp"
+#include "solver/explicit_solver.hpp"
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace mpile {
+
+/// history.h5 of a run: extendible series of time, step size, energies and the reactions of every
+/// named boundary condition, each with a unit attribute; the root carries the case text, program
+/// version, thread count, wall time and how the run ended. Flushed at least every two seconds of
+/// wall time, so an interrupted run leaves a readable file.
+class HistoryWriter {
+public:
+  /// A new history; with rows > 0, an existing one is reopened and cut to its first rows (restart).
+  HistoryWriter(const std::string& path, const CaseSpec& spec, const Scene& scene, int threads,
+                std::size_t rows = 0);
+
+  void record(const ExplicitSolver& solver, std::size_t phase);
+  std::size_t rows() const { return rows_; }
+  void flush_if_due();
+  /// Writes the closing attributes: wall time and status ("complete", "interrupted", ...).
+  void close(double wall_seconds, const std::string& status);
+
+private:
+  Hdf5Series& series(const std::string& name, const std::string& unit);
+
+  std::unique_ptr<Hdf5File> file_;
+  std::map<std::string, Hdf5Series> series_;
+  std::vector<std::string> order_;
+  std::size_t rows_ = 0;
+  bool reopened_ = false;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+/// A dataset-safe name: letters, digits and underscores.
+std::string dataset_name(const std::string& name);
+
+} // namespace mpile

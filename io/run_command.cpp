@@ -1,0 +1,279 @@
+#include "io/run_command.hpp"
+
+#include "io/case_builder.hpp"
+#include "io/case_error.hpp"
+#include "io/checkpoint.hpp"
+#include "io/history_writer.hpp"
+#include "io/progress_reporter.hpp"
+#include "io/vtk_writer.hpp"
+#include "solver/diagnostics.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+namespace mpile {
+
+namespace {
+
+volatile std::sig_atomic_t stop_requested = 0;
+
+extern "C" void request_stop(int) {
+  stop_requested = 1;
+}
+
+/// SIGINT and SIGTERM ask the run to stop at the end of the current step.
+class StopOnSignals {
+public:
+  StopOnSignals() {
+    stop_requested = 0;
+    previous_interrupt_ = std::signal(SIGINT, request_stop);
+    previous_terminate_ = std::signal(SIGTERM, request_stop);
+  }
+  ~StopOnSignals() {
+    std::signal(SIGINT, previous_interrupt_);
+    std::signal(SIGTERM, previous_terminate_);
+  }
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+private:
+  void (*previous_interrupt_)(int) = SIG_DFL;
+  void (*previous_terminate_)(int) = SIG_DFL;
+};
+
+std::string output_directory(const RunOptions& options, const CaseSpec& spec) {
+  if (!options.output_directory.empty()) {
+    return options.output_directory;
+  }
+  if (!spec.output.directory.empty()) {
+    return spec.output.directory;
+  }
+  return "out/" + std::filesystem::path(spec.file).stem().string();
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Times equal to within this fraction of a step count as reached.
+bool reached(double time, double target, double dt) {
+  return time >= target - 1e-9 * dt;
+}
+
+std::string format_time(double t) {
+  std::ostringstream s;
+  s << std::setprecision(6) << t;
+  return s.str();
+}
+
+} // namespace
+
+int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  CaseSpec spec;
+  std::unique_ptr<Scene> scene;
+  Checkpoint restored;
+  const bool restarting = !options.restart.empty();
+  try {
+    spec = read_case_file(options.case_path);
+    scene = build_scene(spec);
+    if (restarting) {
+      restored = read_checkpoint(options.restart, spec, *scene);
+    }
+  } catch (const CaseError& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const std::exception& e) {
+    err << "mpile: " << options.case_path << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+
+  const std::string directory = output_directory(options, spec);
+  try {
+    std::filesystem::create_directories(directory);
+  } catch (const std::exception& e) {
+    err << "mpile: cannot create the output directory " << directory << ": " << e.what() << '\n';
+    return exit_failure;
+  }
+
+  if (!restarting) {
+    // A fresh run replaces the outputs of an earlier run in the same directory, so that no stale
+    // snapshot or checkpoint is taken for part of this one.
+    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+      const std::string name = entry.path().filename().string();
+      const bool ours = name.rfind("particles_", 0) == 0 || name.rfind("grid_", 0) == 0 ||
+                        name == "particles.pvd" || name == "grid.pvd" || name == "checkpoint.h5" ||
+                        name == "history.h5";
+      if (ours && entry.is_regular_file()) {
+        std::filesystem::remove(entry.path());
+      }
+    }
+  }
+
+  RunLog log(&out);
+  RunProgress progress = restarting ? restored.progress : RunProgress{};
+  if (!restarting) {
+    progress.phase_starts = {0.0};
+    apply_k0(*scene, spec, spec.phases.front());
+  }
+  for (std::size_t p = 0; p < progress.phase_starts.size(); ++p) {
+    activate_phase_boundaries(*scene, spec, p, progress.phase_starts[p]);
+  }
+
+  std::unique_ptr<ExplicitSolver> solver;
+  try {
+    const SolverSettings settings = phase_settings(spec, spec.phases[progress.phase]);
+    solver = restarting ? std::make_unique<ExplicitSolver>(*scene, settings, log, restored.solver)
+                        : std::make_unique<ExplicitSolver>(*scene, settings, log);
+  } catch (const std::invalid_argument& e) {
+    err << "mpile: " << spec.file << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+
+  const OutputSpec& output = spec.output;
+  const double never = std::numeric_limits<double>::infinity();
+  std::vector<double> listed = output.snapshot_times;
+  std::sort(listed.begin(), listed.end());
+  const std::string checkpoint_path = directory + "/checkpoint.h5";
+  try {
+    HistoryWriter history(directory + "/history.h5", spec, *scene, options.threads,
+                          restarting ? progress.history_rows : 0);
+    SnapshotWriter snapshots(directory, output.grid_snapshots);
+    if (restarting) {
+      snapshots.restore(progress.snapshots);
+      out << "mpile: continuing " << spec.file << " from " << options.restart
+          << " at t = " << format_time(solver->time()) << " s\n";
+    } else {
+      history.record(*solver, 0);
+      snapshots.write(*scene, 0.0);
+      progress.next_history_time = output.history_interval;
+      progress.next_snapshot_time =
+          output.snapshot_interval > 0.0 ? output.snapshot_interval : never;
+      progress.next_checkpoint_time =
+          output.checkpoint_interval > 0.0 ? output.checkpoint_interval : never;
+      while (progress.next_listed_snapshot < listed.size() &&
+             listed[progress.next_listed_snapshot] <= 0.0) {
+        ++progress.next_listed_snapshot;
+      }
+    }
+    auto save_state = [&] {
+      history.flush_if_due();
+      progress.snapshots = snapshots.entries();
+      progress.history_rows = history.rows();
+      write_checkpoint(checkpoint_path, spec, *scene, solver->state(), progress);
+    };
+
+    ProgressReporter reporter(err, isatty(fileno(stderr)) != 0, spec.end_time());
+    StopOnSignals signals;
+    try {
+      while (progress.phase < spec.phases.size()) {
+        const PhaseSpec& phase = spec.phases[progress.phase];
+        const double phase_end = progress.phase_starts[progress.phase] + phase.duration;
+        log.info("phase " + phase.name + " from t = " + format_time(solver->time()) + " s");
+        std::string ended = "after its duration";
+        while (!reached(solver->time(), phase_end, solver->stable_time_step())) {
+          // Steps land exactly on the phase end and on snapshot times.
+          double limit = std::min(phase_end, progress.next_snapshot_time) - solver->time();
+          if (progress.next_listed_snapshot < listed.size()) {
+            limit = std::min(limit, listed[progress.next_listed_snapshot] - solver->time());
+          }
+          solver->step(limit <= solver->stable_time_step() * (1.0 + 1e-6)
+                           ? limit
+                           : std::numeric_limits<double>::infinity());
+          const double t = solver->time();
+          const double dt = solver->last_time_step();
+          if (output.history_interval == 0.0 || reached(t, progress.next_history_time, dt)) {
+            history.record(*solver, progress.phase);
+            while (output.history_interval > 0.0 && reached(t, progress.next_history_time, dt)) {
+              progress.next_history_time += output.history_interval;
+            }
+          }
+          bool snapshot_due = reached(t, progress.next_snapshot_time, dt);
+          while (reached(t, progress.next_snapshot_time, dt)) {
+            progress.next_snapshot_time += output.snapshot_interval;
+          }
+          while (progress.next_listed_snapshot < listed.size() &&
+                 reached(t, listed[progress.next_listed_snapshot], dt)) {
+            snapshot_due = true;
+            ++progress.next_listed_snapshot;
+          }
+          if (snapshot_due) {
+            snapshots.write(*scene, t);
+          }
+          const double kinetic = kinetic_energy(*scene);
+          if (!std::isfinite(kinetic)) {
+            throw SimulationError("step " + std::to_string(solver->step_count()) + ", t = " +
+                                  format_time(t) + " s: the kinetic energy is not finite");
+          }
+          if (reached(t, progress.next_checkpoint_time, dt)) {
+            while (reached(t, progress.next_checkpoint_time, dt)) {
+              progress.next_checkpoint_time += output.checkpoint_interval;
+            }
+            save_state();
+          }
+          // Equilibrium is checked on a fixed step grid, so a restarted run checks the same steps.
+          if (phase.equilibrium_tolerance && solver->step_count() % 20 == 0) {
+            const double elastic = elastic_energy(*scene);
+            if (elastic > 0.0 && kinetic < *phase.equilibrium_tolerance * elastic) {
+              std::ostringstream why;
+              why << "at equilibrium (kinetic / elastic energy " << std::setprecision(3)
+                  << kinetic / elastic << ")";
+              ended = why.str();
+              break;
+            }
+          }
+          reporter.update(phase.name, t, solver->step_count());
+          if (stop_requested != 0) {
+            reporter.finish();
+            save_state();
+            history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s");
+            err << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint "
+                << checkpoint_path << " (continue with --restart " << checkpoint_path << ")\n";
+            return exit_interrupted;
+          }
+        }
+        reporter.finish();
+        log.info("phase " + phase.name + " ended at t = " + format_time(solver->time()) + " s " +
+                 ended + ", " + std::to_string(solver->step_count()) + " steps so far");
+        ++progress.phase;
+        if (progress.phase < spec.phases.size()) {
+          progress.phase_starts.push_back(solver->time());
+          activate_phase_boundaries(*scene, spec, progress.phase, solver->time());
+          apply_k0(*scene, spec, spec.phases[progress.phase]);
+          solver->change_settings(phase_settings(spec, spec.phases[progress.phase]));
+        }
+      }
+    } catch (const SimulationError& e) {
+      reporter.finish();
+      save_state();
+      history.close(seconds_since(wall_start), std::string("failed: ") + e.what());
+      err << "mpile: " << e.what() << " (outputs so far are in " << directory << ")\n";
+      return exit_failure;
+    }
+    const double t = solver->time();
+    if (snapshots.entries().empty() || snapshots.entries().back().first < t) {
+      snapshots.write(*scene, t);
+    }
+    save_state();
+    const double wall = seconds_since(wall_start);
+    history.close(wall, "complete");
+    out << "mpile: " << spec.title << " done: t = " << format_time(t) << " s in "
+        << solver->step_count() << " steps, " << std::fixed << std::setprecision(1) << wall
+        << " s wall; outputs in " << directory << "\n";
+  } catch (const std::runtime_error& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_failure;
+  }
+  return exit_success;
+}
+
+} // namespace mpile

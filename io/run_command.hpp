@@ -1,0 +1,31 @@
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+namespace mpile {
+
+struct RunOptions {
+  std::string case_path;
+  std::string output_directory; // empty: the case's [output].directory, else out/<case stem>
+  std::string restart;          // checkpoint to continue from
+  int threads = 0;
+};
+
+/// Exit statuses of the command line.
+enum ExitStatus : int {
+  exit_success = 0,
+  exit_failure = 1,      // a run that went wrong (unstable, particle out of the grid, I/O error)
+  exit_bad_input = 2,    // the case file or the command line is wrong
+  exit_interrupted = 130 // stopped by SIGINT or SIGTERM, after writing a checkpoint
+};
+
+/// `mpile run`: reads the case, runs its phases, writes history.h5, VTK snapshots and
+/// checkpoints, and reports progress. Returns an ExitStatus.
+int run_case(const RunOptions& options, std::ostream& out, std::ostream& err);
+
+/// `mpile check`: validates the case and prints the grid, particle counts, the time step, the
+/// estimated number of steps, run time and memory. Returns an ExitStatus.
+int check_case(const RunOptions& options, std::ostream& out, std::ostream& err);
+
+} // namespace mpile

@@ -1,0 +1,237 @@
+#include "io/toml_reader.hpp"
+
+#include <sstream>
+
+namespace mpile {
+
+namespace {
+
+std::string type_name(const TomlValue& v) {
+  switch (v.type()) {
+  case toml::value_t::boolean:
+    return "a boolean";
+  case toml::value_t::integer:
+    return "an integer";
+  case toml::value_t::floating:
+    return "a number";
+  case toml::value_t::string:
+    return "a string";
+  case toml::value_t::array:
+    return "an array";
+  case toml::value_t::table:
+    return "a table";
+  default:
+    return "a date or time";
+  }
+}
+
+bool is_number(const TomlValue& v) {
+  return v.is_floating() || v.is_integer();
+}
+
+double as_number(const TomlValue& v) {
+  return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
+}
+
+} // namespace
+
+TomlValue parse_toml(const std::string& text, const std::string& file) {
+  std::istringstream stream(text);
+  try {
+    return toml::parse<toml::discard_comments, std::map, std::vector>(stream, file);
+  } catch (const toml::syntax_error& e) {
+    throw CaseError(file + ": not valid TOML:\n" + e.what());
+  }
+}
+
+TomlTable::TomlTable(const TomlValue& table, std::string path, std::string file)
+    : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
+
+bool TomlTable::has(const std::string& key) const {
+  return table_->as_table().count(key) > 0;
+}
+
+std::string TomlTable::key_path(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+int TomlTable::line_of(const std::string& key) const {
+  const auto& table = table_->as_table();
+  const auto found = table.find(key);
+  const auto location = found != table.end() ? found->second.location() : table_->location();
+  return static_cast<int>(location.line());
+}
+
+void TomlTable::fail(const std::string& key, const std::string& message) const {
+  throw CaseError(file_ + ":" + std::to_string(line_of(key)) + ": " + key_path(key) + ": " +
+                  message);
+}
+
+void TomlTable::type_error(const std::string& key, const std::string& expected) const {
+  fail(key, "expected " + expected + ", got " + type_name(table_->as_table().at(key)));
+}
+
+const TomlValue& TomlTable::value(const std::string& key) {
+  if (!has(key)) {
+    fail(key, "missing (required)");
+  }
+  read_.insert(key);
+  return table_->as_table().at(key);
+}
+
+const TomlValue& TomlTable::raw(const std::string& key) {
+  return value(key);
+}
+
+double TomlTable::number(const std::string& key) {
+  const TomlValue& v = value(key);
+  if (!is_number(v)) {
+    type_error(key, "a number");
+  }
+  const double x = as_number(v);
+  if (!std::isfinite(x)) {
+    fail(key, "must be a finite number");
+  }
+  return x;
+}
+
+std::optional<double> TomlTable::optional_number(const std::string& key) {
+  return has(key) ? std::optional<double>(number(key)) : std::nullopt;
+}
+
+double TomlTable::number_or(const std::string& key, double fallback) {
+  return has(key) ? number(key) : fallback;
+}
+
+long TomlTable::integer(const std::string& key) {
+  const TomlValue& v = value(key);
+  if (!v.is_integer()) {
+    type_error(key, "an integer");
+  }
+  return static_cast<long>(v.as_integer());
+}
+
+long TomlTable::integer_or(const std::string& key, long fallback) {
+  return has(key) ? integer(key) : fallback;
+}
+
+std::string TomlTable::string(const std::string& key) {
+  const TomlValue& v = value(key);
+  if (!v.is_string()) {
+    type_error(key, "a string");
+  }
+  return v.as_string().str;
+}
+
+std::string TomlTable::string_or(const std::string& key, const std::string& fallback) {
+  return has(key) ? string(key) : fallback;
+}
+
+bool TomlTable::boolean_or(const std::string& key, bool fallback) {
+  if (!has(key)) {
+    return fallback;
+  }
+  const TomlValue& v = value(key);
+  if (!v.is_boolean()) {
+    type_error(key, "true or false");
+  }
+  return v.as_boolean();
+}
+
+std::vector<double> TomlTable::numbers(const std::string& key, std::size_t expected_size) {
+  const TomlValue& v = value(key);
+  if (!v.is_array()) {
+    type_error(key, "an array of numbers");
+  }
+  std::vector<double> out;
+  for (const TomlValue& item : v.as_array()) {
+    if (!is_number(item)) {
+      fail(key, "expected an array of numbers, found " + type_name(item) + " in it");
+    }
+    out.push_back(as_number(item));
+  }
+  if (expected_size > 0 && out.size() != expected_size) {
+    fail(key, "expected " + std::to_string(expected_size) + " numbers, got " +
+                  std::to_string(out.size()));
+  }
+  return out;
+}
+
+std::vector<double> TomlTable::numbers_or(const std::string& key, std::vector<double> fallback) {
+  return has(key) ? numbers(key) : fallback;
+}
+
+TomlTable TomlTable::table(const std::string& key) {
+  const TomlValue& v = value(key);
+  if (!v.is_table()) {
+    type_error(key, "a table");
+  }
+  return TomlTable(v, key_path(key), file_);
+}
+
+std::optional<TomlTable> TomlTable::optional_table(const std::string& key) {
+  return has(key) ? std::optional<TomlTable>(table(key)) : std::nullopt;
+}
+
+std::vector<TomlTable> TomlTable::tables(const std::string& key) {
+  std::vector<TomlTable> out;
+  if (!has(key)) {
+    return out;
+  }
+  const TomlValue& v = value(key);
+  if (!v.is_array()) {
+    type_error(key, "an array of tables ([[" + key_path(key) + "]])");
+  }
+  const auto& items = v.as_array();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (!items[i].is_table()) {
+      fail(key, "expected tables, found " + type_name(items[i]) + " in the array");
+    }
+    out.emplace_back(items[i], key_path(key) + "[" + std::to_string(i) + "]", file_);
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, TomlTable>> TomlTable::named_tables(const std::string& key) {
+  std::vector<std::pair<std::string, TomlTable>> out;
+  if (!has(key)) {
+    return out;
+  }
+  const TomlValue& v = value(key);
+  if (!v.is_table()) {
+    type_error(key, "a table of named tables");
+  }
+  for (const auto& [name, item] : v.as_table()) {
+    if (!item.is_table()) {
+      TomlTable(v, key_path(key), file_).fail(name, "expected a table, got " + type_name(item));
+    }
+    out.emplace_back(name, TomlTable(item, key_path(key) + "." + name, file_));
+  }
+  return out;
+}
+
+void TomlTable::finish() const {
+  for (const auto& [key, v] : table_->as_table()) {
+    if (read_.count(key) == 0) {
+      fail(key, "unknown key (check its spelling in docs/case-format.md)");
+    }
+  }
+}
+
+double TomlTable::positive(const std::string& key) {
+  const double x = number(key);
+  if (!(x > 0.0)) {
+    fail(key, "must be positive, got " + toml::format(table_->as_table().at(key)));
+  }
+  return x;
+}
+
+double TomlTable::non_negative(const std::string& key) {
+  const double x = number(key);
+  if (x < 0.0) {
+    fail(key, "must not be negative, got " + toml::format(table_->as_table().at(key)));
+  }
+  return x;
+}
+
+} // namespace mpile

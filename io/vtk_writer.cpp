@@ -1,0 +1,216 @@
+#include "io/vtk_writer.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkRectilinearGrid.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLRectilinearGridWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace mpile {
+
+namespace {
+
+vtkNew<vtkDoubleArray> scalar_array(const char* name, vtkIdType count) {
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(1);
+  array->SetNumberOfTuples(count);
+  return array;
+}
+
+vtkNew<vtkDoubleArray> vector_array(const char* name, vtkIdType count) {
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(3);
+  array->SetNumberOfTuples(count);
+  return array;
+}
+
+template <class Writer> void configure(Writer& writer, const std::string& path) {
+  writer->SetFileName(path.c_str());
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff(); // raw binary
+  writer->SetCompressorTypeToZLib();
+}
+
+} // namespace
+
+void write_particles_vtu(const Scene& scene, const std::string& path) {
+  const Particles& p = scene.particles;
+  const auto n = static_cast<vtkIdType>(p.size());
+  const bool theta = has_theta(scene.mode);
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkCellArray> vertices;
+  for (vtkIdType i = 0; i < n; ++i) {
+    points->SetPoint(i, p.r[static_cast<std::size_t>(i)], p.y[static_cast<std::size_t>(i)], 0.0);
+    vertices->InsertNextCell(1, &i);
+  }
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->SetCells(VTK_VERTEX, vertices);
+
+  const char* stress_names[] = {"sigma_rr", "sigma_yy",     "sigma_thth",
+                                "sigma_ry", "sigma_ytheta", "sigma_rtheta"};
+  for (std::size_t c = 0; c < 6; ++c) {
+    auto array = scalar_array(stress_names[c], n);
+    for (vtkIdType i = 0; i < n; ++i) {
+      array->SetValue(i, p.stress[static_cast<std::size_t>(i)][c]);
+    }
+    grid->GetPointData()->AddArray(array);
+  }
+  auto mean = scalar_array("p", n);
+  auto deviatoric = scalar_array("q", n);
+  auto density = scalar_array("density", n);
+  auto velocity = vector_array("velocity", n);
+  auto displacement = vector_array("displacement", n);
+  vtkNew<vtkIntArray> body, material;
+  body->SetName("body");
+  body->SetNumberOfTuples(n);
+  material->SetName("material");
+  material->SetNumberOfTuples(n);
+  for (vtkIdType k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    mean->SetValue(k, mean_pressure(p.stress[i]));
+    deviatoric->SetValue(k, deviatoric_stress(p.stress[i]));
+    density->SetValue(k, p.mass[i] / p.volume[i]);
+    velocity->SetTuple3(k, p.v_r[i], p.v_y[i], theta ? p.v_theta[i] : 0.0);
+    displacement->SetTuple3(k, p.r[i] - p.r0[i], p.y[i] - p.y0[i], theta ? p.u_theta[i] : 0.0);
+    body->SetValue(k, p.body[i]);
+    material->SetValue(k, p.material[i]);
+  }
+  for (vtkAbstractArray* array : std::initializer_list<vtkAbstractArray*>{
+           mean, deviatoric, density, velocity, displacement, body, material}) {
+    grid->GetPointData()->AddArray(array);
+  }
+  // State variables, named by their material; zero for particles of other materials.
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    const auto names = scene.materials[m]->state_names();
+    for (std::size_t s = 0; s < names.size(); ++s) {
+      auto array = scalar_array(names[s].c_str(), n);
+      for (vtkIdType k = 0; k < n; ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        array->SetValue(k, p.material[i] == m
+                               ? p.state[i * static_cast<std::size_t>(p.state_stride) + s]
+                               : 0.0);
+      }
+      grid->GetPointData()->AddArray(array);
+    }
+  }
+
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  configure(writer, path);
+  writer->SetInputData(grid);
+  if (writer->Write() != 1) {
+    throw std::runtime_error("cannot write " + path);
+  }
+}
+
+namespace {
+
+void write_grid_vtr(const Scene& scene, const std::string& path) {
+  const Grid& g = scene.grid;
+  vtkNew<vtkDoubleArray> r, y, z;
+  for (const double x : g.r_axis().nodes()) {
+    r->InsertNextValue(x);
+  }
+  for (const double x : g.y_axis().nodes()) {
+    y->InsertNextValue(x);
+  }
+  z->InsertNextValue(0.0);
+  vtkNew<vtkRectilinearGrid> grid;
+  grid->SetDimensions(g.nodes_r(), g.nodes_y(), 1);
+  grid->SetXCoordinates(r);
+  grid->SetYCoordinates(y);
+  grid->SetZCoordinates(z);
+  const auto n = static_cast<vtkIdType>(g.node_count());
+  auto mass = scalar_array("mass", n);
+  auto velocity = vector_array("velocity", n);
+  for (vtkIdType k = 0; k < n; ++k) {
+    const GridNode& node = g.nodes[static_cast<std::size_t>(k)];
+    mass->SetValue(k, node.mass);
+    velocity->SetTuple3(k, node.momentum[0], node.momentum[1],
+                        has_theta(scene.mode) ? node.momentum[2] : 0.0);
+  }
+  grid->GetPointData()->AddArray(mass);
+  grid->GetPointData()->AddArray(velocity);
+  vtkNew<vtkXMLRectilinearGridWriter> writer;
+  configure(writer, path);
+  writer->SetInputData(grid);
+  if (writer->Write() != 1) {
+    throw std::runtime_error("cannot write " + path);
+  }
+}
+
+} // namespace
+
+SnapshotWriter::SnapshotWriter(std::string directory, bool grid_snapshots)
+    : directory_(std::move(directory)), grid_snapshots_(grid_snapshots) {}
+
+std::string SnapshotWriter::write(const Scene& scene, double time) {
+  std::ostringstream name;
+  name << "particles_" << std::setw(6) << std::setfill('0') << particles_.size() << ".vtu";
+  write_particles_vtu(scene, directory_ + "/" + name.str());
+  particles_.emplace_back(time, name.str());
+  write_collection("particles.pvd", particles_);
+  if (grid_snapshots_) {
+    std::ostringstream grid_name;
+    grid_name << "grid_" << std::setw(6) << std::setfill('0') << grids_.size() << ".vtr";
+    write_grid_vtr(scene, directory_ + "/" + grid_name.str());
+    grids_.emplace_back(time, grid_name.str());
+    write_collection("grid.pvd", grids_);
+  }
+  return name.str();
+}
+
+void SnapshotWriter::restore(std::vector<std::pair<double, std::string>> entries) {
+  particles_ = std::move(entries);
+  write_collection("particles.pvd", particles_);
+  grids_.clear();
+  if (grid_snapshots_) {
+    for (std::size_t k = 0; k < particles_.size(); ++k) {
+      std::ostringstream grid_name;
+      grid_name << "grid_" << std::setw(6) << std::setfill('0') << k << ".vtr";
+      grids_.emplace_back(particles_[k].first, grid_name.str());
+    }
+    write_collection("grid.pvd", grids_);
+  }
+}
+
+void SnapshotWriter::write_collection(
+    const std::string& name, const std::vector<std::pair<double, std::string>>& entries) const {
+  const std::string path = directory_ + "/" + name;
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n";
+    out << std::setprecision(17);
+    for (const auto& [time, file] : entries) {
+      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << file
+          << "\"/>\n";
+    }
+    out << "  </Collection>\n</VTKFile>\n";
+    if (!out) {
+      throw std::runtime_error("cannot write " + temporary);
+    }
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+} // namespace mpile
