@@ -25,6 +25,9 @@ int main(int argc, char** argv) {
   run->add_option("--out", run_options.output_directory,
                   "output directory (default: [output].directory, else out/<case name>)");
   run->add_option("--restart", run_options.restart, "continue from this checkpoint file");
+  run->add_option("--stop-after", run_options.stop_after_steps,
+                  "stop after N steps as if interrupted, writing a checkpoint")
+      ->check(CLI::PositiveNumber);
 
   auto* check = app.add_subcommand("check", "validate a case and estimate its cost");
   check->add_option("case", run_options.case_path, "the case file (TOML)")->required();

@@ -174,6 +174,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
 
     ProgressReporter reporter(err, isatty(fileno(stderr)) != 0, spec.end_time());
     StopOnSignals signals;
+    long steps_this_run = 0;
     try {
       while (progress.phase < spec.phases.size()) {
         const PhaseSpec& phase = spec.phases[progress.phase];
@@ -232,7 +233,9 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             }
           }
           reporter.update(phase.name, t, solver->step_count());
-          if (stop_requested != 0) {
+          ++steps_this_run;
+          if (stop_requested != 0 ||
+              (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps)) {
             reporter.finish();
             save_state();
             history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s");

@@ -10,6 +10,8 @@ struct RunOptions {
   std::string output_directory; // empty: the case's [output].directory, else out/<case stem>
   std::string restart;          // checkpoint to continue from
   int threads = 0;
+  /// Stop after this many steps as if interrupted (writing a checkpoint); 0: run to the end.
+  long stop_after_steps = 0;
 };
 
 /// Exit statuses of the command line.

@@ -11,6 +11,7 @@
 #include <vtkXMLRectilinearGridWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -200,10 +201,12 @@ void SnapshotWriter::write_collection(
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
         << "  <Collection>\n";
-    out << std::setprecision(17);
     for (const auto& [time, file] : entries) {
-      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"0\" file=\"" << file
-          << "\"/>\n";
+      // The shortest text that reads back as the same double.
+      char text[32];
+      const auto end = std::to_chars(text, text + sizeof(text), time).ptr;
+      out << "    <DataSet timestep=\"" << std::string(text, end)
+          << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
     if (!out) {

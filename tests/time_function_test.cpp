@@ -70,7 +70,7 @@ TEST(TimeFunction, StartingLaterShiftsValueAndIntegralAndIsZeroBefore) {
   EXPECT_DOUBLE_EQ(later.value(3.5), ramp.value(0.5));
   EXPECT_DOUBLE_EQ(later.primitive(2.0), 0.0);
   EXPECT_DOUBLE_EQ(later.primitive(4.5), ramp.primitive(1.5));
-  EXPECT_DOUBLE_EQ(TimeFunction::constant(3.0).value(-1.0), 0.0);  // at rest before its start
+  EXPECT_DOUBLE_EQ(TimeFunction::constant(3.0).value(-1.0), 0.0); // at rest before its start
   EXPECT_DOUBLE_EQ(TimeFunction::constant(3.0).mean(-0.5, 0.5), 1.5);
 }
 

@@ -1,0 +1,242 @@
+// The case reader must reject bad input with the file, line, key and reason, and run_case must turn
+// that into exit status 2. Each row of the table below is one mistake a user makes.
+#include "io/case_error.hpp"
+#include "io/case_spec.hpp"
+#include "io/run_command.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace mpile {
+namespace {
+
+const std::string valid_case = R"(title = "reader test"
+geometry = "axisymmetric"
+
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 8 }]
+y = [{ start = 0.0, end = 1.0, cells = 8 }]
+
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 1e7
+poisson_ratio = 0.3
+density = 1800.0
+
+[[bodies]]
+name = "block"
+material = "soil"
+region = { r = [0.0, 0.5], y = [0.0, 0.5] }
+particles_per_cell = 2
+
+[boundaries]
+y_min = "fixed"
+
+[[prescribed]]
+name = "top"
+nodes = { y = 0.5, r = [0.0, 0.5] }
+velocity_y = { type = "ramp", value = -0.01, duration = 0.1 }
+
+[[loads]]
+name = "side"
+nodes = { r = 0.5 }
+component = "r"
+traction = -1000.0
+
+[solver]
+courant_number = 0.5
+gravity = [0.0, -9.81]
+
+[[phases]]
+name = "settle"
+duration = 0.2
+local_damping = 0.7
+k0 = [{ body = "block", surface = 0.5, k0 = 0.5 }]
+
+[output]
+snapshot_interval = 0.05
+)";
+
+/// Replaces the first occurrence of `from` (which must exist) by `to`.
+std::string edited(const std::string& from, const std::string& to) {
+  std::string text = valid_case;
+  const auto at = text.find(from);
+  if (at == std::string::npos) {
+    throw std::logic_error("test edit does not apply: " + from);
+  }
+  return text.replace(at, from.size(), to);
+}
+
+int line_of(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  return at == std::string::npos
+             ? -1
+             : 1 + static_cast<int>(
+                       std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+struct BadInput {
+  const char* what;
+  std::string text;
+  std::string expected;  // a fragment of the message: key and reason
+  std::string line_text; // the line the message must point at ("" when it names no line)
+};
+
+std::vector<BadInput> bad_inputs() {
+  return {
+      {"TOML syntax error", edited("title = \"reader test\"", "title = \"reader test"),
+       "not valid TOML", ""},
+      {"misspelt top-level key", edited("title =", "titel ="), "titel: unknown key", "titel ="},
+      {"unknown geometry", edited("geometry = \"axisymmetric\"", "geometry = \"3d\""),
+       "geometry: must be \"axisymmetric\" or \"plane_strain\"", "geometry = \"3d\""},
+      {"no grid",
+       edited("[grid]\nr = [{ start = 0.0, end = 1.0, cells = 8 }]\ny = [{ start = 0.0, end = 1.0, "
+              "cells = 8 }]\n",
+              ""),
+       "grid: missing (required)", ""},
+      {"zero cells", edited("end = 1.0, cells = 8 }]\ny", "end = 1.0, cells = 0 }]\ny"),
+       "grid.r[0].cells: must lie between 1 and 100000", "r = [{"},
+      {"cells as a string", edited("end = 1.0, cells = 8 }]\ny", "end = 1.0, cells = \"8\" }]\ny"),
+       "grid.r[0].cells: expected an integer, got a string", "r = [{"},
+      {"zone end before start",
+       edited("r = [{ start = 0.0, end = 1.0", "r = [{ start = 0.0, end = -1.0"),
+       "grid.r[0].end: must be greater than start", "r = [{"},
+      {"zones with a gap",
+       edited("r = [{ start = 0.0, end = 1.0, cells = 8 }]",
+              "r = [{ start = 0.0, end = 0.5, cells = 4 }, { start = 0.6, end = 1.0, cells = 4 }]"),
+       "grid.r: zone 1: starts at 0.6", "r = [{"},
+      {"axisymmetric grid behind the axis", edited("r = [{ start = 0.0,", "r = [{ start = -0.5,"),
+       "grid.r: starts at r = -0.5 < 0", ""},
+      {"unknown material type", edited("type = \"linear_elastic\"", "type = \"elastic\""),
+       "materials.soil.type: unknown material type 'elastic'", "type = \"elastic\""},
+      {"negative Young's modulus", edited("young_modulus = 1e7", "young_modulus = -1e7"),
+       "materials.soil.young_modulus: linear_elastic: young_modulus must be positive",
+       "young_modulus = -1e7"},
+      {"Poisson ratio 0.5", edited("poisson_ratio = 0.3", "poisson_ratio = 0.5"),
+       "materials.soil.poisson_ratio: linear_elastic: poisson_ratio must lie in (-1, 0.5)",
+       "poisson_ratio = 0.5"},
+      {"missing density", edited("density = 1800.0\n", ""),
+       "materials.soil.density: missing (required)", ""},
+      {"misspelt material parameter", edited("young_modulus = 1e7", "youngs_modulus = 1e7"),
+       "materials.soil.young_modulus: missing (required)", ""},
+      {"body of an undefined material", edited("material = \"soil\"", "material = \"sand\""),
+       "bodies[0].material: no material named 'sand'", "material = \"sand\""},
+      {"body outside the grid",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { r = [0.0, 1.5], y = [0.0, 0.5] }"),
+       "bodies[0].region: lies outside the grid", "region = {"},
+      {"region given backwards", edited("region = { r = [0.0, 0.5]", "region = { r = [0.5, 0.0]"),
+       "bodies[0].region.r: must be [r_min, r_max] with r_max > r_min", "region = {"},
+      {"zero particles per cell", edited("particles_per_cell = 2", "particles_per_cell = 0"),
+       "bodies[0].particles_per_cell: must lie between 1 and 8", "particles_per_cell = 0"},
+      {"two bodies of one name",
+       edited("[boundaries]", "[[bodies]]\nname = \"block\"\nmaterial = \"soil\"\nregion = { r = "
+                              "[0.5, 1.0], y = [0.0, 0.5] }\n\n[boundaries]"),
+       "bodies[1].name: a body named 'block' already exists",
+       "name = \"block\"\nmaterial = \"soil\"\nregion = { r = [0.5"},
+      {"a condition on the axis",
+       edited("y_min = \"fixed\"", "y_min = \"fixed\"\nr_min = \"roller\""),
+       "boundaries.r_min: the grid starts on the axis", "r_min = \"roller\""},
+      {"unknown face condition", edited("y_min = \"fixed\"", "y_min = \"clamped\""),
+       "boundaries.y_min: must be \"free\", \"roller\" or \"fixed\"", "y_min = \"clamped\""},
+      {"load off the grid lines", edited("nodes = { r = 0.5 }", "nodes = { r = 0.55 }"),
+       "loads[0].nodes.r: 0.55 is not on a grid line of r", "nodes = { r = 0.55 }"},
+      {"unknown load component", edited("component = \"r\"", "component = \"z\""),
+       "loads[0].component: must be \"r\", \"y\" or \"theta\"", "component = \"z\""},
+      {"unknown time function", edited("{ type = \"ramp\", value", "{ type = \"sine\", value"),
+       "prescribed[0].velocity_y.type: unknown time function 'sine'", "velocity_y ="},
+      {"ramp of negative duration", edited("duration = 0.1 }", "duration = -0.1 }"),
+       "prescribed[0].velocity_y.duration: must be positive", "velocity_y ="},
+      {"prescribed motion that prescribes nothing",
+       edited("velocity_y = { type = \"ramp\", value = -0.01, duration = 0.1 }\n", ""),
+       "prescribed[0].name: prescribes nothing", "name = \"top\""},
+      {"courant number zero", edited("courant_number = 0.5", "courant_number = 0.0"),
+       "solver.courant_number: courant_number must lie in (0, 2]", "courant_number = 0.0"},
+      {"gravity with three components",
+       edited("gravity = [0.0, -9.81]", "gravity = [0.0, -9.81, 0.0]"),
+       "solver.gravity: expected 2 numbers, got 3", "gravity = ["},
+      {"no phases",
+       edited("[[phases]]\nname = \"settle\"\nduration = 0.2\nlocal_damping = 0.7\nk0 = [{ body = "
+              "\"block\", surface = 0.5, k0 = 0.5 }]\n",
+              ""),
+       "phases: missing (required)", ""},
+      {"phase of zero duration", edited("duration = 0.2", "duration = 0.0"),
+       "phases[0].duration: must be positive", "duration = 0.0"},
+      {"damping of 1.5", edited("local_damping = 0.7", "local_damping = 1.5"),
+       "phases[0].local_damping: must lie in [0, 1)", "local_damping = 1.5"},
+      {"K0 of an unknown body", edited("{ body = \"block\"", "{ body = \"ground\""),
+       "phases[0].k0[0].body: no body named 'ground'", "k0 = [{"},
+      {"motion in an unknown phase",
+       edited("velocity_y = {", "phase = \"install\"\nvelocity_y = {"),
+       "prescribed[0].phase: no phase named 'install'", "phase = \"install\""},
+      {"negative snapshot interval",
+       edited("snapshot_interval = 0.05", "snapshot_interval = -0.05"),
+       "output.snapshot_interval: must not be negative", "snapshot_interval = -0.05"},
+      {"theta velocity in plane strain",
+       edited("geometry = \"axisymmetric\"\n", "geometry = \"plane_strain\"\n")
+           .insert(valid_case.find("velocity_y = {"), "velocity_theta = 0.1\n"),
+       "prescribed[0].velocity_theta: plane strain has no theta velocity", "velocity_theta = 0.1"},
+      {"table times not increasing",
+       edited("traction = -1000.0",
+              "traction = { type = \"table\", points = [[0.0, 0.0], [0.0, 1.0]] }"),
+       "loads[0].traction.points: table times must be strictly increasing", "traction = {"},
+  };
+}
+
+TEST(CaseReader, TheValidCaseReads) {
+  const CaseSpec spec = read_case_text(valid_case, "case.toml");
+  EXPECT_EQ(spec.title, "reader test");
+  ASSERT_EQ(spec.bodies.size(), 1u);
+  EXPECT_EQ(spec.bodies[0].particles_per_direction, 2);
+  EXPECT_DOUBLE_EQ(spec.solver.gravity[1], -9.81);
+  EXPECT_DOUBLE_EQ(spec.phases.at(0).local_damping, 0.7);
+  ASSERT_EQ(spec.motions.size(), 1u);
+  EXPECT_TRUE(spec.motions[0].velocity[1].has_value());
+  EXPECT_FALSE(spec.motions[0].velocity[0].has_value());
+}
+
+TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
+  const auto table = bad_inputs();
+  ASSERT_GE(table.size(), 25u);
+  for (const BadInput& bad : table) {
+    std::string message = "no error";
+    try {
+      read_case_text(bad.text, "case.toml");
+    } catch (const CaseError& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(message.rfind("case.toml", 0), 0u) << bad.what << ": " << message;
+    EXPECT_NE(message.find(bad.expected), std::string::npos)
+        << bad.what << ": expected \"" << bad.expected << "\" in: " << message;
+    if (!bad.line_text.empty()) {
+      const int line = line_of(bad.text, bad.line_text);
+      ASSERT_GT(line, 0) << bad.what;
+      EXPECT_NE(message.find("case.toml:" + std::to_string(line) + ":"), std::string::npos)
+          << bad.what << ": expected line " << line << " in: " << message;
+    }
+  }
+}
+
+TEST(CaseReader, RunExitsWithStatusTwoAndOneLineReasonOnBadInput) {
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_bad_input_test";
+  std::filesystem::create_directories(directory);
+  const std::string path = (directory / "bad.toml").string();
+  std::ofstream(path) << edited("poisson_ratio = 0.3", "poisson_ratio = 0.7");
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find(path + ":11: materials.soil.poisson_ratio"), std::string::npos)
+      << err.str();
+  EXPECT_FALSE(std::filesystem::exists(directory / "out" / "history.h5"));
+  options.case_path = (directory / "missing.toml").string();
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("cannot open the case file"), std::string::npos);
+}
+
+} // namespace
+} // namespace mpile

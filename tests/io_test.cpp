@@ -1,0 +1,266 @@
+// Round trips of the output files through their own libraries' readers, an end-to-end run of a
+// case file, and bitwise-identical restart from a checkpoint.
+#include "cases/verification/verification_case.hpp"
+#include "engine/linear_elastic.hpp"
+#include "engine/particle_fill.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/run_command.hpp"
+#include "io/vtk_writer.hpp"
+
+#include <gtest/gtest.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace mpile {
+namespace {
+
+std::filesystem::path fresh_directory(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / ("mpile_test_" + name);
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  return directory;
+}
+
+TEST(VtkOutput, ParticleSnapshotReadsBackWithEveryArrayExact) {
+  Scene scene(GeometryMode::axisymmetric, verification::uniform_grid(0.0, 1.0, 4, 0.0, 1.0, 4));
+  const auto material = scene.add_material(std::make_unique<LinearElastic>(1e7, 0.3, 1800.0));
+  fill_rectangle(scene, {0.0, 1.0, 0.0, 1.0}, 2, material, scene.add_body("block"));
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> value(-1e5, 1e5);
+  Particles& p = scene.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (double& s : p.stress[i]) {
+      s = value(random);
+    }
+    p.v_r[i] = value(random);
+    p.v_theta[i] = value(random);
+    p.u_theta[i] = value(random);
+    p.r[i] += 1e-3;
+  }
+  const auto path = (fresh_directory("vtk") / "particles.vtu").string();
+  write_particles_vtu(scene, path);
+
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  ASSERT_EQ(grid->GetNumberOfPoints(), static_cast<vtkIdType>(p.size()));
+  auto array = [&](const char* name) {
+    vtkDataArray* a = grid->GetPointData()->GetArray(name);
+    EXPECT_NE(a, nullptr) << name;
+    return a;
+  };
+  const char* stress_names[] = {"sigma_rr", "sigma_yy",     "sigma_thth",
+                                "sigma_ry", "sigma_ytheta", "sigma_rtheta"};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto k = static_cast<vtkIdType>(i);
+    double point[3];
+    grid->GetPoint(k, point);
+    ASSERT_EQ(point[0], p.r[i]);
+    ASSERT_EQ(point[1], p.y[i]);
+    for (std::size_t c = 0; c < 6; ++c) {
+      ASSERT_EQ(array(stress_names[c])->GetTuple1(k), p.stress[i][c]) << stress_names[c];
+    }
+    ASSERT_EQ(array("p")->GetTuple1(k), mean_pressure(p.stress[i]));
+    ASSERT_EQ(array("q")->GetTuple1(k), deviatoric_stress(p.stress[i]));
+    ASSERT_EQ(array("density")->GetTuple1(k), p.mass[i] / p.volume[i]);
+    ASSERT_EQ(array("velocity")->GetComponent(k, 0), p.v_r[i]);
+    ASSERT_EQ(array("velocity")->GetComponent(k, 2), p.v_theta[i]);
+    ASSERT_EQ(array("displacement")->GetComponent(k, 0), p.r[i] - p.r0[i]);
+    ASSERT_EQ(array("displacement")->GetComponent(k, 2), p.u_theta[i]);
+    ASSERT_EQ(array("body")->GetTuple1(k), p.body[i]);
+    ASSERT_EQ(array("material")->GetTuple1(k), p.material[i]);
+  }
+}
+
+TEST(Hdf5Output, SeriesAndArraysReadBackWithUnits) {
+  const auto path = (fresh_directory("hdf5") / "file.h5").string();
+  {
+    Hdf5File file(path, Hdf5File::Mode::create);
+    Hdf5Series series(file, "/group/inner/series", "N/rad");
+    for (int i = 0; i < 10000; ++i) {
+      series.append(0.5 * i);
+      if (i % 3000 == 0) {
+        series.flush();
+      }
+    }
+    series.flush();
+    file.write("/array", std::vector<double>{1.0, 2.0, 3.0}, "m");
+    file.set_attribute("/", "note", std::string("a multi-line\nstring"));
+  }
+  Hdf5File file(path, Hdf5File::Mode::read);
+  const auto values = file.read_doubles("/group/inner/series");
+  ASSERT_EQ(values.size(), 10000u);
+  for (int i = 0; i < 10000; ++i) {
+    ASSERT_EQ(values[static_cast<std::size_t>(i)], 0.5 * i);
+  }
+  EXPECT_EQ(file.string_attribute("/group/inner/series", "unit"), "N/rad");
+  EXPECT_EQ(file.read_doubles("/array"), (std::vector<double>{1.0, 2.0, 3.0}));
+  EXPECT_EQ(file.string_attribute("/", "note"), "a multi-line\nstring");
+}
+
+// A small case with everything a run does: K0 stresses, a damped gravity phase that stops at
+// equilibrium, then a shaking phase with a prescribed base motion, snapshots, history, checkpoints.
+const char* shaking_column = R"(title = "shaking column"
+[grid]
+r = [{ start = 0.0, end = 0.4, cells = 4 }, { start = 0.4, end = 1.0, cells = 3 }]
+y = [{ start = 0.0, end = 1.2, cells = 12 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 2e6
+poisson_ratio = 0.3
+density = 1800.0
+[[bodies]]
+name = "column"
+material = "soil"
+region = { r = [0.0, 0.6], y = [0.0, 1.0] }
+particles_per_cell = 2
+[boundaries]
+r_max = "roller"
+[[prescribed]]
+name = "base"
+nodes = { y = 0.0 }
+velocity_r = 0.0
+velocity_y = { type = "harmonic", amplitude = 0.05, frequency = 10.0 }
+angular_velocity = { type = "harmonic", amplitude = 0.2, frequency = 10.0 }
+phase = "shake"
+[solver]
+gravity = [0.0, -9.81]
+flip_fraction = 0.98
+[[phases]]
+name = "settle"
+duration = 1.0
+local_damping = 0.7
+equilibrium_tolerance = 1e-6
+k0 = [{ body = "column", surface = 1.0, k0 = 0.5 }]
+[[phases]]
+name = "shake"
+duration = 0.15
+[output]
+snapshot_interval = 0.05
+snapshot_times = [0.01]
+history_interval = 0.0
+checkpoint_interval = 0.05
+)";
+
+std::string write_case(const std::filesystem::path& directory) {
+  const auto path = (directory / "shaking_column.toml").string();
+  std::ofstream(path) << shaking_column;
+  return path;
+}
+
+TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
+  const auto directory = fresh_directory("run");
+  RunOptions options;
+  options.case_path = write_case(directory);
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  ASSERT_EQ(run_case(options, out, err), exit_success) << err.str();
+  EXPECT_NE(out.str().find("phase settle ended"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("at equilibrium"), std::string::npos) << out.str();
+
+  Hdf5File history((directory / "out" / "history.h5").string(), Hdf5File::Mode::read);
+  EXPECT_EQ(history.string_attribute("/", "status"), "complete");
+  EXPECT_EQ(history.string_attribute("/time", "unit"), "s");
+  EXPECT_EQ(history.string_attribute("/boundaries/base/M_theta", "unit"), "N m/rad");
+  EXPECT_NE(history.string_attribute("/", "case_text").find("shaking column"), std::string::npos);
+  const auto time = history.read_doubles("/time");
+  const auto phase = history.read_doubles("/phase");
+  ASSERT_GT(time.size(), 10u);
+  EXPECT_EQ(time.front(), 0.0);
+  EXPECT_EQ(phase.back(), 1.0);
+  // The settle phase ends early at equilibrium, the shake phase lasts its 0.15 s.
+  double shake_start = 0.0;
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    if (phase[k] == 1.0) {
+      shake_start = time[k - 1];
+      break;
+    }
+  }
+  EXPECT_LT(shake_start, 1.0);
+  EXPECT_NEAR(time.back(), shake_start + 0.15, 1e-12);
+  // The base moves with the prescribed harmonic, so the support does work on the column.
+  const auto torque = history.read_doubles("/boundaries/base/M_theta");
+  double largest = 0.0;
+  for (const double m : torque) {
+    largest = std::max(largest, std::abs(m));
+  }
+  EXPECT_GT(largest, 0.0);
+  // Snapshots at 0, at the listed 0.01 s, every 0.05 s, and at the end, all listed in the .pvd.
+  std::ifstream pvd(directory / "out" / "particles.pvd");
+  std::stringstream contents;
+  contents << pvd.rdbuf();
+  const std::string collection = contents.str();
+  EXPECT_NE(collection.find("timestep=\"0.01\""), std::string::npos) << collection;
+  EXPECT_NE(collection.find("timestep=\"0.05\""), std::string::npos) << collection;
+  EXPECT_TRUE(std::filesystem::exists(directory / "out" / "particles_000003.vtu"));
+  EXPECT_TRUE(std::filesystem::exists(directory / "out" / "checkpoint.h5"));
+}
+
+std::vector<std::string> particle_datasets() {
+  return {"r", "y", "v_r", "v_y", "v_theta", "u_theta", "volume", "stress"};
+}
+
+TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
+  const auto directory = fresh_directory("restart");
+  const std::string path = write_case(directory);
+  std::ostringstream out, err;
+  RunOptions whole;
+  whole.case_path = path;
+  whole.output_directory = (directory / "whole").string();
+  ASSERT_EQ(run_case(whole, out, err), exit_success) << err.str();
+
+  RunOptions first = whole;
+  first.output_directory = (directory / "split").string();
+  first.stop_after_steps = 137; // inside the settle phase, between checkpoints
+  ASSERT_EQ(run_case(first, out, err), exit_interrupted) << err.str();
+  RunOptions second = first;
+  second.stop_after_steps = 0;
+  second.restart = (directory / "split" / "checkpoint.h5").string();
+  std::filesystem::copy_file(second.restart, directory / "interrupted.h5");
+  second.restart = (directory / "interrupted.h5").string();
+  ASSERT_EQ(run_case(second, out, err), exit_success) << err.str();
+
+  Hdf5File a((directory / "whole" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  Hdf5File b((directory / "split" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  for (const std::string& name : particle_datasets()) {
+    EXPECT_EQ(a.read_doubles("/particles/" + name), b.read_doubles("/particles/" + name)) << name;
+  }
+  EXPECT_EQ(a.read_doubles("/solver/state"), b.read_doubles("/solver/state"));
+  Hdf5File ha((directory / "whole" / "history.h5").string(), Hdf5File::Mode::read);
+  Hdf5File hb((directory / "split" / "history.h5").string(), Hdf5File::Mode::read);
+  for (const char* series : {"/time", "/dt", "/energy/kinetic", "/energy/external_work",
+                             "/boundaries/base/F_y", "/boundaries/base/M_theta"}) {
+    EXPECT_EQ(ha.read_doubles(series), hb.read_doubles(series)) << series;
+  }
+  EXPECT_EQ(hb.string_attribute("/", "status"), "complete");
+}
+
+TEST(RunCommand, RefusesACheckpointOfAnotherCase) {
+  const auto directory = fresh_directory("refuse");
+  const std::string path = write_case(directory);
+  std::ostringstream out, err;
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  options.stop_after_steps = 10;
+  ASSERT_EQ(run_case(options, out, err), exit_interrupted);
+  std::string text = shaking_column;
+  text.replace(text.find("young_modulus = 2e6"), 19, "young_modulus = 3e6");
+  std::ofstream(path) << text;
+  options.stop_after_steps = 0;
+  options.restart = (directory / "out" / "checkpoint.h5").string();
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("belongs to another case"), std::string::npos) << err.str();
+}
+
+} // namespace
+} // namespace mpile
