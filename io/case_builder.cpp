@@ -62,10 +62,16 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     }
     Particles& p = scene->particles;
     for (std::size_t i = first; i < p.size(); ++i) {
-      p.v_r[i] = body.velocity[0];
-      p.v_y[i] = body.velocity[1];
+      std::array<double, 3> v = body.velocity;
+      if (body.velocity_profile) {
+        const VelocityProfile& profile = *body.velocity_profile;
+        v[static_cast<std::size_t>(profile.component)] +=
+            profile.function.value(profile.along_y ? p.y[i] : p.r[i]);
+      }
+      p.v_r[i] = v[0];
+      p.v_y[i] = v[1];
       if (has_theta(spec.mode)) {
-        p.v_theta[i] = body.velocity[2];
+        p.v_theta[i] = v[2];
       }
     }
   }

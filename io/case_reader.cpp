@@ -288,6 +288,21 @@ void read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes) {
                      std::to_string(per_direction));
     }
     body.particles_per_direction = static_cast<int>(per_direction);
+    if (std::optional<TomlTable> profile = table.optional_table("velocity_profile")) {
+      VelocityProfile p;
+      p.component = component_index(*profile, "component");
+      if (p.component == 2 && spec.mode == GeometryMode::plane_strain) {
+        profile->fail("component", "plane strain has no theta velocity");
+      }
+      const std::string along = profile->string("along");
+      if (along != "r" && along != "y") {
+        profile->fail("along", "must be \"r\" or \"y\", got \"" + along + "\"");
+      }
+      p.along_y = along == "y";
+      p.function = read_time_function(*profile, "function");
+      profile->finish();
+      body.velocity_profile = p;
+    }
     if (table.has("velocity")) {
       const auto v = table.numbers("velocity", 3);
       body.velocity = {v[0], v[1], v[2]};

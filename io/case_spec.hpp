@@ -24,12 +24,20 @@ struct MaterialSpec {
   MaterialParameters parameters;
 };
 
+/// An initial velocity component varying along r or y, added to the body's uniform velocity.
+struct VelocityProfile {
+  int component = 1;
+  bool along_y = true;
+  TimeFunction function; // evaluated at the position (m) instead of a time
+};
+
 struct BodySpec {
   std::string name;
   std::string material;
   Rectangle region;
   int particles_per_direction = 2;
   std::array<double, 3> velocity{0.0, 0.0, 0.0};
+  std::optional<VelocityProfile> velocity_profile;
 };
 
 /// Grid nodes on one grid line: r = at (all y within [from, to]) or y = at (r within [from, to]).

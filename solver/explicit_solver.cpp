@@ -1,5 +1,6 @@
 #include "solver/explicit_solver.hpp"
 
+#include "engine/parallel.hpp"
 #include "solver/passes.hpp"
 
 #include <tbb/parallel_for.h>
@@ -132,6 +133,52 @@ void ExplicitSolver::sort_particles_by_cell() {
   const auto order = bins_.cell_sorted_order(scene_.particles.cell_r, scene_.particles.cell_y);
   scene_.particles.permute(order);
   bins_.reset_to_identity();
+}
+
+double ExplicitSolver::unbalanced_force_ratio() {
+  if (scene_.mode == GeometryMode::axisymmetric) {
+    passes::particle_to_grid<GeometryMode::axisymmetric>(scene_, bins_, settings_);
+  } else {
+    passes::particle_to_grid<GeometryMode::plane_strain>(scene_, bins_, settings_);
+  }
+  // Node forces are f_ext - f_int (gravity included); loads are added here as in a step.
+  passes::apply_nodal_loads(scene_, passes::StepParameters{time_, 0.0, mass_floor_});
+  const Grid& grid = scene_.grid;
+  const int dofs = has_theta(scene_.mode) ? 3 : 2;
+  const double g2 =
+      settings_.gravity[0] * settings_.gravity[0] + settings_.gravity[1] * settings_.gravity[1];
+  struct Sums {
+    double free = 0.0, held = 0.0;
+  };
+  Sums sums = parallel_reduce(
+      grid.nodes.size(), Sums{},
+      [&](std::size_t begin, std::size_t end, Sums s) {
+        for (std::size_t i = begin; i != end; ++i) {
+          const GridNode& node = grid.nodes[i];
+          if (node.mass <= mass_floor_) {
+            continue;
+          }
+          s.held += node.mass * node.mass * g2;
+          for (int d = 0; d < dofs; ++d) {
+            const double f2 = node.force[d] * node.force[d];
+            ((grid.constrained[i] & (1u << d)) != 0 ? s.held : s.free) += f2;
+          }
+        }
+        return s;
+      },
+      [](Sums a, Sums b) {
+        return Sums{a.free + b.free, a.held + b.held};
+      },
+      true);
+  for (const NodalLoad& load : scene_.boundaries.loads) {
+    const double traction = load.traction.value(time_);
+    for (const double w : load.weight) {
+      // The load is part of f_ext already; count it among the forces that hold the state too.
+      const double f = w * traction;
+      sums.held += f * f;
+    }
+  }
+  return sums.held > 0.0 ? std::sqrt(sums.free / sums.held) : 0.0;
 }
 
 void ExplicitSolver::step(double max_dt) {

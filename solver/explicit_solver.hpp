@@ -39,7 +39,8 @@ struct SolverState {
 class ExplicitSolver {
 public:
   /// Locates and bins the particles, sorts them by cell and checks the scene; throws
-  /// std::invalid_argument for a particle outside the grid or on the axis, or settings out of range.
+  /// std::invalid_argument for a particle outside the grid or on the axis, or settings out of
+  /// range.
   ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log);
   /// Continues a run from a checkpoint: the particles keep their order and the step its size.
   ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log, const SolverState& restored);
@@ -65,6 +66,11 @@ public:
   const ParticleBins& bins() const { return bins_; }
   const PassTimings& timings() const { return timings_; }
   const Scene& scene() const { return scene_; }
+
+  /// The out-of-balance force of the current state on the free nodal DOFs, relative to the forces
+  /// that hold it (reactions at supports, gravity, loads): sqrt(sum f_free^2 / sum f_held^2).
+  /// Maps the particles to the grid once; nothing of the run's state changes.
+  double unbalanced_force_ratio();
 
 private:
   template <GeometryMode mode> void step_in_mode(double dt);

@@ -139,7 +139,7 @@ flip_fraction = 0.98
 name = "settle"
 duration = 1.0
 local_damping = 0.7
-equilibrium_tolerance = 1e-6
+equilibrium_tolerance = 1e-3
 k0 = [{ body = "column", surface = 1.0, k0 = 0.5 }]
 [[phases]]
 name = "shake"
