@@ -88,6 +88,10 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     scene = build_scene(spec);
     if (restarting) {
       restored = read_checkpoint(options.restart, spec, *scene);
+      if (restored.progress.phase >= spec.phases.size()) {
+        throw CaseError(options.restart + ": the run in this checkpoint is complete; nothing to "
+                                          "continue");
+      }
     }
   } catch (const CaseError& e) {
     err << "mpile: " << e.what() << '\n';

@@ -242,6 +242,12 @@ TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
     EXPECT_EQ(ha.read_doubles(series), hb.read_doubles(series)) << series;
   }
   EXPECT_EQ(hb.string_attribute("/", "status"), "complete");
+
+  // The final checkpoint of a complete run has nothing left to continue.
+  RunOptions again = second;
+  again.restart = (directory / "split" / "checkpoint.h5").string();
+  EXPECT_EQ(run_case(again, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("is complete; nothing to continue"), std::string::npos) << err.str();
 }
 
 TEST(RunCommand, RefusesACheckpointOfAnotherCase) {
