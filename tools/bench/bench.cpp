@@ -1,0 +1,159 @@
+// mpile-bench: throughput and memory of the full explicit step on standard scenes.
+//
+// For each scene and thread count it runs a warm-up, then a fixed number of steps, and prints one
+// line: scene, threads, particles, steps, wall seconds, particle-steps per second, bytes per
+// particle (peak resident set over particles) and each pass's share of the step. Every scene runs
+// in a child process of its own, so that the peak resident set is that scene's alone.
+#include "engine/linear_elastic.hpp"
+#include "engine/particle_fill.hpp"
+#include "solver/explicit_solver.hpp"
+
+#include <CLI/CLI.hpp>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace {
+
+using namespace mpile;
+
+/// A soil column on a fixed base, confined by rollers, settling under gravity with local damping:
+/// the quasi-static kind of step the monopile cases spend most of their particles on.
+std::unique_ptr<Scene> elastic_column(GeometryMode mode, std::size_t target_particles) {
+  // Square cells, 4 particles each, a column twice as tall as wide.
+  const int cells_r = std::max(4, static_cast<int>(std::sqrt(target_particles / 8.0)));
+  const int cells_y = 2 * cells_r;
+  const double width = 5.0, height = 10.0;
+  auto scene = std::make_unique<Scene>(
+      mode, Grid(GradedAxis::uniform(0.0, width, cells_r),
+                 GradedAxis::uniform(0.0, height * 1.05, cells_y + cells_y / 20)));
+  const auto material = scene->add_material(std::make_unique<LinearElastic>(50e6, 0.3, 1650.0));
+  fill_rectangle(*scene, {0.0, width, 0.0, height}, 2, material, scene->add_body("soil"));
+  scene->boundaries.constraints = {
+      face_constraint(scene->grid, mode, GridFace::y_min, FaceCondition::fixed),
+      face_constraint(scene->grid, mode, GridFace::r_max, FaceCondition::roller)};
+  if (mode == GeometryMode::axisymmetric) {
+    scene->boundaries.constraints.push_back(axis_constraint(scene->grid));
+  } else {
+    scene->boundaries.constraints.push_back(
+        face_constraint(scene->grid, mode, GridFace::r_min, FaceCondition::roller));
+  }
+  return scene;
+}
+
+struct SceneSpec {
+  std::string name;
+  std::function<std::unique_ptr<Scene>()> make;
+};
+
+std::map<std::string, SceneSpec> scenes() {
+  std::map<std::string, SceneSpec> all;
+  for (const auto& [label, count] : std::vector<std::pair<std::string, std::size_t>>{
+           {"1e5", 100000}, {"1e6", 1000000}}) {
+    all["elastic-" + label] = {"elastic-" + label, [count = count] {
+                                 return elastic_column(GeometryMode::axisymmetric, count);
+                               }};
+    all["elastic-plane-" + label] = {"elastic-plane-" + label, [count = count] {
+                                       return elastic_column(GeometryMode::plane_strain, count);
+                                     }};
+  }
+  return all;
+}
+
+long peak_resident_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss * 1024L;
+}
+
+void run_scene(const SceneSpec& spec, int threads, int warmup, int steps) {
+  const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                  static_cast<std::size_t>(threads));
+  auto scene = spec.make();
+  SolverSettings settings;
+  settings.gravity = {0.0, -9.81};
+  settings.local_damping = 0.7;
+  RunLog log;
+  ExplicitSolver solver(*scene, settings, log);
+  for (int s = 0; s < warmup; ++s) {
+    solver.step();
+  }
+  const PassTimings before = solver.timings();
+  const auto start = std::chrono::steady_clock::now();
+  for (int s = 0; s < steps; ++s) {
+    solver.step();
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const PassTimings& after = solver.timings();
+  const double n = static_cast<double>(scene->particles.size());
+  auto share = [&](double PassTimings::*pass) {
+    return 100.0 * (after.*pass - before.*pass) / wall;
+  };
+  std::printf("%-20s %3d %9.0f %6d %8.3f %12.3e %8.0f   bin %4.1f%%  p2g %4.1f%%  grid %4.1f%%  "
+              "contact  0.0%%  g2p %4.1f%%  remap %4.1f%%  stress %4.1f%%  output  0.0%%\n",
+              spec.name.c_str(), threads, n, steps, wall, n * steps / wall,
+              static_cast<double>(peak_resident_bytes()) / n, share(&PassTimings::binning),
+              share(&PassTimings::particle_to_grid), share(&PassTimings::grid_update),
+              share(&PassTimings::grid_to_particle), share(&PassTimings::momentum_remap),
+              share(&PassTimings::stress_update));
+  std::fflush(stdout);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mpile-bench: particle-steps per second, memory and pass shares on standard scenes"};
+  std::vector<std::string> chosen{"elastic-1e5", "elastic-plane-1e5", "elastic-1e6"};
+  std::vector<int> threads{1, 2};
+  int steps = 100, warmup = 10;
+  app.add_option("--scenes", chosen, "scenes to run")->delimiter(',')->capture_default_str();
+  app.add_option("--threads", threads, "thread counts")->delimiter(',')->capture_default_str();
+  app.add_option("--steps", steps, "timed steps per run")->capture_default_str();
+  app.add_option("--warmup", warmup, "untimed steps first")->capture_default_str();
+  bool list = false;
+  app.add_flag("--list", list, "list the scenes");
+  CLI11_PARSE(app, argc, argv);
+  const auto all = scenes();
+  if (list) {
+    for (const auto& [name, spec] : all) {
+      std::cout << name << '\n';
+    }
+    return 0;
+  }
+  std::printf("%-20s %3s %9s %6s %8s %12s %8s   %s\n", "scene", "thr", "particles", "steps",
+              "wall_s", "p-steps/s", "B/part", "time share of each pass");
+  std::fflush(stdout);
+  for (const std::string& name : chosen) {
+    const auto found = all.find(name);
+    if (found == all.end()) {
+      std::cerr << "mpile-bench: unknown scene " << name << " (see --list)\n";
+      return 2;
+    }
+    for (const int t : threads) {
+      // A child process per run: the peak resident set is this run's, and oneTBB starts fresh.
+      const pid_t child = fork();
+      if (child == 0) {
+        run_scene(found->second, t, warmup, steps);
+        std::_Exit(0);
+      }
+      int status = 0;
+      waitpid(child, &status, 0);
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::cerr << "mpile-bench: " << name << " on " << t << " threads failed\n";
+        return 1;
+      }
+    }
+  }
+  return 0;
+}
