@@ -123,6 +123,12 @@ void write_particles_vtu(const Scene& scene, const std::string& path) {
 
 namespace {
 
+std::string numbered_name(const char* prefix, std::size_t index, const char* extension) {
+  std::ostringstream name;
+  name << prefix << std::setw(6) << std::setfill('0') << index << extension;
+  return name.str();
+}
+
 void write_grid_vtr(const Scene& scene, const std::string& path) {
   const Grid& g = scene.grid;
   vtkNew<vtkDoubleArray> r, y, z;
@@ -163,19 +169,17 @@ SnapshotWriter::SnapshotWriter(std::string directory, bool grid_snapshots)
     : directory_(std::move(directory)), grid_snapshots_(grid_snapshots) {}
 
 std::string SnapshotWriter::write(const Scene& scene, double time) {
-  std::ostringstream name;
-  name << "particles_" << std::setw(6) << std::setfill('0') << particles_.size() << ".vtu";
-  write_particles_vtu(scene, directory_ + "/" + name.str());
-  particles_.emplace_back(time, name.str());
+  const std::string name = numbered_name("particles_", particles_.size(), ".vtu");
+  write_particles_vtu(scene, directory_ + "/" + name);
+  particles_.emplace_back(time, name);
   write_collection("particles.pvd", particles_);
   if (grid_snapshots_) {
-    std::ostringstream grid_name;
-    grid_name << "grid_" << std::setw(6) << std::setfill('0') << grids_.size() << ".vtr";
-    write_grid_vtr(scene, directory_ + "/" + grid_name.str());
-    grids_.emplace_back(time, grid_name.str());
+    const std::string grid_name = numbered_name("grid_", grids_.size(), ".vtr");
+    write_grid_vtr(scene, directory_ + "/" + grid_name);
+    grids_.emplace_back(time, grid_name);
     write_collection("grid.pvd", grids_);
   }
-  return name.str();
+  return name;
 }
 
 void SnapshotWriter::restore(std::vector<std::pair<double, std::string>> entries) {
@@ -184,9 +188,7 @@ void SnapshotWriter::restore(std::vector<std::pair<double, std::string>> entries
   grids_.clear();
   if (grid_snapshots_) {
     for (std::size_t k = 0; k < particles_.size(); ++k) {
-      std::ostringstream grid_name;
-      grid_name << "grid_" << std::setw(6) << std::setfill('0') << k << ".vtr";
-      grids_.emplace_back(particles_[k].first, grid_name.str());
+      grids_.emplace_back(particles_[k].first, numbered_name("grid_", k, ".vtr"));
     }
     write_collection("grid.pvd", grids_);
   }

@@ -26,14 +26,12 @@ Report run_shaft_torsion(const Options& options) {
                  body);
 
   constexpr double load_time = 0.02;
-  const double peak = twist / (0.75 * load_time); // angular velocity, rad/s
   NodeConstraint cap;
   cap.name = "top cap";
   cap.nodes = nodes_on_face(scene.grid, GridFace::y_max);
   cap.dofs = DOF_THETA;
   cap.theta_is_rotation = true;
-  cap.velocity[2] = TimeFunction::table(
-      {{0.0, 0.0}, {0.25 * load_time, peak}, {0.75 * load_time, peak}, {load_time, 0.0}});
+  cap.velocity[2] = trapezoid_velocity(twist, load_time); // angular velocity, rad/s
   scene.boundaries.constraints = {
       axis_constraint(scene.grid),
       face_constraint(scene.grid, scene.mode, GridFace::y_min, FaceCondition::fixed), cap};

@@ -34,25 +34,11 @@ Report run_single_point(const Options& options) {
   RunLog log;
   ExplicitSolver solver(scene, settings, log);
 
-  double amplitude = 0.0;
-  double previous_v = v0;
-  double previous_t = 0.0;
-  std::vector<double> crossings;
+  OscillationMeter meter(0.0, v0);
   while (solver.time() < 3.0) {
     solver.step();
-    const double v = scene.particles.v_r[0];
-    amplitude = std::max(amplitude, std::abs(v));
-    if ((v > 0.0) != (previous_v > 0.0)) {
-      crossings.push_back(previous_t +
-                          (solver.time() - previous_t) * previous_v / (previous_v - v));
-    }
-    previous_v = v;
-    previous_t = solver.time();
+    meter.sample(solver.time(), scene.particles.v_r[0]);
   }
-  const double measured_period =
-      crossings.size() >= 2
-          ? 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1)
-          : 0.0;
   Report report{"V2",
                 "single material point vibration",
                 {},
@@ -61,11 +47,10 @@ Report run_single_point(const Options& options) {
                 0.0,
                 log.warnings()};
   report.checks = {
-      {"period", "s", measured_period, 1.0, 1.0, 0.005},
-      {"velocity amplitude", "m/s", amplitude, v0, v0, 0.005},
+      {"period", "s", meter.period(), 1.0, 1.0, 0.005},
+      {"velocity amplitude", "m/s", meter.amplitude(), v0, v0, 0.005},
   };
-  report.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.wall_seconds = seconds_since(start);
   return report;
 }
 

@@ -28,13 +28,11 @@ Report run_uniaxial_cylinder(const Options& options) {
 
   // Top platen: a trapezoidal velocity history whose integral is exactly the platen travel.
   constexpr double load_time = 0.02;
-  const double peak = strain * height / (0.75 * load_time);
   NodeConstraint platen;
   platen.name = "top platen";
   platen.nodes = nodes_on_face(scene.grid, GridFace::y_max);
   platen.dofs = DOF_Y;
-  platen.velocity[1] = TimeFunction::table(
-      {{0.0, 0.0}, {0.25 * load_time, peak}, {0.75 * load_time, peak}, {load_time, 0.0}});
+  platen.velocity[1] = trapezoid_velocity(strain * height, load_time);
   scene.boundaries.constraints = {
       axis_constraint(scene.grid),
       face_constraint(scene.grid, scene.mode, GridFace::y_min, FaceCondition::roller), platen};

@@ -1,5 +1,6 @@
 #include "cases/verification/verification_case.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mpile::verification {
@@ -85,6 +86,27 @@ Check equilibrium_check(const EquilibriumResult& result) {
           0.0,
           1.0,
           equilibrium_tolerance};
+}
+
+TimeFunction trapezoid_velocity(double travel, double duration) {
+  const double peak = travel / (0.75 * duration);
+  return TimeFunction::table(
+      {{0.0, 0.0}, {0.25 * duration, peak}, {0.75 * duration, peak}, {duration, 0.0}});
+}
+
+void OscillationMeter::sample(double t, double v) {
+  amplitude_ = std::max(amplitude_, std::abs(v));
+  if ((v > 0.0) != (previous_v_ > 0.0)) {
+    crossings_.push_back(previous_t_ + (t - previous_t_) * previous_v_ / (previous_v_ - v));
+  }
+  previous_t_ = t;
+  previous_v_ = v;
+}
+
+double OscillationMeter::period() const {
+  return crossings_.size() >= 2 ? 2.0 * (crossings_.back() - crossings_.front()) /
+                                      static_cast<double>(crossings_.size() - 1)
+                                : 0.0;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {

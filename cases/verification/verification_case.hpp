@@ -91,6 +91,25 @@ inline constexpr double equilibrium_tolerance = 1e-9;
 /// The check that a quasi-static case reached equilibrium before it was compared.
 Check equilibrium_check(const EquilibriumResult& result);
 
+/// A velocity history that moves a support by `travel` over `duration`: a trapezoid (a quarter of
+/// the time to accelerate, half at peak, a quarter to stop), so the load comes on without a jolt.
+TimeFunction trapezoid_velocity(double travel, double duration);
+
+/// Follows a sampled oscillation: its largest amplitude and its period from the zero crossings
+/// (linearly interpolated between samples, half a period apart).
+class OscillationMeter {
+public:
+  OscillationMeter(double t0, double v0) : previous_t_(t0), previous_v_(v0) {}
+  void sample(double t, double v);
+  double amplitude() const { return amplitude_; }
+  double period() const;
+
+private:
+  double previous_t_, previous_v_;
+  double amplitude_ = 0.0;
+  std::vector<double> crossings_;
+};
+
 /// Wall-clock seconds since start, for reports.
 double seconds_since(std::chrono::steady_clock::time_point start);
 

@@ -41,29 +41,13 @@ Report run_vibrating_bar(const Options& options) {
   ExplicitSolver solver(scene, settings, log);
 
   const double energy0 = kinetic_energy(scene) + elastic_energy(scene);
-  double amplitude = 0.0;
-  double previous_v = mean_velocity(scene)[1];
-  double previous_t = 0.0;
-  std::vector<double> crossings;
+  OscillationMeter meter(0.0, mean_velocity(scene)[1]);
   while (solver.time() < 3.0 * period) {
     solver.step();
-    const double v = mean_velocity(scene)[1];
-    amplitude = std::max(amplitude, std::abs(v));
-    if ((v > 0.0) != (previous_v > 0.0)) {
-      // Linear interpolation of the zero crossing between two samples.
-      crossings.push_back(previous_t +
-                          (solver.time() - previous_t) * previous_v / (previous_v - v));
-    }
-    previous_v = v;
-    previous_t = solver.time();
+    meter.sample(solver.time(), mean_velocity(scene)[1]);
   }
   const double energy = kinetic_energy(scene) + elastic_energy(scene);
   const double cycles = solver.time() / period;
-  // Zero crossings are half a period apart.
-  const double measured_period =
-      crossings.size() >= 2
-          ? 2.0 * (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1)
-          : 0.0;
 
   Report report{"V1",
                 "axial vibrating bar (axisymmetric)",
@@ -74,14 +58,13 @@ Report run_vibrating_bar(const Options& options) {
                 log.warnings()};
   const double exact_energy = density * 0.5 * radius * radius * length * v0 * v0 / 4.0;
   report.checks = {
-      {"period", "s", measured_period, period, period, 0.01},
-      {"centre-of-mass velocity amplitude", "m/s", amplitude, 2.0 * v0 / std::numbers::pi,
+      {"period", "s", meter.period(), period, period, 0.01},
+      {"centre-of-mass velocity amplitude", "m/s", meter.amplitude(), 2.0 * v0 / std::numbers::pi,
        2.0 * v0 / std::numbers::pi, 0.02},
       {"initial energy", "J/rad", energy0, exact_energy, exact_energy, 0.01},
       {"energy drift per period", "J/rad", (energy - energy0) / cycles, 0.0, energy0, 0.01},
   };
-  report.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.wall_seconds = seconds_since(start);
   return report;
 }
 
