@@ -1,0 +1,590 @@
+#include "engine/hardening_soil.hpp"
+
+#include "engine/principal_stress.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace mpile {
+
+namespace {
+
+double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
+
+using Principal = std::array<double, 3>;
+
+double mean(const Principal& s) {
+  return (s[0] + s[1] + s[2]) / 3.0;
+}
+
+/// Root of a function that decreases on [low, high], with f(low) > 0 >= f(high): the Illinois
+/// variant of regula falsi, which keeps the bracket and converges superlinearly.
+template <class F> double decreasing_root(F f, double low, double high, double tolerance) {
+  double f_low = f(low);
+  double f_high = f(high);
+  if (f_low <= 0.0) {
+    return low;
+  }
+  int side = 0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const double x = (low * f_high - high * f_low) / (f_high - f_low);
+    const double fx = f(x);
+    if (std::abs(fx) <= tolerance || high - low <= 1e-15 * std::max(1.0, std::abs(high))) {
+      return x;
+    }
+    if (fx > 0.0) {
+      low = x;
+      f_low = fx;
+      if (side == 1) {
+        f_high *= 0.5;
+      }
+      side = 1;
+    } else {
+      high = x;
+      f_high = fx;
+      if (side == -1) {
+        f_low *= 0.5;
+      }
+      side = -1;
+    }
+  }
+  return 0.5 * (low + high);
+}
+
+/// Elastic constants of one (sub)step, frozen at its start.
+struct Elasticity {
+  double bulk, shear, lambda;
+};
+
+/// The plastic mechanisms of the return: three shear planes (pairs of principal stresses) and the
+/// cap. A shear plane (i, j) has the potential (sigma_i - sigma_j)/2 - (sigma_i + sigma_j)/2 sin
+/// psi.
+enum Mechanism : int { S13 = 0, S12 = 1, S23 = 2, CAP = 3 };
+
+struct ReturnState {
+  Principal stress{};
+  double gamma = 0.0;
+  double cap_pressure = 0.0;
+};
+
+} // namespace
+
+HardeningSoil::HardeningSoil(const HardeningSoilParameters& p) : parameters_(p) {
+  auto require = [](bool ok, const std::string& message) {
+    if (!ok) {
+      throw std::invalid_argument(message);
+    }
+  };
+  require(p.e50_ref > 0.0, "e50_ref must be positive");
+  require(p.eoed_ref > 0.0, "eoed_ref must be positive");
+  require(p.eur_ref > 0.0, "eur_ref must be positive");
+  require(p.power >= 0.0 && p.power < 1.0, "power must lie in [0, 1)");
+  require(p.poisson_ur > -1.0 && p.poisson_ur < 0.5, "poisson_ur must lie in (-1, 0.5)");
+  require(p.k0_nc > 0.0 && p.k0_nc < 1.0, "k0_nc must lie in (0, 1)");
+  require(p.failure_ratio > 0.0 && p.failure_ratio < 1.0, "failure_ratio must lie in (0, 1)");
+  require(p.p_ref > 0.0, "p_ref must be positive");
+  require(p.friction_angle > 0.0 && p.friction_angle < 90.0,
+          "friction_angle must lie in (0, 90) degrees");
+  require(p.dilatancy_angle >= 0.0 && p.dilatancy_angle <= p.friction_angle,
+          "dilatancy_angle must lie in [0, friction_angle]");
+  require(p.cohesion >= 0.0, "cohesion must not be negative");
+  require(p.tension_limit >= 0.0, "tension_limit must not be negative");
+  require(p.stiffness_floor > 0.0 && p.stiffness_floor <= 1.0,
+          "stiffness_floor must lie in (0, 1]");
+  require(p.cap_floor > 0.0, "cap_floor must be positive");
+  require(p.ocr >= 1.0, "ocr must be at least 1");
+  require(p.pop >= 0.0, "pop must not be negative");
+  require(p.density > 0.0, "density must be positive");
+  sin_phi_ = std::sin(radians(p.friction_angle));
+  cos_phi_ = std::cos(radians(p.friction_angle));
+  sin_psi_ = std::sin(radians(p.dilatancy_angle));
+  a_ = p.cohesion > 0.0 ? p.cohesion * cos_phi_ / sin_phi_ : 0.0;
+  delta_ = (3.0 + sin_phi_) / (3.0 - sin_phi_);
+  // The hyperbola needs Eur > Ei = 2 E50 / (2 - Rf); otherwise f-bar is not monotonic.
+  require(p.eur_ref > 2.0 * p.e50_ref / (2.0 - p.failure_ratio),
+          "eur_ref must exceed 2 e50_ref / (2 - failure_ratio)");
+  derive_cap();
+}
+
+double HardeningSoil::stress_ratio(double sigma) const {
+  const double c_cos = parameters_.cohesion * cos_phi_;
+  const double ratio = (c_cos + sigma * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
+  return std::max(ratio, parameters_.stiffness_floor);
+}
+
+double HardeningSoil::unloading_modulus(double sigma_3) const {
+  return parameters_.eur_ref * std::pow(stress_ratio(sigma_3), parameters_.power);
+}
+
+double HardeningSoil::secant_modulus(double sigma_3) const {
+  return parameters_.e50_ref * std::pow(stress_ratio(sigma_3), parameters_.power);
+}
+
+double HardeningSoil::oedometer_modulus(double sigma_1) const {
+  return parameters_.eoed_ref * std::pow(stress_ratio(sigma_1), parameters_.power);
+}
+
+double HardeningSoil::failure_deviator(double sigma_3) const {
+  return 2.0 * sin_phi_ * std::max(sigma_3 + a_, 0.0) / (1.0 - sin_phi_);
+}
+
+double HardeningSoil::yield_deviator(double gamma_p, double sigma_3) const {
+  const double qf = failure_deviator(sigma_3);
+  if (gamma_p <= 0.0 || qf <= 0.0) {
+    return 0.0;
+  }
+  // q_y inverts f-bar(q) = gamma without the 1/(qa - q) singularity (hardening_soil.md 1.3).
+  const double qa = qf / parameters_.failure_ratio;
+  const double initial = 2.0 * secant_modulus(sigma_3) / (2.0 - parameters_.failure_ratio);
+  const double A = 2.0 / initial;
+  const double B = 2.0 / unloading_modulus(sigma_3);
+  const double b = (A - B) * qa + gamma_p;
+  const double q_y = 2.0 * gamma_p * qa / (b + std::sqrt(b * b + 4.0 * B * gamma_p * qa));
+  return std::min(q_y, qf);
+}
+
+double HardeningSoil::hardening_function(double q, double sigma_3) const {
+  const double qa = failure_deviator(sigma_3) / parameters_.failure_ratio;
+  if (q <= 0.0) {
+    return 0.0;
+  }
+  if (q >= qa) {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double initial = 2.0 * secant_modulus(sigma_3) / (2.0 - parameters_.failure_ratio);
+  return 2.0 / initial * q / (1.0 - q / qa) - 2.0 * q / unloading_modulus(sigma_3);
+}
+
+double HardeningSoil::cap_deviator(const Principal& s) const {
+  return s[0] + (delta_ - 1.0) * s[1] - delta_ * s[2];
+}
+
+double HardeningSoil::cap_surface(const Principal& s, double p_p) const {
+  const double q = cap_deviator(s);
+  const double p = mean(s);
+  return std::sqrt(q * q / (alpha_ * alpha_) + p * p) - p_p;
+}
+
+void HardeningSoil::derive_cap() {
+  // hardening_soil.md 1.6: at sigma_1 = p_ref, sigma_3 = K0nc p_ref on the normally consolidated K0
+  // path both mechanisms are active, and the path is self-similar, so alpha and H follow from
+  // matching K0nc and Eoed_ref at that one point.
+  const HardeningSoilParameters& P = parameters_;
+  const double k0 = P.k0_nc, nu = P.poisson_ur, m = P.power;
+  const double sigma_1 = P.p_ref, sigma_3 = k0 * P.p_ref;
+  const double q = sigma_1 - sigma_3, p = (sigma_1 + 2.0 * sigma_3) / 3.0;
+  const double dq = 1.0 - k0, dp = (1.0 + 2.0 * k0) / 3.0;
+  const double dgamma = (1.0 - m) * hardening_function(q, sigma_3) / (sigma_1 + a_);
+  const double e = unloading_modulus(sigma_3);
+  const double de1 = (1.0 - 2.0 * nu * k0) / e;
+  const double de3 = (k0 - nu * (1.0 + k0)) / e;
+  const double r1 = 1.0 / P.eoed_ref - de1 - dgamma / 2.0;
+  const double r3 = -de3 + dgamma / 4.0;
+  const double x = (2.0 * p / 3.0) * (r1 - r3) / (q * (2.0 * r3 + r1));
+  const double mu = r3 / (2.0 * p / 3.0 - q * x);
+  const double pp = std::sqrt(p * p + q * q * x);
+  const double h = (q * x * dq + p * dp) / (2.0 * p * pp * mu * std::pow(pp / P.p_ref, m));
+  if (!(x > 0.0) || !(mu > 0.0) || !(h > 0.0)) {
+    throw std::invalid_argument(
+        "no cap reproduces k0_nc and eoed_ref with these stiffnesses (e50_ref, eoed_ref, eur_ref "
+        "and k0_nc are not compatible)");
+  }
+  alpha_ = 1.0 / std::sqrt(x);
+  cap_modulus_ = h;
+}
+
+void HardeningSoil::initialise_state(const Stress& stress, double* state) const {
+  const PrincipalStress principal = principal_compression(stress);
+  const Principal& s = principal.values;
+  // Reference (preconsolidation) state on the NC K0 line: sigma_p = OCR sigma_1 + POP.
+  const double sigma_p = parameters_.ocr * std::max(s[0], 0.0) + parameters_.pop;
+  const Principal reference{sigma_p, parameters_.k0_nc * sigma_p, parameters_.k0_nc * sigma_p};
+  const double cap_reference = cap_surface(reference, 0.0);
+  const double cap_current = cap_surface(s, 0.0);
+  state[P_P] = std::max({cap_reference, cap_current, parameters_.cap_floor});
+  const double gamma_reference = hardening_function(reference[0] - reference[2], reference[2]);
+  const double gamma_current = hardening_function(s[0] - s[2], s[2]);
+  double gamma = std::max(gamma_reference, gamma_current);
+  if (!std::isfinite(gamma)) {
+    gamma = 1.0; // at or beyond failure: the surface is the Mohr-Coulomb limit anyway
+  }
+  state[GAMMA_P] = std::max(gamma, 0.0);
+}
+
+double HardeningSoil::constrained_modulus(const Stress& stress, const double*) const {
+  const PrincipalStress principal = principal_compression(stress);
+  const double e = unloading_modulus(principal.values[2]);
+  const double nu = parameters_.poisson_ur;
+  return e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+}
+
+double HardeningSoil::elastic_energy_density(const Stress& stress, const double*) const {
+  // Recoverable energy at the current unloading stiffness (the hypoelastic law has no exact
+  // potential; this is the energy an unloading at fixed moduli would return).
+  const PrincipalStress principal = principal_compression(stress);
+  const double e = unloading_modulus(principal.values[2]);
+  const double nu = parameters_.poisson_ur;
+  const double bulk = e / (3.0 * (1.0 - 2.0 * nu));
+  const double shear = e / (2.0 * (1.0 + nu));
+  const double p = mean(principal.values);
+  double deviatoric = 0.0;
+  for (const double v : principal.values) {
+    deviatoric += (v - p) * (v - p);
+  }
+  return 0.5 * p * p / bulk + deviatoric / (4.0 * shear);
+}
+
+void HardeningSoil::update_stress(const StressUpdateBatch& batch) const {
+  for (std::size_t k = 0; k < batch.particles.size(); ++k) {
+    const auto i = static_cast<std::size_t>(batch.particles[k]);
+    batch.constrained_modulus[k] = update_point(
+        batch.stress[i], batch.state + i * static_cast<std::size_t>(batch.state_stride),
+        batch.strain[k]);
+  }
+}
+
+namespace {
+
+/// One implicit return of the Hardening Soil model with frozen moduli and directions.
+class HardeningSoilReturn {
+public:
+  HardeningSoilReturn(const HardeningSoil& model, const HardeningSoilParameters& parameters,
+                      const Elasticity& elastic, double sin_psi_mobilised, double delta,
+                      double alpha, double cap_modulus_now, const Principal& trial, double gamma,
+                      double cap_pressure)
+      : model_(model), parameters_(parameters), elastic_(elastic), sin_psi_(sin_psi_mobilised),
+        delta_(delta), alpha_(alpha), cap_modulus_(cap_modulus_now), trial_(trial), gamma_n_(gamma),
+        cap_n_(cap_pressure) {
+    double largest = parameters.p_ref;
+    for (const double t : trial) {
+      largest = std::max(largest, std::abs(t));
+    }
+    tolerance_ = 1e-10 * largest;
+  }
+
+  double tolerance() const { return tolerance_; }
+
+  double shear_residual(const ReturnState& r, int mechanism) const {
+    const Principal& s = r.stress;
+    switch (mechanism) {
+    case S13:
+      return s[0] - s[2] - model_.yield_deviator(r.gamma, s[2]);
+    case S12:
+      return s[0] - s[1] - model_.yield_deviator(r.gamma, s[1]);
+    default:
+      return s[1] - s[2] - model_.yield_deviator(r.gamma, s[2]);
+    }
+  }
+
+  double cap_residual(const ReturnState& r) const {
+    return model_.cap_surface(r.stress, r.cap_pressure);
+  }
+
+  /// The stress, hardening and cap pressure after plastic multipliers (S13, S12, S23, cap) from the
+  /// trial state; the cap's flow direction n is (1, delta - 1, -delta) or a corner average.
+  ReturnState state_after(const std::array<double, 4>& multiplier, const Principal& n) const {
+    const double s = sin_psi_;
+    const double shear_sum = multiplier[S13] + multiplier[S12] + multiplier[S23];
+    // Flow of each shear plane, with trace -sin psi each.
+    const Principal g13{(1.0 - s) / 2.0, 0.0, -(1.0 + s) / 2.0};
+    const Principal g12{(1.0 - s) / 2.0, -(1.0 + s) / 2.0, 0.0};
+    const Principal g23{0.0, (1.0 - s) / 2.0, -(1.0 + s) / 2.0};
+    const double K = elastic_.bulk, G = elastic_.shear;
+    const double lambda_c = multiplier[CAP];
+    const double p_trial = mean(trial_);
+    const double p = (p_trial + K * s * shear_sum) / (1.0 + 2.0 * K * lambda_c);
+    Principal a{};
+    for (int i = 0; i < 3; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const double shear_flow = multiplier[S13] * g13[k] + multiplier[S12] * g12[k] +
+                                multiplier[S23] * g23[k] + s * shear_sum / 3.0;
+      a[k] = trial_[k] - p_trial - 2.0 * G * shear_flow;
+    }
+    const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const double q_cap = (n[0] * a[0] + n[1] * a[1] + n[2] * a[2]) /
+                         (1.0 + 4.0 * G * lambda_c * n2 / (alpha_ * alpha_));
+    ReturnState r;
+    for (std::size_t k = 0; k < 3; ++k) {
+      r.stress[k] = p + a[k] - 2.0 * G * lambda_c * 2.0 * q_cap / (alpha_ * alpha_) * n[k];
+    }
+    r.gamma = gamma_n_ + shear_sum;
+    r.cap_pressure = cap_n_ + cap_modulus_ * 2.0 * p * lambda_c;
+    return r;
+  }
+
+  Principal cap_direction(int corner) const {
+    if (corner == 1) {
+      return {1.0, -0.5, -0.5}; // triaxial compression corner: sigma_2 = sigma_3
+    }
+    if (corner == 2) {
+      return {delta_ / 2.0, delta_ / 2.0, -delta_}; // triaxial extension corner
+    }
+    return {1.0, delta_ - 1.0, -delta_};
+  }
+
+  /// Scalar return on one shear plane or a corner (both planes, equal stresses), psi explicit.
+  ReturnState shear_return(int corner) const {
+    const double s = sin_psi_;
+    const double K = elastic_.bulk, G = elastic_.shear;
+    const double lame = K - 2.0 * G / 3.0;
+    const Principal none{1.0, 0.0, 0.0};
+    auto make = [&](double total) {
+      std::array<double, 4> m{0.0, 0.0, 0.0, 0.0};
+      const Principal& t = trial_;
+      if (corner == 0) {
+        m[S13] = total;
+      } else if (corner == 1) {
+        // sigma_2 = sigma_3: split the sum so that both end equal.
+        const double g2 = G * (1.0 + s);
+        const double level = (t[1] + t[2] + total * (g2 + 2.0 * lame * s)) / 2.0;
+        m[S12] = std::max((level - t[1] - total * lame * s) / g2, 0.0);
+        m[S13] = total - m[S12];
+      } else {
+        const double g1 = G * (1.0 - s);
+        const double level = (t[0] + t[1] - total * (g1 - 2.0 * lame * s)) / 2.0;
+        m[S23] = std::max((t[1] + total * lame * s - level) / g1, 0.0);
+        m[S13] = total - m[S23];
+      }
+      return state_after(m, none);
+    };
+    auto residual = [&](double total) {
+      const ReturnState r = make(total);
+      if (corner == 1) {
+        return r.stress[0] - 0.5 * (r.stress[1] + r.stress[2]) -
+               model_.yield_deviator(r.gamma, 0.5 * (r.stress[1] + r.stress[2]));
+      }
+      if (corner == 2) {
+        return 0.5 * (r.stress[0] + r.stress[1]) - r.stress[2] -
+               model_.yield_deviator(r.gamma, r.stress[2]);
+      }
+      return shear_residual(r, S13);
+    };
+    // The deviator falls to zero at this multiplier, where the residual is <= 0.
+    const Principal& t = trial_;
+    double high = corner == 1   ? (t[0] - 0.5 * (t[1] + t[2])) / (G * (1.5 - s / 2.0))
+                  : corner == 2 ? (0.5 * (t[0] + t[1]) - t[2]) / (G * (1.5 + s / 2.0))
+                                : (t[0] - t[2]) / (2.0 * G);
+    high = std::max(high, 0.0);
+    const double total = decreasing_root(residual, 0.0, high, tolerance_);
+    return make(total);
+  }
+
+  /// Scalar return on the cap alone, with the cap direction of a corner if given.
+  ReturnState cap_return(int corner) const {
+    const Principal n = cap_direction(corner);
+    auto make = [&](double lambda_c) { return state_after({0.0, 0.0, 0.0, lambda_c}, n); };
+    auto residual = [&](double lambda_c) { return cap_residual(make(lambda_c)); };
+    double high = 1e-6;
+    while (residual(high) > 0.0 && high < 1e6) {
+      high *= 4.0;
+    }
+    return make(decreasing_root(residual, 0.0, high, tolerance_));
+  }
+
+  /// Newton on the multipliers of several active mechanisms at once (shear planes and cap).
+  bool combined_return(const std::vector<int>& active, int corner, ReturnState& result) const {
+    const Principal n = cap_direction(corner);
+    const auto size = static_cast<Eigen::Index>(active.size());
+    std::array<double, 4> m{0.0, 0.0, 0.0, 0.0};
+    auto residuals = [&](const std::array<double, 4>& multipliers) {
+      const ReturnState r = state_after(multipliers, n);
+      Eigen::VectorXd f(size);
+      for (Eigen::Index k = 0; k < size; ++k) {
+        const int mechanism = active[static_cast<std::size_t>(k)];
+        f(k) = mechanism == CAP ? cap_residual(r) : shear_residual(r, mechanism);
+      }
+      return f;
+    };
+    // Start from the separate single-surface solutions.
+    const ReturnState shear = shear_return(corner == 1 ? 1 : corner == 2 ? 2 : 0);
+    m[S13] = shear.gamma - gamma_n_;
+    const ReturnState cap = cap_return(corner);
+    m[CAP] = cap.cap_pressure > cap_n_ ? (cap.cap_pressure - cap_n_) /
+                                             (cap_modulus_ * 2.0 * std::max(mean(cap.stress), 1.0))
+                                       : 0.0;
+    for (int iteration = 0; iteration < 60; ++iteration) {
+      const Eigen::VectorXd f = residuals(m);
+      if (f.cwiseAbs().maxCoeff() <= tolerance_) {
+        result = state_after(m, n);
+        for (const int mechanism : active) {
+          if (m[static_cast<std::size_t>(mechanism)] < 0.0) {
+            return false;
+          }
+        }
+        return true;
+      }
+      Eigen::MatrixXd jacobian(size, size);
+      for (Eigen::Index k = 0; k < size; ++k) {
+        const auto index = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
+        std::array<double, 4> shifted = m;
+        const double h = std::max(1e-12, 1e-7 * std::abs(m[index]));
+        shifted[index] += h;
+        jacobian.col(k) = (residuals(shifted) - f) / h;
+      }
+      const Eigen::VectorXd step = jacobian.partialPivLu().solve(-f);
+      if (!step.allFinite()) {
+        return false;
+      }
+      for (Eigen::Index k = 0; k < size; ++k) {
+        auto& value = m[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])];
+        value = std::max(value + step(k), 0.0);
+      }
+    }
+    return false;
+  }
+
+private:
+  const HardeningSoil& model_;
+  const HardeningSoilParameters& parameters_;
+  Elasticity elastic_;
+  double sin_psi_;
+  double delta_;
+  double alpha_;
+  double cap_modulus_;
+  Principal trial_;
+  double gamma_n_;
+  double cap_n_;
+  double tolerance_ = 0.0;
+};
+
+bool ordered(const Principal& s, double tolerance) {
+  return s[0] >= s[1] - tolerance && s[1] >= s[2] - tolerance;
+}
+
+} // namespace
+
+double HardeningSoil::update_point(Stress& stress, double* state,
+                                   const StrainIncrement& strain) const {
+  const HardeningSoilParameters& P = parameters_;
+  const double nu = P.poisson_ur;
+  // Substeps keep each trial increment small against the confinement, so that moduli frozen at the
+  // start of a substep stay accurate (hardening_soil.md 2.2).
+  const PrincipalStress start = principal_compression(stress);
+  const double e_start = unloading_modulus(start.values[2]);
+  const double shear_start = e_start / (2.0 * (1.0 + nu));
+  const double lame_start = e_start * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  const double volumetric = strain[RR] + strain[YY] + strain[TT];
+  double trial_size = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    trial_size += std::pow(lame_start * volumetric + 2.0 * shear_start * strain[c], 2);
+  }
+  for (int c = 3; c < 6; ++c) {
+    trial_size += 2.0 * std::pow(shear_start * strain[c], 2);
+  }
+  trial_size = std::sqrt(trial_size);
+  const double scale = 0.1 * (std::max(start.values[2], 0.0) + a_ + P.stiffness_floor * P.p_ref);
+  const int substeps = std::clamp(static_cast<int>(std::ceil(trial_size / scale)), 1, 100);
+  StrainIncrement part = strain;
+  for (double& c : part) {
+    c /= substeps;
+  }
+
+  double modulus = 0.0;
+  for (int step = 0; step < substeps; ++step) {
+    const PrincipalStress now = principal_compression(stress);
+    const Principal& s = now.values;
+    const double e = unloading_modulus(s[2]);
+    const Elasticity elastic{e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)),
+                             e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))};
+    modulus = elastic.lambda + 2.0 * elastic.shear;
+    // Mobilised dilatancy (Rowe, as in PLAXIS), explicit from the start of the step.
+    double sin_psi = 0.0;
+    const double denominator = s[0] + s[2] + 2.0 * a_;
+    const double sin_phi_mobilised = denominator > 0.0 ? (s[0] - s[2]) / denominator : 0.0;
+    if (sin_psi_ > 0.0 && sin_phi_mobilised >= 0.75 * sin_phi_) {
+      const double sin_phi_cv = (sin_phi_ - sin_psi_) / (1.0 - sin_phi_ * sin_psi_);
+      sin_psi =
+          std::max((sin_phi_mobilised - sin_phi_cv) / (1.0 - sin_phi_mobilised * sin_phi_cv), 0.0);
+    }
+
+    // Elastic trial on the full tensor (engine convention, tension positive).
+    Stress trial_stress = stress;
+    const double dv = part[RR] + part[YY] + part[TT];
+    for (int c = 0; c < 3; ++c) {
+      trial_stress[static_cast<std::size_t>(c)] +=
+          elastic.lambda * dv + 2.0 * elastic.shear * part[static_cast<std::size_t>(c)];
+    }
+    for (int c = 3; c < 6; ++c) {
+      trial_stress[static_cast<std::size_t>(c)] +=
+          elastic.shear * part[static_cast<std::size_t>(c)];
+    }
+    const PrincipalStress trial = principal_compression(trial_stress);
+    const Principal& t = trial.values;
+    const double gamma_n = state[GAMMA_P];
+    const double cap_n = std::max(state[P_P], P.cap_floor);
+
+    // Tension: the apex.
+    if (mean(t) <= -P.tension_limit) {
+      stress = compose_from_principal({-P.tension_limit, -P.tension_limit, -P.tension_limit},
+                                      trial.directions);
+      continue;
+    }
+    const double cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
+    const HardeningSoilReturn returner(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening, t,
+                                       gamma_n, cap_n);
+    const double tolerance = returner.tolerance();
+    ReturnState trial_state{t, gamma_n, cap_n};
+    const bool shear_open = returner.shear_residual(trial_state, S13) > tolerance;
+    const bool cap_open = returner.cap_residual(trial_state) > tolerance;
+    ReturnState result = trial_state;
+    if (shear_open) {
+      int corner = 0;
+      result = returner.shear_return(0);
+      if (!ordered(result.stress, tolerance)) {
+        corner = result.stress[1] > result.stress[0] ? 2 : 1;
+        result = returner.shear_return(corner);
+      }
+      if (returner.cap_residual(result) > tolerance) {
+        std::vector<int> active{S13, CAP};
+        if (corner == 1) {
+          active = {S13, S12, CAP};
+        } else if (corner == 2) {
+          active = {S13, S23, CAP};
+        }
+        ReturnState combined;
+        if (returner.combined_return(active, corner, combined)) {
+          result = combined;
+        } else {
+          result = returner.cap_return(corner); // fall back on the cap, then re-check shear
+          if (returner.shear_residual(result, S13) > tolerance) {
+            result = returner.shear_return(corner);
+          }
+        }
+      }
+    } else if (cap_open) {
+      int corner = 0;
+      result = returner.cap_return(0);
+      if (!ordered(result.stress, tolerance)) {
+        corner = result.stress[1] > result.stress[0] ? 2 : 1;
+        result = returner.cap_return(corner);
+      }
+      if (returner.shear_residual(result, S13) > tolerance) {
+        std::vector<int> active{S13, CAP};
+        ReturnState combined;
+        if (returner.combined_return(active, corner, combined)) {
+          result = combined;
+        } else if (returner.shear_residual(result, S13) > tolerance) {
+          result = returner.shear_return(corner);
+        }
+      }
+    }
+    Principal out = result.stress;
+    // Tension beyond the cut-off after the return: with c = 0 the shear planes meet the tension
+    // planes only at the apex.
+    if (out[2] < -P.tension_limit - tolerance) {
+      out = {-P.tension_limit, -P.tension_limit, -P.tension_limit};
+    }
+    state[GAMMA_P] = std::max(result.gamma, gamma_n);
+    state[P_P] = std::max(result.cap_pressure, cap_n);
+    stress = compose_from_principal(out, trial.directions);
+  }
+  return modulus;
+}
+
+} // namespace mpile

@@ -1,0 +1,79 @@
+#pragma once
+
+// The Hardening Soil model (Schanz, Vermeer and Bonnier 1999; PLAXIS form), as specified in the
+// project's hardening_soil.md: stress-dependent hypoelastic unloading/reloading stiffness, a shear
+// hardening surface in its yield-deviator form capped by Mohr-Coulomb failure, a volumetric cap
+// whose shape alpha and modulus H are derived from K0nc and Eoed_ref, a tension cut-off with apex,
+// and mobilised dilatancy. The return is implicit (closest point) in principal stress space on the
+// full 3x3 stress, with active sets and corner returns.
+
+#include "engine/material.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace mpile {
+
+struct HardeningSoilParameters {
+  double e50_ref = 0.0;          // Pa, triaxial secant stiffness at p_ref
+  double eoed_ref = 0.0;         // Pa, oedometer tangent stiffness at sigma_1 = p_ref
+  double eur_ref = 0.0;          // Pa, unloading/reloading stiffness at p_ref
+  double power = 0.5;            // m, stress dependency of stiffness
+  double poisson_ur = 0.2;       // unloading/reloading Poisson ratio
+  double k0_nc = 0.5;            // normally consolidated K0
+  double failure_ratio = 0.9;    // Rf = qf / qa
+  double p_ref = 100e3;          // Pa
+  double friction_angle = 30.0;  // degrees
+  double dilatancy_angle = 0.0;  // degrees (ultimate)
+  double cohesion = 0.0;         // Pa
+  double tension_limit = 0.0;    // Pa, sigma_i >= -tension_limit
+  double stiffness_floor = 0.01; // lower bound of the stress ratio in the stiffness laws
+  double cap_floor = 1e3;        // Pa, lower bound of the cap pressure p_p
+  double ocr = 1.0;              // over-consolidation ratio of the initial state
+  double pop = 0.0;              // Pa, pre-overburden pressure of the initial state
+  double density = 0.0;          // kg/m^3
+};
+
+class HardeningSoil final : public Material {
+public:
+  /// Validates the parameters and derives alpha and H (throws std::invalid_argument naming the
+  /// parameter, or the stiffness ratios when no cap can reproduce K0nc and Eoed_ref).
+  explicit HardeningSoil(const HardeningSoilParameters& parameters);
+
+  std::string_view type() const override { return "hardening_soil"; }
+  double density() const override { return parameters_.density; }
+  std::span<const std::string> state_names() const override { return names_; }
+  void initialise_state(const Stress& stress, double* state) const override;
+  void update_stress(const StressUpdateBatch& batch) const override;
+  double constrained_modulus(const Stress& stress, const double* state) const override;
+  double elastic_energy_density(const Stress& stress, const double* state) const override;
+
+  /// Advances one material point; returns the constrained modulus used.
+  double update_point(Stress& stress, double* state, const StrainIncrement& strain) const;
+
+  // Model functions, public for the element tests (compression positive, Pa).
+  double alpha() const { return alpha_; }
+  double cap_modulus() const { return cap_modulus_; }
+  double unloading_modulus(double sigma_3) const;                    // Eur(sigma_3)
+  double secant_modulus(double sigma_3) const;                       // E50(sigma_3)
+  double oedometer_modulus(double sigma_1) const;                    // Eoed(sigma_1)
+  double failure_deviator(double sigma_3) const;                     // qf
+  double yield_deviator(double gamma_p, double sigma_3) const;       // min(q_y, qf)
+  double hardening_function(double q, double sigma_3) const;         // f-bar
+  double cap_deviator(const std::array<double, 3>& principal) const; // q-tilde
+  double cap_surface(const std::array<double, 3>& principal, double p_p) const;
+
+  /// Indices of the state variables.
+  enum : int { GAMMA_P = 0, P_P = 1 };
+
+private:
+  double stress_ratio(double sigma) const;
+  void derive_cap();
+
+  HardeningSoilParameters parameters_;
+  std::vector<std::string> names_{"gamma_p", "p_p"};
+  double sin_phi_, cos_phi_, sin_psi_, a_, delta_, alpha_ = 1.0, cap_modulus_ = 0.0;
+};
+
+} // namespace mpile
