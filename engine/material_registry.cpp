@@ -1,6 +1,7 @@
 #include "engine/material_registry.hpp"
 
 #include "engine/linear_elastic.hpp"
+#include "engine/mohr_coulomb.hpp"
 
 #include <stdexcept>
 
@@ -16,6 +17,20 @@ const std::vector<MaterialType>& material_types() {
        [](const MaterialParameters& p) -> std::unique_ptr<Material> {
          return std::make_unique<LinearElastic>(p.at("young_modulus"), p.at("poisson_ratio"),
                                                 p.at("density"));
+       }},
+      {"mohr_coulomb",
+       "elastic-perfectly plastic Mohr-Coulomb with a tension cut-off, non-associated flow",
+       {{"young_modulus", "Pa", "Young's modulus E", std::nullopt},
+        {"poisson_ratio", "-", "Poisson's ratio nu, in (-1, 0.5)", std::nullopt},
+        {"density", "kg/m^3", "initial density", std::nullopt},
+        {"cohesion", "Pa", "cohesion c, >= 0", std::nullopt},
+        {"friction_angle", "degrees", "friction angle phi, in [0, 90)", std::nullopt},
+        {"dilatancy_angle", "degrees", "dilatancy angle psi, in [0, phi]", 0.0},
+        {"tension_limit", "Pa", "tension cut-off, >= 0, capped at c cot(phi)", 0.0}},
+       [](const MaterialParameters& p) -> std::unique_ptr<Material> {
+         return std::make_unique<MohrCoulomb>(
+             p.at("young_modulus"), p.at("poisson_ratio"), p.at("density"), p.at("cohesion"),
+             p.at("friction_angle"), p.at("dilatancy_angle"), p.at("tension_limit"));
        }},
   };
   return types;
