@@ -35,7 +35,7 @@ template <class F> double decreasing_root(F f, double low, double high, double t
   for (int iteration = 0; iteration < 200; ++iteration) {
     const double x = (low * f_high - high * f_low) / (f_high - f_low);
     const double fx = f(x);
-    if (std::abs(fx) <= tolerance || high - low <= 1e-15 * std::max(1.0, std::abs(high))) {
+    if (std::abs(fx) <= tolerance || high - low <= 1e-15 * std::abs(high)) {
       return x;
     }
     if (fx > 0.0) {
@@ -328,115 +328,71 @@ public:
     return {1.0, delta_ - 1.0, -delta_};
   }
 
-  /// Scalar return on one shear plane or a corner (both planes, equal stresses), psi explicit.
-  ReturnState shear_return(int corner) const {
+  /// Scalar return on one shear plane or a corner (both planes, equal stresses), psi explicit,
+  /// with a given cap multiplier lambda_c acting at the same time (0: shear alone).
+  ReturnState shear_return(int corner, double lambda_c = 0.0, int cap_corner = 0) const {
     const double s = sin_psi_;
     const double K = elastic_.bulk, G = elastic_.shear;
     const double lame = K - 2.0 * G / 3.0;
-    const Principal none{1.0, 0.0, 0.0};
+    const Principal n = cap_direction(cap_corner);
     auto make = [&](double total) {
-      std::array<double, 4> m{0.0, 0.0, 0.0, 0.0};
+      std::array<double, 4> m{0.0, 0.0, 0.0, lambda_c};
       const Principal& t = trial_;
       if (corner == 0) {
         m[S13] = total;
       } else if (corner == 1) {
-        // sigma_2 = sigma_3: split the sum so that both end equal.
+        // sigma_2 = sigma_3: split the sum so that both end equal (exact without the cap, and
+        // with the corner's symmetric cap direction).
         const double g2 = G * (1.0 + s);
         const double level = (t[1] + t[2] + total * (g2 + 2.0 * lame * s)) / 2.0;
-        m[S12] = std::max((level - t[1] - total * lame * s) / g2, 0.0);
+        m[S12] = std::clamp((level - t[1] - total * lame * s) / g2, 0.0, total);
         m[S13] = total - m[S12];
       } else {
         const double g1 = G * (1.0 - s);
         const double level = (t[0] + t[1] - total * (g1 - 2.0 * lame * s)) / 2.0;
-        m[S23] = std::max((t[1] + total * lame * s - level) / g1, 0.0);
+        m[S23] = std::clamp((t[1] + total * lame * s - level) / g1, 0.0, total);
         m[S13] = total - m[S23];
       }
-      return state_after(m, none);
+      return state_after(m, n);
     };
-    auto residual = [&](double total) {
-      const ReturnState r = make(total);
-      if (corner == 1) {
-        return r.stress[0] - 0.5 * (r.stress[1] + r.stress[2]) -
-               model_.yield_deviator(r.gamma, 0.5 * (r.stress[1] + r.stress[2]));
-      }
-      if (corner == 2) {
-        return 0.5 * (r.stress[0] + r.stress[1]) - r.stress[2] -
-               model_.yield_deviator(r.gamma, r.stress[2]);
-      }
-      return shear_residual(r, S13);
-    };
-    // The deviator falls to zero at this multiplier, where the residual is <= 0.
+    // At a corner the two planes have equal stresses, so the (1, 3) plane speaks for both; with
+    // the split clamped (one multiplier zero) it is the plane itself.
+    auto residual = [&](double total) { return shear_residual(make(total), S13); };
+    // Without the cap the deviator vanishes at this multiplier; the cap only lowers it further, so
+    // the residual is <= 0 there.
     const Principal& t = trial_;
     double high = corner == 1   ? (t[0] - 0.5 * (t[1] + t[2])) / (G * (1.5 - s / 2.0))
                   : corner == 2 ? (0.5 * (t[0] + t[1]) - t[2]) / (G * (1.5 + s / 2.0))
                                 : (t[0] - t[2]) / (2.0 * G);
-    high = std::max(high, 0.0);
-    const double total = decreasing_root(residual, 0.0, high, tolerance_);
-    return make(total);
-  }
-
-  /// Scalar return on the cap alone, with the cap direction of a corner if given.
-  ReturnState cap_return(int corner) const {
-    const Principal n = cap_direction(corner);
-    auto make = [&](double lambda_c) { return state_after({0.0, 0.0, 0.0, lambda_c}, n); };
-    auto residual = [&](double lambda_c) { return cap_residual(make(lambda_c)); };
-    double high = 1e-6;
-    while (residual(high) > 0.0 && high < 1e6) {
-      high *= 4.0;
+    high = std::max(high, 1e-300);
+    for (int k = 0; k < 60 && residual(high) > 0.0; ++k) {
+      high *= 2.0;
     }
     return make(decreasing_root(residual, 0.0, high, tolerance_));
   }
 
-  /// Newton on the multipliers of several active mechanisms at once (shear planes and cap).
-  bool combined_return(const std::vector<int>& active, int corner, ReturnState& result) const {
-    const Principal n = cap_direction(corner);
-    const auto size = static_cast<Eigen::Index>(active.size());
-    std::array<double, 4> m{0.0, 0.0, 0.0, 0.0};
-    auto residuals = [&](const std::array<double, 4>& multipliers) {
-      const ReturnState r = state_after(multipliers, n);
-      Eigen::VectorXd f(size);
-      for (Eigen::Index k = 0; k < size; ++k) {
-        const int mechanism = active[static_cast<std::size_t>(k)];
-        f(k) = mechanism == CAP ? cap_residual(r) : shear_residual(r, mechanism);
-      }
-      return f;
-    };
-    // Start from the separate single-surface solutions.
-    const ReturnState shear = shear_return(corner == 1 ? 1 : corner == 2 ? 2 : 0);
-    m[S13] = shear.gamma - gamma_n_;
-    const ReturnState cap = cap_return(corner);
-    m[CAP] = cap.cap_pressure > cap_n_ ? (cap.cap_pressure - cap_n_) /
-                                             (cap_modulus_ * 2.0 * std::max(mean(cap.stress), 1.0))
-                                       : 0.0;
-    for (int iteration = 0; iteration < 60; ++iteration) {
-      const Eigen::VectorXd f = residuals(m);
-      if (f.cwiseAbs().maxCoeff() <= tolerance_) {
-        result = state_after(m, n);
-        for (const int mechanism : active) {
-          if (m[static_cast<std::size_t>(mechanism)] < 0.0) {
-            return false;
-          }
-        }
-        return true;
-      }
-      Eigen::MatrixXd jacobian(size, size);
-      for (Eigen::Index k = 0; k < size; ++k) {
-        const auto index = static_cast<std::size_t>(active[static_cast<std::size_t>(k)]);
-        std::array<double, 4> shifted = m;
-        const double h = std::max(1e-12, 1e-7 * std::abs(m[index]));
-        shifted[index] += h;
-        jacobian.col(k) = (residuals(shifted) - f) / h;
-      }
-      const Eigen::VectorXd step = jacobian.partialPivLu().solve(-f);
-      if (!step.allFinite()) {
-        return false;
-      }
-      for (Eigen::Index k = 0; k < size; ++k) {
-        auto& value = m[static_cast<std::size_t>(active[static_cast<std::size_t>(k)])];
-        value = std::max(value + step(k), 0.0);
-      }
+  /// Shear (plane or corner) and cap together: for each cap multiplier the shear multiplier is the
+  /// scalar shear root, and the cap multiplier is the root of the cap residual along that curve.
+  ReturnState combined_return(int corner) const {
+    auto along = [&](double lambda_c) { return shear_return(corner, lambda_c, corner); };
+    auto residual = [&](double lambda_c) { return cap_residual(along(lambda_c)); };
+    double high = 1e-9;
+    for (int k = 0; k < 200 && residual(high) > 0.0; ++k) {
+      high *= 4.0;
     }
-    return false;
+    return along(decreasing_root(residual, 0.0, high, tolerance_));
+  }
+
+  /// The cap alone, with the cap direction of a corner if given.
+  ReturnState cap_return(int corner) const {
+    const Principal n = cap_direction(corner);
+    auto make = [&](double lambda_c) { return state_after({0.0, 0.0, 0.0, lambda_c}, n); };
+    auto residual = [&](double lambda_c) { return cap_residual(make(lambda_c)); };
+    double high = 1e-9;
+    for (int k = 0; k < 200 && residual(high) > 0.0; ++k) {
+      high *= 4.0;
+    }
+    return make(decreasing_root(residual, 0.0, high, tolerance_));
   }
 
 private:
@@ -530,48 +486,62 @@ double HardeningSoil::update_point(Stress& stress, double* state,
                                        gamma_n, cap_n);
     const double tolerance = returner.tolerance();
     ReturnState trial_state{t, gamma_n, cap_n};
-    const bool shear_open = returner.shear_residual(trial_state, S13) > tolerance;
-    const bool cap_open = returner.cap_residual(trial_state) > tolerance;
+    auto admissible = [&](const ReturnState& r) {
+      return ordered(r.stress, tolerance) && returner.shear_residual(r, S13) <= tolerance &&
+             returner.cap_residual(r) <= tolerance;
+    };
     ReturnState result = trial_state;
-    if (shear_open) {
-      int corner = 0;
-      result = returner.shear_return(0);
-      if (!ordered(result.stress, tolerance)) {
-        corner = result.stress[1] > result.stress[0] ? 2 : 1;
-        result = returner.shear_return(corner);
-      }
-      if (returner.cap_residual(result) > tolerance) {
-        std::vector<int> active{S13, CAP};
-        if (corner == 1) {
-          active = {S13, S12, CAP};
-        } else if (corner == 2) {
-          active = {S13, S23, CAP};
-        }
-        ReturnState combined;
-        if (returner.combined_return(active, corner, combined)) {
-          result = combined;
-        } else {
-          result = returner.cap_return(corner); // fall back on the cap, then re-check shear
-          if (returner.shear_residual(result, S13) > tolerance) {
-            result = returner.shear_return(corner);
+    if (!admissible(trial_state)) {
+      // Active sets in the order shear, cap, shear + cap; each with its corner variants, keeping
+      // the first that satisfies every surface and the principal order.
+      bool found = false;
+      auto attempt = [&](auto&& make) {
+        for (int corner = 0; corner < 3 && !found; ++corner) {
+          const ReturnState r = make(corner);
+          if (admissible(r)) {
+            result = r;
+            found = true;
           }
         }
+      };
+      if (returner.shear_residual(trial_state, S13) > tolerance) {
+        attempt([&](int corner) { return returner.shear_return(corner); });
       }
-    } else if (cap_open) {
-      int corner = 0;
-      result = returner.cap_return(0);
-      if (!ordered(result.stress, tolerance)) {
-        corner = result.stress[1] > result.stress[0] ? 2 : 1;
-        result = returner.cap_return(corner);
+      if (!found && returner.cap_residual(trial_state) > tolerance) {
+        attempt([&](int corner) { return returner.cap_return(corner); });
       }
-      if (returner.shear_residual(result, S13) > tolerance) {
-        std::vector<int> active{S13, CAP};
-        ReturnState combined;
-        if (returner.combined_return(active, corner, combined)) {
-          result = combined;
-        } else if (returner.shear_residual(result, S13) > tolerance) {
-          result = returner.shear_return(corner);
+      if (!found) {
+        attempt([&](int corner) { return returner.combined_return(corner); });
+      }
+      if (!found) {
+        // Near a triaxial corner the cap's own direction can break the principal order while the
+        // corner directions leave a shear plane open. Project in turn: the cap (first ordered
+        // variant), then the shear planes from there; with psi = 0 the shear return lowers the cap
+        // deviator at constant p, so the cap stays closed.
+        ReturnState r = trial_state;
+        for (int pass = 0; pass < 4 && !admissible(r); ++pass) {
+          const HardeningSoilReturn from_cap(*this, P, elastic, sin_psi, delta_, alpha_,
+                                             cap_hardening, r.stress, r.gamma, r.cap_pressure);
+          if (from_cap.cap_residual(r) > tolerance) {
+            for (int corner = 0; corner < 3; ++corner) {
+              r = from_cap.cap_return(corner);
+              if (ordered(r.stress, tolerance)) {
+                break;
+              }
+            }
+          }
+          const HardeningSoilReturn from_shear(*this, P, elastic, sin_psi, delta_, alpha_,
+                                               cap_hardening, r.stress, r.gamma, r.cap_pressure);
+          if (from_shear.shear_residual(r, S13) > tolerance) {
+            for (int corner = 0; corner < 3; ++corner) {
+              r = from_shear.shear_return(corner);
+              if (ordered(r.stress, tolerance)) {
+                break;
+              }
+            }
+          }
         }
+        result = r;
       }
     }
     Principal out = result.stress;
