@@ -28,10 +28,10 @@ Vector3 unit(const Vector3& v) {
 // the shear plane between sigma_1 and sigma_3 is the most critical one and sigma_3 is the most
 // tensile, so the other planes matter only on the edges and corners where they meet these two.
 constexpr std::size_t shear_13 = 0; // sigma_1 - N sigma_3 = k, the main plane
-constexpr std::size_t shear_23 =
-    1; // sigma_2 - N sigma_3 = k, meets the main plane at sigma_1 = sigma_2
-constexpr std::size_t shear_12 =
-    2; // sigma_1 - N sigma_2 = k, meets the main plane at sigma_2 = sigma_3
+// sigma_2 - N sigma_3 = k: meets the main plane on the extension edge sigma_1 = sigma_2
+constexpr std::size_t shear_23 = 1;
+// sigma_1 - N sigma_2 = k: meets the main plane on the compression edge sigma_2 = sigma_3
+constexpr std::size_t shear_12 = 2;
 constexpr std::size_t tension_3 = 3; // -sigma_3 = t
 constexpr std::size_t tension_2 = 4; // -sigma_2 = t
 constexpr std::size_t tension_1 = 5; // -sigma_1 = t
@@ -158,18 +158,13 @@ MohrCoulomb::MohrCoulomb(double young_modulus, double poisson_ratio, double dens
   const double corner_1 = k - n * t; // sigma_1 on the shear plane with sigma_3 at the cut-off
   candidates_.push_back({R::shear_plane, {{shear_13, 0, 0}}, 1, false, {}});
   candidates_.push_back({R::tension_plane, {{tension_3, 0, 0}}, 1, false, {}});
-  candidates_.push_back({R::compression_edge, {{shear_13, shear_23, 0}}, 2, false, {}});
-  candidates_.push_back({R::extension_edge, {{shear_13, shear_12, 0}}, 2, false, {}});
+  candidates_.push_back({R::compression_edge, {{shear_13, shear_12, 0}}, 2, false, {}});
+  candidates_.push_back({R::extension_edge, {{shear_13, shear_23, 0}}, 2, false, {}});
   if (!capped) {
     candidates_.push_back({R::shear_tension_edge, {{shear_13, tension_3, 0}}, 2, false, {}});
     candidates_.push_back({R::tension_edge, {{tension_3, tension_2, 0}}, 2, false, {}});
-    candidates_.push_back({R::compression_tension_corner,
-                           {{shear_13, shear_23, tension_3}},
-                           3,
-                           true,
-                           {corner_1, corner_1, -t}});
     // Four planes meet here (both shear planes through sigma_2 = sigma_3 and both cut-offs).
-    candidates_.push_back({R::extension_tension_corner,
+    candidates_.push_back({R::compression_tension_corner,
                            {{shear_13, shear_12, tension_3},
                             {shear_13, tension_3, tension_2},
                             {shear_13, shear_12, tension_2},
@@ -177,6 +172,11 @@ MohrCoulomb::MohrCoulomb(double young_modulus, double poisson_ratio, double dens
                            3,
                            true,
                            {corner_1, -t, -t}});
+    candidates_.push_back({R::extension_tension_corner,
+                           {{shear_13, shear_23, tension_3}},
+                           3,
+                           true,
+                           {corner_1, corner_1, -t}});
     candidates_.push_back({R::apex, {{tension_3, tension_2, tension_1}}, 3, true, {-t, -t, -t}});
   } else {
     // The cut-off passes through the apex of the cone: all six planes meet there.

@@ -15,17 +15,19 @@
 namespace mpile {
 
 /// The part of the yield surface a stress is returned to. Edges and corners are named after the
-/// triaxial states they hold: compression (sigma_1 = sigma_2), extension (sigma_2 = sigma_3).
+/// triaxial states they hold, compression positive: triaxial compression has the axial stress
+/// largest and sigma_2 = sigma_3, triaxial extension has sigma_1 = sigma_2. (In a tension-positive
+/// ordering, as in de Souza Neto et al., the same edges appear with the indices reversed.)
 enum class MohrCoulombRegion {
   elastic,
   shear_plane,                // sigma_1 - N_phi sigma_3 = 2 c sqrt(N_phi)
-  compression_edge,           // shear plane with sigma_1 = sigma_2
-  extension_edge,             // shear plane with sigma_2 = sigma_3
+  compression_edge,           // shear plane with sigma_2 = sigma_3 (triaxial compression)
+  extension_edge,             // shear plane with sigma_1 = sigma_2 (triaxial extension)
   tension_plane,              // sigma_3 = -tension_limit
   tension_edge,               // sigma_2 = sigma_3 = -tension_limit
   shear_tension_edge,         // shear plane meets the tension plane
-  compression_tension_corner, // sigma_1 = sigma_2 on the shear plane, sigma_3 at the cut-off
-  extension_tension_corner,   // sigma_2 = sigma_3 at the cut-off, sigma_1 on the shear plane
+  compression_tension_corner, // sigma_2 = sigma_3 at the cut-off, sigma_1 on the shear plane
+  extension_tension_corner,   // sigma_1 = sigma_2 on the shear plane, sigma_3 at the cut-off
   apex                        // hydrostatic tension sigma_1 = sigma_2 = sigma_3 = -tension_limit
 };
 

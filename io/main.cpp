@@ -1,4 +1,5 @@
 // mpile: the command line.
+#include "io/element_test.hpp"
 #include "io/run_command.hpp"
 #include "io/verify_command.hpp"
 
@@ -33,6 +34,12 @@ int main(int argc, char** argv) {
   check->add_option("case", run_options.case_path, "the case file (TOML)")->required();
   check->add_option("--threads", threads, "worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
+
+  mpile::ElementTestOptions element_options;
+  auto* element = app.add_subcommand(
+      "element-test", "drive one material point along a laboratory path and write a CSV");
+  element->add_option("file", element_options.file, "the element-test file (TOML)")->required();
+  element->add_option("--out", element_options.csv, "CSV file (default: out/<file name>.csv)");
 
   auto* verify = app.add_subcommand("verify", "run verification cases against their references");
   std::vector<std::string> ids{"all"};
@@ -72,6 +79,9 @@ int main(int argc, char** argv) {
     }
     if (check->parsed()) {
       return mpile::check_case(run_options, std::cout, std::cerr);
+    }
+    if (element->parsed()) {
+      return mpile::element_test_command(element_options, std::cout, std::cerr);
     }
     if (list) {
       for (const auto& c : mpile::verification::all_cases()) {

@@ -1,5 +1,7 @@
-// Every case file shipped under cases/ must stay valid, and a verification case file must reproduce
-// its reference when run through the whole command path (reader, builder, phases, checkpoint).
+// Every case file shipped under cases/ must stay valid, every element-test file under
+// cases/element_tests/ must run, and a verification case file must reproduce its reference when run
+// through the whole command path (reader, builder, phases, checkpoint).
+#include "io/element_test.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_command.hpp"
 
@@ -14,10 +16,15 @@ namespace {
 
 const std::filesystem::path source = MPILE_SOURCE_DIR;
 
+// Element-test files (cases/element_tests/) are not case files; they are run below instead.
+bool is_element_test(const std::filesystem::path& path) {
+  return path.parent_path().filename() == "element_tests";
+}
+
 TEST(CaseFiles, EveryShippedCaseFileIsValid) {
   int files = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(source / "cases")) {
-    if (entry.path().extension() != ".toml") {
+    if (entry.path().extension() != ".toml" || is_element_test(entry.path())) {
       continue;
     }
     ++files;
@@ -27,6 +34,26 @@ TEST(CaseFiles, EveryShippedCaseFileIsValid) {
     EXPECT_EQ(check_case(options, out, err), exit_success) << entry.path() << ": " << err.str();
   }
   EXPECT_GE(files, 8);
+}
+
+TEST(CaseFiles, EveryElementTestFileRuns) {
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_element_files";
+  std::filesystem::create_directories(directory);
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(source / "cases/element_tests")) {
+    if (entry.path().extension() != ".toml") {
+      continue;
+    }
+    ++files;
+    ElementTestOptions options;
+    options.file = entry.path().string();
+    options.csv = (directory / (entry.path().stem().string() + ".csv")).string();
+    std::ostringstream out, err;
+    EXPECT_EQ(element_test_command(options, out, err), exit_success)
+        << entry.path() << ": " << err.str();
+    EXPECT_TRUE(std::filesystem::exists(options.csv)) << options.csv;
+  }
+  EXPECT_GE(files, 1);
 }
 
 TEST(CaseFiles, LameCylinderCaseFileMatchesTheClosedForm) {

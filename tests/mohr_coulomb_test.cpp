@@ -4,6 +4,7 @@
 #include "engine/material_registry.hpp"
 #include "engine/mohr_coulomb.hpp"
 #include "engine/principal_stress.hpp"
+#include "io/element_test.hpp"
 
 #include <gtest/gtest.h>
 
@@ -149,11 +150,12 @@ TEST(MohrCoulomb, EdgeReturnsMatchTheHandComputation) {
   const MohrCoulomb associated(young, poisson, 1800.0, 0.0, 30.0, 30.0, 0.0);
   {
     // Trial (300, 290, 50) kPa: the main-plane return would give sigma_2 > sigma_1, so the stress
-    // goes to the compression edge. Planes a1 = (1, 0, -3), a2 = (0, 1, -3), correctors
-    // r1 = (0, -2, -8), r2 = (-2, 0, -8) MPa; [[24, 22], [22, 24]] x = (0.150, 0.140) MPa gives
-    // x1 = 0.52 / 92, x2 = 0.06 / 92.
+    // goes to the triaxial extension edge sigma_1 = sigma_2.
+    //   planes      a1 = (1, 0, -3), a2 = (0, 1, -3)
+    //   correctors  r1 = (0, -2, -8) MPa, r2 = (-2, 0, -8) MPa
+    //   [[24, 22], [22, 24]] x = (0.150, 0.140) MPa  gives  x1 = 0.52 / 92, x2 = 0.06 / 92.
     const MohrCoulombReturn r = associated.return_principal({300e3, 290e3, 50e3});
-    EXPECT_EQ(r.region, R::compression_edge);
+    EXPECT_EQ(r.region, R::extension_edge);
     const double x1 = 0.52 / 92.0, x2 = 0.06 / 92.0;
     const double s1 = 300e3 + 2e6 * x2;
     expect_principal(r.stress, {s1, 290e3 + 2e6 * x1, 50e3 + 8e6 * (x1 + x2)}, 1e-9);
@@ -161,11 +163,14 @@ TEST(MohrCoulomb, EdgeReturnsMatchTheHandComputation) {
     EXPECT_NEAR(r.stress[0], 3.0 * r.stress[2], 1e-9);
   }
   {
-    // Trial (300, 60, 50) kPa: the main-plane return would give sigma_3 > sigma_2; extension
-    // edge with a3 = (1, -3, 0), r3 = (0, -8, -2) MPa; [[24, 6], [6, 24]] x = (0.150, 0.120) MPa
-    // gives x1 = 2.88 / 540, x3 = 1.98 / 540 and sigma = (300, 100, 100) kPa.
+    // Trial (300, 60, 50) kPa: the main-plane return would give sigma_3 > sigma_2, so the stress
+    // goes to the triaxial compression edge sigma_2 = sigma_3.
+    //   planes      a1 = (1, 0, -3), a3 = (1, -3, 0)
+    //   correctors  r1 = (0, -2, -8) MPa, r3 = (0, -8, -2) MPa
+    //   [[24, 6], [6, 24]] x = (0.150, 0.120) MPa  gives  x1 = 2.88 / 540, x3 = 1.98 / 540
+    //   and sigma = (300, 100, 100) kPa.
     const MohrCoulombReturn r = associated.return_principal({300e3, 60e3, 50e3});
-    EXPECT_EQ(r.region, R::extension_edge);
+    EXPECT_EQ(r.region, R::compression_edge);
     expect_principal(r.stress, {300e3, 100e3, 100e3}, 1e-9);
     const double x1 = 2.88 / 540.0, x3 = 1.98 / 540.0;
     // plastic strain x1 (1, 0, -3) + x3 (1, -3, 0)
@@ -231,14 +236,14 @@ TEST(MohrCoulomb, EveryRegionReturnsAConstructedTrialToItsOrigin) {
     const double corner = k - 3.0 * t; // sigma_1 on the shear plane at sigma_3 = -t
     const std::vector<Case> cases = {
         {R::shear_plane, {3.0 * 40e3 + k, 60e3, 40e3}, {f13}},
-        {R::compression_edge, {3.0 * 40e3 + k, 3.0 * 40e3 + k, 40e3}, {f13, f23}},
-        {R::extension_edge, {3.0 * 40e3 + k, 40e3, 40e3}, {f13, f12}},
+        {R::extension_edge, {3.0 * 40e3 + k, 3.0 * 40e3 + k, 40e3}, {f13, f23}},
+        {R::compression_edge, {3.0 * 40e3 + k, 40e3, 40e3}, {f13, f12}},
         {R::tension_plane, {10e3, 2e3, -t}, {t3}},
         {R::tension_edge, {10e3, -t, -t}, {t3, t2}},
         {R::shear_tension_edge, {corner, 10e3, -t}, {f13, t3}},
-        {R::compression_tension_corner, {corner, corner, -t}, {f13, f23, t3}},
-        {R::extension_tension_corner, {corner, -t, -t}, {f13, f12, t3}},
-        {R::extension_tension_corner, {corner, -t, -t}, {f13, t3, t2}},
+        {R::extension_tension_corner, {corner, corner, -t}, {f13, f23, t3}},
+        {R::compression_tension_corner, {corner, -t, -t}, {f13, f12, t3}},
+        {R::compression_tension_corner, {corner, -t, -t}, {f13, t3, t2}},
         {R::apex, {-t, -t, -t}, {t3, t2, t1}},
     };
     std::mt19937 random(11);
@@ -528,6 +533,56 @@ TEST(MohrCoulomb, RandomIncrementsNeverLeaveTheSurface) {
   EXPECT_LT(worst_tension, 1e-8);
   std::cout << "random increments: worst relative shear yield function " << worst_shear
             << ", worst relative cut-off violation " << worst_tension << '\n';
+}
+
+// Drained triaxial compression (sigma_3 held, axial strain to 3 %, failure before 1.5 %) through
+// the element-test driver: failure at sigma_1 = sigma_3 N_phi + 2 c sqrt(N_phi), and after it
+// steady dilation at d eps_v / d eps_1 = 1 - N_psi = -2 sin psi / (1 - sin psi) (the flow of the
+// compression edge, elastic strains constant under constant stress).
+TEST(MohrCoulomb, DrainedTriaxialFailsAtTheClosedForm) {
+  double worst_strength = 0.0, worst_dilation = 0.0;
+  int tests = 0;
+  for (const double phi : {0.0, 20.0, 30.0, 40.0}) {
+    for (const double sigma_3 : {10e3, 100e3, 400e3}) {
+      for (const double c : {0.0, 15e3}) {
+        if (phi == 0.0 && c == 0.0) {
+          continue;
+        }
+        const double psi = phi / 3.0;
+        ElementTestSpec spec;
+        spec.material_type = "mohr_coulomb";
+        spec.parameters = {{"young_modulus", 100e6}, {"poisson_ratio", 0.3},
+                           {"density", 1800.0},      {"cohesion", c},
+                           {"friction_angle", phi},  {"dilatancy_angle", psi}};
+        spec.vertical_stress = spec.lateral_stress = sigma_3;
+        spec.path = ElementPath::triaxial;
+        spec.axial_strain = 0.03;
+        spec.increments = 300;
+        const ElementTestTable t = run_element_test(spec);
+        const std::size_t last = t.rows.size() - 1;
+        const double n = flow_number_of(phi);
+        const double sigma_1 = sigma_3 * n + 2.0 * c * std::sqrt(n);
+        const double measured = t.rows[last][t.column("sigma_1")];
+        worst_strength = std::max(worst_strength, std::abs(measured / sigma_1 - 1.0));
+        const double rate =
+            (t.rows[last][t.column("eps_v")] - t.rows[last - 1][t.column("eps_v")]) /
+            (t.rows[last][t.column("eps_1")] - t.rows[last - 1][t.column("eps_1")]);
+        const double expected_rate = -2.0 * sin_degrees(psi) / (1.0 - sin_degrees(psi));
+        worst_dilation = std::max(worst_dilation, std::abs(rate - expected_rate));
+        EXPECT_NEAR(t.rows[last][t.column("sigma_3")], sigma_3, 1e-10 * sigma_3);
+        ++tests;
+      }
+    }
+  }
+  // The returned stress lies on the shear plane to rounding and sigma_3 is held to 1e-12 of the
+  // stress by the driver, so sigma_1 = N_phi sigma_3 + k holds to about 1e-11 (4e-12 measured).
+  // The dilation rate is a quotient of strain increments of 1e-4 whose lateral parts come from
+  // Newton iterations stopped at 1e-12 of the stress (up to 1e-9 when rounding stops them first),
+  // that is 1e-12 sigma / E of strain: 1e-8 bounds it (9e-10 measured).
+  EXPECT_LT(worst_strength, 1e-10);
+  EXPECT_LT(worst_dilation, 1e-8);
+  std::cout << tests << " drained triaxial tests: worst relative error of sigma_1 at failure "
+            << worst_strength << ", worst error of d eps_v / d eps_1 " << worst_dilation << '\n';
 }
 
 } // namespace
