@@ -229,12 +229,14 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           // Equilibrium: out-of-balance force and kinetic energy both small (physics.md 9).
           if (phase.equilibrium_tolerance && solver->step_count() % 20 == 0) {
             const double work = std::abs(solver->external_work());
-            if (work > 0.0 && kinetic < *phase.equilibrium_tolerance * work) {
+            // A state already at rest (no work done, no motion) counts too.
+            if (kinetic <= *phase.equilibrium_tolerance * work) {
               const double force_ratio = solver->unbalanced_force_ratio();
               if (force_ratio < *phase.equilibrium_tolerance) {
                 std::ostringstream why;
                 why << "at equilibrium (out-of-balance force ratio " << std::setprecision(3)
-                    << force_ratio << ", kinetic energy / external work " << kinetic / work << ")";
+                    << force_ratio << ", kinetic energy / external work "
+                    << (work > 0.0 ? kinetic / work : 0.0) << ")";
                 ended = why.str();
                 break;
               }
