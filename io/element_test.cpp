@@ -66,8 +66,8 @@ void ElementPoint::apply(const MixedIncrement& increment) {
       return r;
     };
     // Stresses are met to 1e-12 of their size: far below anything a closed form is compared
-    // with, yet a hundred times the rounding of a material update. When rounding stops the
-    // iterations first, 1e-9 of the size is still accepted.
+    // with, yet well above the rounding of a material update (a few 1e-16). When rounding stops
+    // the iterations first, 1e-9 of the size is still accepted.
     double size = 1.0;
     for (std::size_t c = 0; c < 6; ++c) {
       size = std::max({size, std::abs(stress_[c]), std::abs(increment.value[c])});
@@ -250,7 +250,6 @@ void read_initial_stress(TomlTable& top, ElementTestSpec& spec) {
     checked_key = "vertical";
   }
   table.finish();
-  spec.initial_stress_where = where(top, "initial_stress");
 
   // The material must accept the initial stress as it is: a zero increment may not move it.
   const auto material = create_material(spec.material_type, spec.parameters);

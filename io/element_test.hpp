@@ -71,9 +71,8 @@ struct ElementTestSpec {
   std::string title;
   std::string material_type;
   MaterialParameters parameters;
-  double vertical_stress = 0.0;     // sigma_1 initial (Pa)
-  double lateral_stress = 0.0;      // sigma_3 initial (Pa)
-  std::string initial_stress_where; // "file:line: initial_stress" for errors found when running
+  double vertical_stress = 0.0; // sigma_1 initial (Pa)
+  double lateral_stress = 0.0;  // sigma_3 initial (Pa)
 
   ElementPath path = ElementPath::triaxial;
   std::string path_where;             // "file:line: path" for errors found when running

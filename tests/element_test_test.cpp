@@ -1,6 +1,7 @@
 // The element-test driver: linear elasticity along the laboratory paths must give the elastic
 // moduli exactly, Mohr-Coulomb must reach its closed-form failure states, and bad input must be
 // rejected with file, line and key (exit status 2), as case files are.
+#include "engine/material_registry.hpp"
 #include "io/case_error.hpp"
 #include "io/element_test.hpp"
 #include "io/run_command.hpp"
@@ -64,6 +65,22 @@ TEST(ElementTest, LinearElasticOedometerGivesTheConstrainedModulus) {
   EXPECT_NEAR(at(t, 50, "sigma_1"), 200e3, 1e-10 * 200e3);
   EXPECT_NEAR(at(t, 100, "sigma_1"), 100e3, 1e-10 * 200e3);
   std::cout << "oedometer modulus: worst relative error " << worst << '\n';
+}
+
+TEST(ElementTest, StressControlOfALinearMaterialNeedsAtMostTwoIterations) {
+  const auto material = create_material(
+      "linear_elastic", {{"young_modulus", 20e6}, {"poisson_ratio", 0.3}, {"density", 1800.0}});
+  ElementPoint point(*material, Stress{-25e3, -50e3, -25e3, 0.0, 0.0, 0.0});
+  int most = 0;
+  for (int k = 1; k <= 50; ++k) {
+    MixedIncrement increment; // oedometer: vertical stress target, no lateral strain
+    increment.stress_controlled[YY] = true;
+    increment.value[YY] = -50e3 - 3e3 * k;
+    point.apply(increment);
+    most = std::max(most, point.iterations());
+  }
+  EXPECT_LE(most, 2);
+  EXPECT_NEAR(point.stress()[YY], -200e3, 1e-12 * 200e3);
 }
 
 TEST(ElementTest, LinearElasticTriaxialGivesYoungsModulus) {
