@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -20,9 +21,13 @@ namespace mpile {
 // ---------------------------------------------------------------------------------------------
 // One material point under mixed control
 
-ElementPoint::ElementPoint(const Material& material, const Stress& initial_stress)
+ElementPoint::ElementPoint(const Material& material, const Stress& initial_stress,
+                           const std::vector<std::pair<std::size_t, double>>& state_overrides)
     : material_(&material), stress_(initial_stress), state_(material.state_size(), 0.0) {
   material.initialise_state(stress_, state_.data());
+  for (const auto& [index, value] : state_overrides) {
+    state_.at(index) = value;
+  }
 }
 
 Stress ElementPoint::trial(const StrainIncrement& strain, std::vector<double>& state) const {
@@ -231,6 +236,23 @@ void read_material(TomlTable& top, ElementTestSpec& spec) {
   }
 }
 
+/// [initial_state]: state variables of the material by name, over its own initial state (for
+/// example a Hardening Soil cap pushed far away, to test shear hardening alone).
+void read_initial_state(TomlTable& top, ElementTestSpec& spec) {
+  std::optional<TomlTable> table = top.optional_table("initial_state");
+  if (!table) {
+    return;
+  }
+  const auto material = create_material(spec.material_type, spec.parameters);
+  const auto names = material->state_names();
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    if (table->has(names[k])) {
+      spec.initial_state.emplace_back(k, table->number(names[k]));
+    }
+  }
+  table->finish();
+}
+
 void read_initial_stress(TomlTable& top, ElementTestSpec& spec) {
   TomlTable table = top.table("initial_stress");
   std::string checked_key;
@@ -255,7 +277,7 @@ void read_initial_stress(TomlTable& top, ElementTestSpec& spec) {
   const auto material = create_material(spec.material_type, spec.parameters);
   const Stress initial{
       -spec.lateral_stress, -spec.vertical_stress, -spec.lateral_stress, 0.0, 0.0, 0.0};
-  ElementPoint point(*material, initial);
+  ElementPoint point(*material, initial, spec.initial_state);
   std::vector<double> state;
   const Stress after = point.trial(StrainIncrement{}, state);
   const double size =
@@ -364,6 +386,7 @@ ElementTestSpec read_element_test_text(const std::string& text, const std::strin
   spec.file = file;
   spec.title = top.string_or("title", std::filesystem::path(file).stem().string());
   read_material(top, spec);
+  read_initial_state(top, spec);
   read_initial_stress(top, spec);
   read_path(top, spec);
   top.finish();
@@ -396,8 +419,10 @@ namespace {
 class PathRunner {
 public:
   PathRunner(const ElementTestSpec& spec, const Material& material)
-      : spec_(spec), point_(material, Stress{-spec.lateral_stress, -spec.vertical_stress,
-                                             -spec.lateral_stress, 0.0, 0.0, 0.0}) {
+      : spec_(spec), point_(material,
+                            Stress{-spec.lateral_stress, -spec.vertical_stress,
+                                   -spec.lateral_stress, 0.0, 0.0, 0.0},
+                            spec.initial_state) {
     table_.columns = {"eps_1", "eps_v", "sigma_1", "sigma_3", "p", "q"};
     for (const std::string& name : material.state_names()) {
       table_.columns.push_back(name);

@@ -28,7 +28,10 @@ struct MixedIncrement {
 /// and state. The material is never changed; every trial runs on copies of stress and state.
 class ElementPoint {
 public:
-  ElementPoint(const Material& material, const Stress& initial_stress);
+  /// The material's own initial state for this stress (its initialise_state), then any given
+  /// state variables (index, value) on top.
+  ElementPoint(const Material& material, const Stress& initial_stress,
+               const std::vector<std::pair<std::size_t, double>>& state_overrides = {});
 
   /// Applies one increment. The strain of the stress-controlled components is found by Newton
   /// iterations with a forward-difference Jacobian of the material's own update; throws
@@ -73,6 +76,9 @@ struct ElementTestSpec {
   MaterialParameters parameters;
   double vertical_stress = 0.0; // sigma_1 initial (Pa)
   double lateral_stress = 0.0;  // sigma_3 initial (Pa)
+  /// State variables set by [initial_state] (index into the material's state, value), applied
+  /// over the material's own initial state.
+  std::vector<std::pair<std::size_t, double>> initial_state;
 
   ElementPath path = ElementPath::triaxial;
   std::string path_where;             // "file:line: path" for errors found when running
