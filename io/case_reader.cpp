@@ -204,42 +204,7 @@ FaceCondition read_face(TomlTable& table, const std::string& key) {
 
 void read_materials(TomlTable& top, CaseSpec& spec) {
   for (auto& [name, table] : top.named_tables("materials")) {
-    MaterialSpec material;
-    material.name = name;
-    material.type = table.string("type");
-    const MaterialType* type = nullptr;
-    std::string known;
-    for (const MaterialType& t : material_types()) {
-      known += (known.empty() ? "" : ", ") + t.name;
-      if (t.name == material.type) {
-        type = &t;
-      }
-    }
-    if (type == nullptr) {
-      table.fail("type", "unknown material type '" + material.type + "' (known: " + known + ")");
-    }
-    for (const MaterialParameterSpec& parameter : type->parameters) {
-      if (table.has(parameter.name)) {
-        material.parameters[parameter.name] = table.number(parameter.name);
-      } else if (!parameter.default_value) {
-        table.fail(parameter.name,
-                   "missing (required): " + parameter.meaning + ", in " + parameter.unit);
-      }
-    }
-    table.finish();
-    try {
-      create_material(material.type, material.parameters);
-    } catch (const std::invalid_argument& e) {
-      // Point at the parameter the model complains about.
-      const std::string message = e.what();
-      for (const MaterialParameterSpec& parameter : type->parameters) {
-        if (message.find(parameter.name) != std::string::npos) {
-          table.fail(parameter.name, message);
-        }
-      }
-      table.fail("type", message);
-    }
-    spec.materials.push_back(std::move(material));
+    spec.materials.push_back(read_material_table(table, name));
   }
   if (spec.materials.empty()) {
     top.fail("materials", "missing (required): at least one [materials.<name>] table");
@@ -502,6 +467,45 @@ void read_output(TomlTable& top, CaseSpec& spec) {
 }
 
 } // namespace
+
+MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
+  MaterialSpec material;
+  material.name = name;
+  material.type = table.string("type");
+  const MaterialType* type = nullptr;
+  std::string known;
+  for (const MaterialType& t : material_types()) {
+    known += (known.empty() ? "" : ", ") + t.name;
+    if (t.name == material.type) {
+      type = &t;
+    }
+  }
+  if (type == nullptr) {
+    table.fail("type", "unknown material type '" + material.type + "' (known: " + known + ")");
+  }
+  for (const MaterialParameterSpec& parameter : type->parameters) {
+    if (table.has(parameter.name)) {
+      material.parameters[parameter.name] = table.number(parameter.name);
+    } else if (!parameter.default_value) {
+      table.fail(parameter.name,
+                 "missing (required): " + parameter.meaning + ", in " + parameter.unit);
+    }
+  }
+  table.finish();
+  try {
+    create_material(material.type, material.parameters);
+  } catch (const std::invalid_argument& e) {
+    // Point at the parameter the model complains about.
+    const std::string message = e.what();
+    for (const MaterialParameterSpec& parameter : type->parameters) {
+      if (message.find(parameter.name) != std::string::npos) {
+        table.fail(parameter.name, message);
+      }
+    }
+    table.fail("type", message);
+  }
+  return material;
+}
 
 double CaseSpec::end_time() const {
   double total = 0.0;

@@ -113,6 +113,12 @@ struct CaseSpec {
   double end_time() const; // sum of the phase durations (the longest the run can take)
 };
 
+class TomlTable;
+
+/// Reads one material table (type and the type's parameters, checked against the registry and by
+/// building the model once); errors name the file, line and parameter.
+MaterialSpec read_material_table(TomlTable& table, const std::string& name);
+
 /// Reads and validates a case file; throws CaseError naming file, line, key and reason.
 CaseSpec read_case_file(const std::string& path);
 CaseSpec read_case_text(const std::string& text, const std::string& file);

@@ -1,6 +1,7 @@
 #include "io/element_test.hpp"
 
 #include "io/case_error.hpp"
+#include "io/case_spec.hpp"
 #include "io/run_command.hpp"
 #include "io/toml_reader.hpp"
 
@@ -201,39 +202,9 @@ long count(TomlTable& table, const std::string& key, long fallback, long minimum
 
 void read_material(TomlTable& top, ElementTestSpec& spec) {
   TomlTable table = top.table("material");
-  spec.material_type = table.string("type");
-  const MaterialType* type = nullptr;
-  std::string known;
-  for (const MaterialType& t : material_types()) {
-    known += (known.empty() ? "" : ", ") + t.name;
-    if (t.name == spec.material_type) {
-      type = &t;
-    }
-  }
-  if (type == nullptr) {
-    table.fail("type", "unknown material type '" + spec.material_type + "' (known: " + known + ")");
-  }
-  for (const MaterialParameterSpec& parameter : type->parameters) {
-    if (table.has(parameter.name)) {
-      spec.parameters[parameter.name] = table.number(parameter.name);
-    } else if (!parameter.default_value) {
-      table.fail(parameter.name,
-                 "missing (required): " + parameter.meaning + ", in " + parameter.unit);
-    }
-  }
-  table.finish();
-  try {
-    create_material(spec.material_type, spec.parameters);
-  } catch (const std::invalid_argument& e) {
-    // Point at the parameter the model complains about.
-    const std::string message = e.what();
-    for (const MaterialParameterSpec& parameter : type->parameters) {
-      if (message.find(parameter.name) != std::string::npos) {
-        table.fail(parameter.name, message);
-      }
-    }
-    table.fail("type", message);
-  }
+  const MaterialSpec material = read_material_table(table, "material");
+  spec.material_type = material.type;
+  spec.parameters = material.parameters;
 }
 
 /// [initial_state]: state variables of the material by name, over its own initial state (for
