@@ -370,3 +370,33 @@ TEST(HardeningSoil, MobilisedDilatancyExpandsTheSampleNearFailure) {
 
 } // namespace
 } // namespace mpile
+
+namespace mpile {
+namespace {
+
+TEST(HardeningSoil, OverconsolidatedInitialStateSitsOnTheSurfacesOfItsPreconsolidation) {
+  // sigma_v = 100 kPa with OCR = 2 (or POP = 100 kPa) remembers sigma_p = 200 kPa on the NC line:
+  // the cap and shear surfaces of the NC oedometer state at sigma_1 = 200 kPa, which the oedometer
+  // test above reaches with p_p = 165.57 kPa and gamma_p = 1.9865e-3.
+  for (const auto& [ocr, pop] : {std::pair{2.0, 0.0}, std::pair{1.0, 100e3}}) {
+    HardeningSoilParameters parameters = seed_parameters();
+    parameters.ocr = ocr;
+    parameters.pop = pop;
+    const HardeningSoil model(parameters);
+    double state[2];
+    model.initialise_state(Stress{-50 * kPa, -100 * kPa, -50 * kPa, 0.0, 0.0, 0.0}, state);
+    EXPECT_NEAR(state[HardeningSoil::P_P] / kPa, 165.57, 0.005 * 165.57) << "OCR " << ocr;
+    EXPECT_NEAR(state[HardeningSoil::GAMMA_P], 1.9865e-3, 0.005 * 1.9865e-3) << "OCR " << ocr;
+    // Reloading from the overconsolidated state is elastic: neither surface moves.
+    const double cap_before = state[HardeningSoil::P_P];
+    const double gamma_before = state[HardeningSoil::GAMMA_P];
+    Stress stress{-50 * kPa, -100 * kPa, -50 * kPa, 0.0, 0.0, 0.0};
+    model.update_point(stress, state, {0.0, -1e-5, 0.0, 0.0, 0.0, 0.0});
+    EXPECT_EQ(state[HardeningSoil::P_P], cap_before);
+    EXPECT_EQ(state[HardeningSoil::GAMMA_P], gamma_before);
+    EXPECT_LT(stress[YY], -100 * kPa); // it did load
+  }
+}
+
+} // namespace
+} // namespace mpile
