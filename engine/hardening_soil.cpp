@@ -140,10 +140,13 @@ double HardeningSoil::yield_deviator(double gamma_p, double sigma_3) const {
     return 0.0;
   }
   // q_y inverts f-bar(q) = gamma without the 1/(qa - q) singularity (hardening_soil.md 1.3).
+  // E50 and Eur share the stress factor, so the power law is evaluated once (it dominates the
+  // cost of the return, which calls this function at every root iteration).
   const double qa = qf / parameters_.failure_ratio;
-  const double initial = 2.0 * secant_modulus(sigma_3) / (2.0 - parameters_.failure_ratio);
+  const double factor = std::pow(stress_ratio(sigma_3), parameters_.power);
+  const double initial = 2.0 * parameters_.e50_ref * factor / (2.0 - parameters_.failure_ratio);
   const double A = 2.0 / initial;
-  const double B = 2.0 / unloading_modulus(sigma_3);
+  const double B = 2.0 / (parameters_.eur_ref * factor);
   const double b = (A - B) * qa + gamma_p;
   const double q_y = 2.0 * gamma_p * qa / (b + std::sqrt(b * b + 4.0 * B * gamma_p * qa));
   return std::min(q_y, qf);
