@@ -238,6 +238,13 @@ template <GeometryMode mode> void ExplicitSolver::step_in_mode(double dt) {
   last_dt_ = dt;
   ++steps_;
   external_work_ += result.gravity_work;
+  if (result.particle_nonfinite >= 0) {
+    std::ostringstream s;
+    s << "step " << steps_ << ", t = " << time_ << " s: "
+      << position_of(scene_.particles, static_cast<std::size_t>(result.particle_nonfinite))
+      << " has a non-finite stress or velocity: the run went unstable";
+    throw SimulationError(s.str());
+  }
   if (result.particle_outside >= 0) {
     std::ostringstream s;
     s << "step " << steps_ << ", t = " << time_

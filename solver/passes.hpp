@@ -45,10 +45,12 @@ template <GeometryMode mode>
 void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step);
 
 struct StressPassResult {
-  double min_crossing_time = 0.0;     // min over particles of h_cell / (c_p + |v_p|)
-  bool block_changed = false;         // a particle moved into another scatter block
-  std::int64_t particle_outside = -1; // lowest index of a particle that left the grid, or -1
-  double gravity_work = 0.0;          // sum of m g . du over the particles
+  double min_crossing_time = 0.0;       // min over particles of h_cell / (c_p + |v_p|)
+  bool block_changed = false;           // a particle moved into another scatter block
+  std::int64_t particle_outside = -1;   // lowest index of a particle that left the grid, or -1
+  double gravity_work = 0.0;            // sum of m g . du over the particles
+  std::int64_t particle_nonfinite = -1; // lowest index of a particle with a non-finite stress or
+                                        // velocity, or -1
 };
 
 template <GeometryMode mode>

@@ -57,6 +57,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
     bool changed = false;
     std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
     double gravity_work = 0.0;
+    std::int64_t first_nonfinite = std::numeric_limits<std::int64_t>::max();
   };
   std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
 
@@ -156,6 +157,15 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       const auto i = static_cast<std::size_t>(particles[k]);
       const StrainIncrement& de = scratch.strain[k];
       p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
+      // A run going unstable shows here first: catch it at the particle, with its position.
+      const Stress& s = p.stress[i];
+      double finite_check = s[RR] + s[YY] + s[TT] + s[RY] + s[YT] + s[RT] + p.v_r[i] + p.v_y[i];
+      if constexpr (has_theta(mode)) {
+        finite_check += p.v_theta[i];
+      }
+      if (!std::isfinite(finite_check)) {
+        out.first_nonfinite = std::min(out.first_nonfinite, static_cast<std::int64_t>(i));
+      }
       out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
       p.r[i] += p.du_r[i];
       p.y[i] += p.du_y[i];
@@ -182,15 +192,19 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
   StressPassResult result;
   result.min_crossing_time = std::numeric_limits<double>::infinity();
   std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
+  std::int64_t first_nonfinite = std::numeric_limits<std::int64_t>::max();
   for (const std::int32_t block : bins.non_empty_blocks()) {
     const BlockResult& out = block_results[static_cast<std::size_t>(block)];
     result.min_crossing_time = std::min(result.min_crossing_time, out.min_time);
     result.block_changed = result.block_changed || out.changed;
     first_outside = std::min(first_outside, out.first_outside);
     result.gravity_work += out.gravity_work;
+    first_nonfinite = std::min(first_nonfinite, out.first_nonfinite);
   }
   result.particle_outside =
       first_outside == std::numeric_limits<std::int64_t>::max() ? -1 : first_outside;
+  result.particle_nonfinite =
+      first_nonfinite == std::numeric_limits<std::int64_t>::max() ? -1 : first_nonfinite;
   return result;
 }
 
