@@ -2,8 +2,6 @@
 
 #include "engine/principal_stress.hpp"
 
-#include <Eigen/Dense>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -230,17 +228,10 @@ double HardeningSoil::constrained_modulus(const Stress& stress, const double*) c
 double HardeningSoil::elastic_energy_density(const Stress& stress, const double*) const {
   // Recoverable energy at the current unloading stiffness (the hypoelastic law has no exact
   // potential; this is the energy an unloading at fixed moduli would return).
-  const PrincipalStress principal = principal_compression(stress);
-  const double e = unloading_modulus(principal.values[2]);
+  const double e = unloading_modulus(principal_compression(stress).values[2]);
   const double nu = parameters_.poisson_ur;
-  const double bulk = e / (3.0 * (1.0 - 2.0 * nu));
-  const double shear = e / (2.0 * (1.0 + nu));
-  const double p = mean(principal.values);
-  double deviatoric = 0.0;
-  for (const double v : principal.values) {
-    deviatoric += (v - p) * (v - p);
-  }
-  return 0.5 * p * p / bulk + deviatoric / (4.0 * shear);
+  return isotropic_elastic_energy_density(stress, e / (3.0 * (1.0 - 2.0 * nu)),
+                                          e / (2.0 * (1.0 + nu)));
 }
 
 void HardeningSoil::update_stress(const StressUpdateBatch& batch) const {
@@ -261,9 +252,8 @@ public:
                       const Elasticity& elastic, double sin_psi_mobilised, double delta,
                       double alpha, double cap_modulus_now, const Principal& trial, double gamma,
                       double cap_pressure)
-      : model_(model), parameters_(parameters), elastic_(elastic), sin_psi_(sin_psi_mobilised),
-        delta_(delta), alpha_(alpha), cap_modulus_(cap_modulus_now), trial_(trial), gamma_n_(gamma),
-        cap_n_(cap_pressure) {
+      : model_(model), elastic_(elastic), sin_psi_(sin_psi_mobilised), delta_(delta), alpha_(alpha),
+        cap_modulus_(cap_modulus_now), trial_(trial), gamma_n_(gamma), cap_n_(cap_pressure) {
     double largest = parameters.p_ref;
     for (const double t : trial) {
       largest = std::max(largest, std::abs(t));
@@ -273,16 +263,11 @@ public:
 
   double tolerance() const { return tolerance_; }
 
-  double shear_residual(const ReturnState& r, int mechanism) const {
+  /// Residual of the governing shear plane (1, 3); at a corner its two planes have equal stresses,
+  /// so this plane speaks for both.
+  double shear_residual(const ReturnState& r) const {
     const Principal& s = r.stress;
-    switch (mechanism) {
-    case S13:
-      return s[0] - s[2] - model_.yield_deviator(r.gamma, s[2]);
-    case S12:
-      return s[0] - s[1] - model_.yield_deviator(r.gamma, s[1]);
-    default:
-      return s[1] - s[2] - model_.yield_deviator(r.gamma, s[2]);
-    }
+    return s[0] - s[2] - model_.yield_deviator(r.gamma, s[2]);
   }
 
   double cap_residual(const ReturnState& r) const {
@@ -360,7 +345,7 @@ public:
     };
     // At a corner the two planes have equal stresses, so the (1, 3) plane speaks for both; with
     // the split clamped (one multiplier zero) it is the plane itself.
-    auto residual = [&](double total) { return shear_residual(make(total), S13); };
+    auto residual = [&](double total) { return shear_residual(make(total)); };
     // Without the cap the deviator vanishes at this multiplier; the cap only lowers it further, so
     // the residual is <= 0 there.
     const Principal& t = trial_;
@@ -400,7 +385,6 @@ public:
 
 private:
   const HardeningSoil& model_;
-  const HardeningSoilParameters& parameters_;
   Elasticity elastic_;
   double sin_psi_;
   double delta_;
@@ -464,15 +448,7 @@ double HardeningSoil::update_point(Stress& stress, double* state,
 
     // Elastic trial on the full tensor (engine convention, tension positive).
     Stress trial_stress = stress;
-    const double dv = part[RR] + part[YY] + part[TT];
-    for (int c = 0; c < 3; ++c) {
-      trial_stress[static_cast<std::size_t>(c)] +=
-          elastic.lambda * dv + 2.0 * elastic.shear * part[static_cast<std::size_t>(c)];
-    }
-    for (int c = 3; c < 6; ++c) {
-      trial_stress[static_cast<std::size_t>(c)] +=
-          elastic.shear * part[static_cast<std::size_t>(c)];
-    }
+    add_isotropic_elastic_increment(trial_stress, part, elastic.lambda, elastic.shear);
     const PrincipalStress trial = principal_compression(trial_stress);
     const Principal& t = trial.values;
     const double gamma_n = state[GAMMA_P];
@@ -490,7 +466,7 @@ double HardeningSoil::update_point(Stress& stress, double* state,
     const double tolerance = returner.tolerance();
     ReturnState trial_state{t, gamma_n, cap_n};
     auto admissible = [&](const ReturnState& r) {
-      return ordered(r.stress, tolerance) && returner.shear_residual(r, S13) <= tolerance &&
+      return ordered(r.stress, tolerance) && returner.shear_residual(r) <= tolerance &&
              returner.cap_residual(r) <= tolerance;
     };
     ReturnState result = trial_state;
@@ -507,7 +483,7 @@ double HardeningSoil::update_point(Stress& stress, double* state,
           }
         }
       };
-      if (returner.shear_residual(trial_state, S13) > tolerance) {
+      if (returner.shear_residual(trial_state) > tolerance) {
         attempt([&](int corner) { return returner.shear_return(corner); });
       }
       if (!found && returner.cap_residual(trial_state) > tolerance) {
@@ -535,7 +511,7 @@ double HardeningSoil::update_point(Stress& stress, double* state,
           }
           const HardeningSoilReturn from_shear(*this, P, elastic, sin_psi, delta_, alpha_,
                                                cap_hardening, r.stress, r.gamma, r.cap_pressure);
-          if (from_shear.shear_residual(r, S13) > tolerance) {
+          if (from_shear.shear_residual(r) > tolerance) {
             for (int corner = 0; corner < 3; ++corner) {
               r = from_shear.shear_return(corner);
               if (ordered(r.stress, tolerance)) {

@@ -25,29 +25,14 @@ LinearElastic::LinearElastic(double young_modulus, double poisson_ratio, double 
 void LinearElastic::update_stress(const StressUpdateBatch& batch) const {
   const double modulus = lambda_ + 2.0 * mu_;
   for (std::size_t k = 0; k < batch.particles.size(); ++k) {
-    const StrainIncrement& de = batch.strain[k];
-    Stress& s = batch.stress[batch.particles[k]];
-    const double volumetric = lambda_ * (de[RR] + de[YY] + de[TT]);
-    s[RR] += volumetric + 2.0 * mu_ * de[RR];
-    s[YY] += volumetric + 2.0 * mu_ * de[YY];
-    s[TT] += volumetric + 2.0 * mu_ * de[TT];
-    s[RY] += mu_ * de[RY]; // engineering shear: d tau = mu d gamma
-    s[YT] += mu_ * de[YT];
-    s[RT] += mu_ * de[RT];
+    add_isotropic_elastic_increment(batch.stress[batch.particles[k]], batch.strain[k], lambda_,
+                                    mu_);
     batch.constrained_modulus[k] = modulus;
   }
 }
 
 double LinearElastic::elastic_energy_density(const Stress& s, const double*) const {
-  // w = (1/2) sigma : C^-1 : sigma, split into volumetric and deviatoric parts.
-  const double bulk = lambda_ + 2.0 * mu_ / 3.0;
-  const double mean = trace(s) / 3.0;
-  const double drr = s[RR] - mean;
-  const double dyy = s[YY] - mean;
-  const double dtt = s[TT] - mean;
-  const double deviatoric_sq =
-      drr * drr + dyy * dyy + dtt * dtt + 2.0 * (s[RY] * s[RY] + s[YT] * s[YT] + s[RT] * s[RT]);
-  return 0.5 * mean * mean / bulk + deviatoric_sq / (4.0 * mu_);
+  return isotropic_elastic_energy_density(s, lambda_ + 2.0 * mu_ / 3.0, mu_);
 }
 
 } // namespace mpile

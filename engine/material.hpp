@@ -50,4 +50,21 @@ public:
   virtual double elastic_energy_density(const Stress& stress, const double* state) const = 0;
 };
 
+/// Advances one material point outside any particle set (element tests, unit tests): a batch of
+/// one. Returns the constrained modulus the material reports.
+inline double update_single_point(const Material& material, Stress& stress, double* state,
+                                  const StrainIncrement& strain) {
+  const std::int32_t index = 0;
+  double modulus = 0.0;
+  StressUpdateBatch batch;
+  batch.particles = std::span<const std::int32_t>(&index, 1);
+  batch.strain = std::span<const StrainIncrement>(&strain, 1);
+  batch.constrained_modulus = std::span<double>(&modulus, 1);
+  batch.stress = &stress;
+  batch.state = state;
+  batch.state_stride = static_cast<int>(material.state_size());
+  material.update_stress(batch);
+  return modulus;
+}
+
 } // namespace mpile

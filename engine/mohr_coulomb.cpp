@@ -304,13 +304,7 @@ void MohrCoulomb::update_stress(const StressUpdateBatch& batch) const {
     Stress& s = batch.stress[particle];
     // Elastic trial on the full tensor (torsion shears included).
     Stress trial = s;
-    const double volumetric = lambda_ * (de[RR] + de[YY] + de[TT]);
-    trial[RR] += volumetric + 2.0 * mu_ * de[RR];
-    trial[YY] += volumetric + 2.0 * mu_ * de[YY];
-    trial[TT] += volumetric + 2.0 * mu_ * de[TT];
-    trial[RY] += mu_ * de[RY];
-    trial[YT] += mu_ * de[YT];
-    trial[RT] += mu_ * de[RT];
+    add_isotropic_elastic_increment(trial, de, lambda_, mu_);
     const PrincipalStress principal = principal_compression(trial);
     const MohrCoulombReturn r = return_principal(principal.values);
     if (r.region == MohrCoulombRegion::elastic) {
@@ -328,15 +322,7 @@ void MohrCoulomb::update_stress(const StressUpdateBatch& batch) const {
 }
 
 double MohrCoulomb::elastic_energy_density(const Stress& s, const double*) const {
-  // w = (1/2) sigma : C^-1 : sigma, split into volumetric and deviatoric parts.
-  const double bulk = lambda_ + 2.0 * mu_ / 3.0;
-  const double mean = trace(s) / 3.0;
-  const double drr = s[RR] - mean;
-  const double dyy = s[YY] - mean;
-  const double dtt = s[TT] - mean;
-  const double deviatoric_sq =
-      drr * drr + dyy * dyy + dtt * dtt + 2.0 * (s[RY] * s[RY] + s[YT] * s[YT] + s[RT] * s[RT]);
-  return 0.5 * mean * mean / bulk + deviatoric_sq / (4.0 * mu_);
+  return isotropic_elastic_energy_density(s, lambda_ + 2.0 * mu_ / 3.0, mu_);
 }
 
 } // namespace mpile

@@ -25,4 +25,13 @@ inline double mean_pressure(const Stress& s) {
 /// Von Mises equivalent deviatoric stress q = sqrt(3 J2).
 double deviatoric_stress(const Stress& s);
 
+/// Adds the isotropic elastic response to a strain increment (engineering shear):
+/// d sigma = lambda tr(d eps) I + 2 mu d eps.
+void add_isotropic_elastic_increment(Stress& s, const StrainIncrement& de, double lambda,
+                                     double mu);
+
+/// Energy per unit volume (1/2) sigma : C^-1 : sigma of isotropic elasticity with bulk modulus K
+/// and shear modulus mu, split into volumetric and deviatoric parts.
+double isotropic_elastic_energy_density(const Stress& s, double bulk, double mu);
+
 } // namespace mpile

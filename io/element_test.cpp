@@ -34,16 +34,7 @@ ElementPoint::ElementPoint(const Material& material, const Stress& initial_stres
 Stress ElementPoint::trial(const StrainIncrement& strain, std::vector<double>& state) const {
   state = state_;
   Stress stress = stress_;
-  const std::int32_t index = 0;
-  double modulus = 0.0;
-  StressUpdateBatch batch;
-  batch.particles = std::span<const std::int32_t>(&index, 1);
-  batch.strain = std::span<const StrainIncrement>(&strain, 1);
-  batch.constrained_modulus = std::span<double>(&modulus, 1);
-  batch.stress = &stress;
-  batch.state = state.empty() ? nullptr : state.data();
-  batch.state_stride = static_cast<int>(state.size());
-  material_->update_stress(batch);
+  update_single_point(*material_, stress, state.empty() ? nullptr : state.data(), strain);
   return stress;
 }
 

@@ -7,14 +7,7 @@ namespace mpile {
 namespace {
 
 Stress update_once(const LinearElastic& material, Stress stress, const StrainIncrement& de) {
-  const std::int32_t index = 0;
-  double modulus = 0.0;
-  StressUpdateBatch batch;
-  batch.particles = std::span<const std::int32_t>(&index, 1);
-  batch.strain = std::span<const StrainIncrement>(&de, 1);
-  batch.constrained_modulus = std::span<double>(&modulus, 1);
-  batch.stress = &stress;
-  material.update_stress(batch);
+  const double modulus = update_single_point(material, stress, nullptr, de);
   EXPECT_DOUBLE_EQ(modulus, material.lame_lambda() + 2.0 * material.shear_modulus());
   return stress;
 }

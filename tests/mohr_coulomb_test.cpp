@@ -48,16 +48,7 @@ void expect_principal(const Vector3& actual, const Vector3& expected, double tol
 
 Stress update_once(const Material& material, Stress stress, const StrainIncrement& de,
                    double& state) {
-  const std::int32_t index = 0;
-  double modulus = 0.0;
-  StressUpdateBatch batch;
-  batch.particles = std::span<const std::int32_t>(&index, 1);
-  batch.strain = std::span<const StrainIncrement>(&de, 1);
-  batch.constrained_modulus = std::span<double>(&modulus, 1);
-  batch.stress = &stress;
-  batch.state = &state;
-  batch.state_stride = 1;
-  material.update_stress(batch);
+  update_single_point(material, stress, &state, de);
   return stress;
 }
 
