@@ -101,10 +101,14 @@ NodalLoad line_load(const Grid& grid, GeometryMode mode, const std::vector<int>&
 }
 
 void Boundaries::mark_constrained_dofs(Grid& grid) const {
-  std::fill(grid.constrained.begin(), grid.constrained.end(), std::uint8_t{0});
+  for (int f = 0; f < grid.field_count(); ++f) {
+    std::vector<std::uint8_t>& mask = grid.field_constrained(f);
+    std::fill(mask.begin(), mask.end(), std::uint8_t{0});
+  }
   for (const NodeConstraint& c : constraints) {
+    std::vector<std::uint8_t>& mask = grid.field_constrained(c.field);
     for (const int node : c.nodes) {
-      grid.constrained[static_cast<std::size_t>(node)] |= c.dofs;
+      mask[static_cast<std::size_t>(node)] |= c.dofs;
     }
   }
 }

@@ -21,6 +21,9 @@ struct NodeConstraint {
   std::uint8_t dofs = 0; // DofBit mask
   std::array<std::optional<TimeFunction>, 3> velocity;
   bool theta_is_rotation = false;
+  /// The velocity field the constraint acts on: 0 for the soil (and every body without a field of
+  /// its own), k for the k-th contact structure.
+  int field = 0;
 
   /// Reaction of the last step: the force the support exerts on the material, summed over the node
   /// set (N, or N/rad in axisymmetric mode), and its torque about the axis (N m/rad).

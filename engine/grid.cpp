@@ -12,6 +12,14 @@ Grid::Grid(GradedAxis r_axis, GradedAxis y_axis)
   update_cell_sizes();
 }
 
+int Grid::add_structure_field() {
+  NodeField field;
+  field.nodes.assign(nodes.size(), GridNode{});
+  field.constrained.assign(nodes.size(), 0);
+  structure_fields.push_back(std::move(field));
+  return field_count() - 1;
+}
+
 double Grid::cell_min_size(int cr, int cy) const {
   return std::min(r_axis_.cell_size(cr), y_axis_.cell_size(cy));
 }

@@ -2,6 +2,7 @@
 
 #include "engine/graded_axis.hpp"
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,17 @@ static_assert(sizeof(GridNode) == 64);
 
 /// Bit mask of constrained nodal degrees of freedom.
 enum DofBit : std::uint8_t { DOF_R = 1, DOF_Y = 2, DOF_THETA = 4 };
+
+/// The nodal velocity field of one contact structure (physics.md section 5): its own mass,
+/// momentum and force per node, and its own constrained-DOF mask. Exists only in scenes with
+/// contact.
+struct NodeField {
+  std::vector<GridNode> nodes;
+  std::vector<std::uint8_t> constrained;
+  /// Gradient of the nodal mass (sum m_p grad N_i), only for a structure whose contact normals
+  /// come from it; empty otherwise.
+  std::vector<std::array<double, 2>> mass_gradient;
+};
 
 /// A rectilinear background grid with graded spacing in r and y. Nodes are numbered r-fastest:
 /// node(ir, iy) = ir + nodes_r * iy; cells likewise with cells_r.
@@ -50,10 +62,27 @@ public:
   /// Moves the y-lines (the moving mesh); cell sizes and the lookup follow.
   void set_y_nodes(std::vector<double> y_nodes);
 
+  /// Field 0: every body that has no field of its own (without contact, every body).
   std::vector<GridNode> nodes;
   /// Constrained DOFs per node (DofBit mask), set from the boundary conditions. Local damping
   /// skips constrained DOFs so that reactions at moving supports are not polluted by it.
   std::vector<std::uint8_t> constrained;
+  /// Fields 1, 2, ...: one per contact structure; empty in a scene without contact.
+  std::vector<NodeField> structure_fields;
+
+  int field_count() const { return 1 + static_cast<int>(structure_fields.size()); }
+  std::vector<GridNode>& field_nodes(int field) {
+    return field == 0 ? nodes : structure_fields[static_cast<std::size_t>(field - 1)].nodes;
+  }
+  const std::vector<GridNode>& field_nodes(int field) const {
+    return field == 0 ? nodes : structure_fields[static_cast<std::size_t>(field - 1)].nodes;
+  }
+  std::vector<std::uint8_t>& field_constrained(int field) {
+    return field == 0 ? constrained
+                      : structure_fields[static_cast<std::size_t>(field - 1)].constrained;
+  }
+  /// Adds a structure field (all nodes empty) and returns its index.
+  int add_structure_field();
 
 private:
   void update_cell_sizes();

@@ -32,6 +32,8 @@ public:
   virtual std::string_view type() const = 0;
   /// Initial density (kg/m^3), for particle masses.
   virtual double density() const = 0;
+  /// True for the particles of a rigid body (no stress, not counted in the soil's energies).
+  virtual bool is_rigid() const { return false; }
 
   /// Names of the per-particle state variables; a model without state carries none.
   virtual std::span<const std::string> state_names() const { return {}; }

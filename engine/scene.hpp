@@ -1,10 +1,12 @@
 #pragma once
 
 #include "engine/boundary_conditions.hpp"
+#include "engine/contact.hpp"
 #include "engine/geometry_mode.hpp"
 #include "engine/grid.hpp"
 #include "engine/material.hpp"
 #include "engine/particles.hpp"
+#include "engine/rigid_body.hpp"
 
 #include <functional>
 #include <memory>
@@ -31,10 +33,24 @@ struct Scene {
   std::vector<std::string> body_names;
   Boundaries boundaries;
   VelocityField velocity_field;
+  /// Contact (physics.md section 5): the field each body maps to (empty: every body in field 0,
+  /// no contact), one contact pair per structure with a field of its own, and the rigid bodies.
+  std::vector<std::uint8_t> field_of_body;
+  std::vector<ContactPair> contacts;
+  std::vector<RigidBody> rigid_bodies;
+
+  bool has_contact() const { return !contacts.empty(); }
+  int field_of(std::uint16_t body) const { return field_of_body.empty() ? 0 : field_of_body[body]; }
 
   /// Adds a material and returns its index; widens the per-particle state to what it needs.
   std::uint16_t add_material(std::unique_ptr<Material> material);
   std::uint16_t add_body(std::string name);
+  /// Gives a body its own velocity field in contact with the soil (field 0) and returns the pair
+  /// to be filled in (friction, adhesion, surfaces, outline).
+  ContactPair& add_contact_structure(std::uint16_t body);
+  /// Makes a contact structure rigid: its particles switch to a rigid material of the given
+  /// density, and mass and inertia are those of its particles unless given (> 0).
+  RigidBody& make_rigid(std::uint16_t body, double density, double mass, double inertia);
 };
 
 } // namespace mpile

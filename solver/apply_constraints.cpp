@@ -57,8 +57,9 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
       c.reaction = {0.0, 0.0, 0.0};
       c.torque = 0.0;
     }
+    std::vector<GridNode>& nodes = grid.field_nodes(c.field);
     for (const int index : c.nodes) {
-      GridNode& node = grid.nodes[static_cast<std::size_t>(index)];
+      GridNode& node = nodes[static_cast<std::size_t>(index)];
       if (node.mass <= step.mass_floor) {
         continue;
       }

@@ -27,13 +27,25 @@ template <class Term> double deterministic_sum(std::size_t n, Term term) {
 double kinetic_energy(const Scene& scene) {
   const Particles& p = scene.particles;
   const bool theta = has_theta(scene.mode);
-  return deterministic_sum(p.size(), [&](std::size_t i) {
+  // A rigid body's energy is that of its DOFs with its whole mass, not of its meshed particles.
+  std::vector<char> rigid;
+  for (const auto& material : scene.materials) {
+    rigid.push_back(material->is_rigid() ? 1 : 0);
+  }
+  double energy = deterministic_sum(p.size(), [&](std::size_t i) {
+    if (rigid[p.material[i]] != 0) {
+      return 0.0;
+    }
     double v2 = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
     if (theta) {
       v2 += p.v_theta[i] * p.v_theta[i];
     }
     return 0.5 * p.mass[i] * v2;
   });
+  for (const RigidBody& body : scene.rigid_bodies) {
+    energy += body.kinetic_energy();
+  }
+  return energy;
 }
 
 double elastic_energy(const Scene& scene) {

@@ -1,6 +1,7 @@
 #include "solver/explicit_solver.hpp"
 
 #include "engine/parallel.hpp"
+#include "solver/contact_passes.hpp"
 #include "solver/passes.hpp"
 
 #include <tbb/parallel_for.h>
@@ -76,10 +77,21 @@ void ExplicitSolver::prepare() {
   }
   // A node holding less than this is empty: its velocity would be noise divided by nearly zero.
   mass_floor_ = 1e-9 * min_mass;
+  if (scene_.has_contact()) {
+    passes::prepare_contact(scene_);
+  }
   scene_.boundaries.mark_constrained_dofs(scene_.grid);
   bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
   locate_all_particles();
   rebin();
+}
+
+double ExplicitSolver::external_work() const {
+  double work = external_work_;
+  for (const RigidBody& body : scene_.rigid_bodies) {
+    work += body.external_work;
+  }
+  return work;
 }
 
 void ExplicitSolver::report_settings() {
@@ -136,10 +148,13 @@ void ExplicitSolver::sort_particles_by_cell() {
 }
 
 double ExplicitSolver::unbalanced_force_ratio() {
+  const bool contact = scene_.has_contact();
   if (scene_.mode == GeometryMode::axisymmetric) {
-    passes::particle_to_grid<GeometryMode::axisymmetric>(scene_, bins_, settings_);
+    contact ? passes::particle_to_grid<GeometryMode::axisymmetric, true>(scene_, bins_, settings_)
+            : passes::particle_to_grid<GeometryMode::axisymmetric, false>(scene_, bins_, settings_);
   } else {
-    passes::particle_to_grid<GeometryMode::plane_strain>(scene_, bins_, settings_);
+    contact ? passes::particle_to_grid<GeometryMode::plane_strain, true>(scene_, bins_, settings_)
+            : passes::particle_to_grid<GeometryMode::plane_strain, false>(scene_, bins_, settings_);
   }
   // Node forces are f_ext - f_int (gravity included); loads are added here as in a step.
   passes::apply_nodal_loads(scene_, passes::StepParameters{time_, 0.0, mass_floor_});
@@ -159,9 +174,15 @@ double ExplicitSolver::unbalanced_force_ratio() {
             continue;
           }
           s.held += node.mass * node.mass * g2;
+          // A node a structure also occupies is held by the contact force, as a support holds.
+          bool touches_structure = false;
+          for (const NodeField& field : grid.structure_fields) {
+            touches_structure = touches_structure || field.nodes[i].mass > mass_floor_;
+          }
           for (int d = 0; d < dofs; ++d) {
             const double f2 = node.force[d] * node.force[d];
-            ((grid.constrained[i] & (1u << d)) != 0 ? s.held : s.free) += f2;
+            const bool held = touches_structure || (grid.constrained[i] & (1u << d)) != 0;
+            (held ? s.held : s.free) += f2;
           }
         }
         return s;
@@ -189,10 +210,13 @@ void ExplicitSolver::step(double max_dt) {
       << " s (not a positive finite number)";
     throw SimulationError(s.str());
   }
+  const bool contact = scene_.has_contact();
   if (scene_.mode == GeometryMode::axisymmetric) {
-    step_in_mode<GeometryMode::axisymmetric>(dt);
+    contact ? step_in_mode<GeometryMode::axisymmetric, true>(dt)
+            : step_in_mode<GeometryMode::axisymmetric, false>(dt);
   } else {
-    step_in_mode<GeometryMode::plane_strain>(dt);
+    contact ? step_in_mode<GeometryMode::plane_strain, true>(dt)
+            : step_in_mode<GeometryMode::plane_strain, false>(dt);
   }
 }
 
@@ -205,16 +229,25 @@ void ExplicitSolver::advance_to(double end_time) {
   }
 }
 
-template <GeometryMode mode> void ExplicitSolver::step_in_mode(double dt) {
+template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(double dt) {
   const passes::StepParameters step{time_, dt, mass_floor_};
   {
     PassTimer timer(timings_.particle_to_grid);
-    passes::particle_to_grid<mode>(scene_, bins_, settings_);
+    passes::particle_to_grid<mode, contact>(scene_, bins_, settings_);
   }
   {
     PassTimer timer(timings_.grid_update);
     passes::apply_nodal_loads(scene_, step);
     passes::update_grid_velocities<mode>(scene_, settings_, step);
+  }
+  if constexpr (contact) {
+    PassTimer timer(timings_.contact);
+    const auto predicted = passes::predict_rigid_bodies(scene_, settings_, step);
+    passes::resolve_contact<mode>(scene_, settings_, step, true);
+    passes::finish_rigid_bodies(scene_, settings_, step, predicted);
+  }
+  {
+    PassTimer timer(timings_.grid_update);
     external_work_ += passes::apply_constraints(scene_, settings_, step, true);
     if (!scene_.boundaries.loads.empty()) {
       external_work_ += passes::nodal_load_work(scene_, step);
@@ -222,17 +255,24 @@ template <GeometryMode mode> void ExplicitSolver::step_in_mode(double dt) {
   }
   {
     PassTimer timer(timings_.grid_to_particle);
-    passes::grid_to_particle<mode>(scene_, bins_, settings_, step);
+    passes::grid_to_particle<mode, contact>(scene_, bins_, settings_, step);
   }
   {
     PassTimer timer(timings_.momentum_remap);
-    passes::remap_momentum<mode>(scene_, bins_, step);
+    passes::remap_momentum<mode, contact>(scene_, bins_, step);
+    if constexpr (contact) {
+      passes::reset_rigid_fields(scene_, step);
+      passes::resolve_contact<mode>(scene_, settings_, step, false);
+    }
     passes::apply_constraints(scene_, settings_, step, false);
   }
   passes::StressPassResult result;
   {
     PassTimer timer(timings_.stress_update);
-    result = passes::update_stress_and_positions<mode>(scene_, bins_, settings_, step);
+    result = passes::update_stress_and_positions<mode, contact>(scene_, bins_, settings_, step);
+  }
+  if constexpr (contact) {
+    passes::move_rigid_bodies(scene_, step);
   }
   time_ += dt;
   last_dt_ = dt;

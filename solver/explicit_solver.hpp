@@ -24,6 +24,7 @@ struct PassTimings {
   double grid_to_particle = 0.0;
   double momentum_remap = 0.0;
   double stress_update = 0.0;
+  double contact = 0.0; // contact and rigid bodies (scenes with contact only)
 };
 
 /// What a checkpoint must keep of the integrator to continue a run bitwise identically.
@@ -54,7 +55,7 @@ public:
   long step_count() const { return steps_; }
   /// Work done on the material since the start by gravity, loads and supports (J, per radian in
   /// axisymmetric mode).
-  double external_work() const { return external_work_; }
+  double external_work() const;
   /// Stable time step for the next step (s).
   double stable_time_step() const { return stable_dt_; }
   /// Length of the last step taken (s).
@@ -73,7 +74,7 @@ public:
   double unbalanced_force_ratio();
 
 private:
-  template <GeometryMode mode> void step_in_mode(double dt);
+  template <GeometryMode mode, bool contact> void step_in_mode(double dt);
   void prepare();
   void locate_all_particles();
   void rebin();

@@ -2,27 +2,36 @@
 // (FLIP/PIC blend), the position increment du (applied after the stress update, so that every pass
 // of the step uses the shape functions at x^n) and the circumferential displacement.
 #include "engine/shape_functions.hpp"
+#include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
+
+#include <optional>
 
 namespace mpile::passes {
 
-template <GeometryMode mode>
+template <GeometryMode mode, bool contact>
 void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                       const StepParameters& step) {
-  const Grid& grid = scene.grid;
+  Grid& grid = scene.grid;
   Particles& p = scene.particles;
   const double flip = settings.flip_fraction;
   const double pic = 1.0 - flip;
   const double dt = step.dt;
+  [[maybe_unused]] const auto fields =
+      contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   bins.for_each_block([&](int, std::span<const std::int32_t> particles) {
     for (const std::int32_t q : particles) {
       const auto i = static_cast<std::size_t>(q);
+      const GridNode* nodes = grid.nodes.data();
+      if constexpr (contact) {
+        nodes = fields->nodes(p.body[i]);
+      }
       const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
       double velocity[3] = {0.0, 0.0, 0.0};
       double increment[3] = {0.0, 0.0, 0.0};
       constexpr int dofs = has_theta(mode) ? 3 : 2;
       for (int k = 0; k < 4; ++k) {
-        const GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[k])];
+        const GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         for (int d = 0; d < dofs; ++d) {
           velocity[d] += w.N[k] * node.momentum[d];
           increment[d] += w.N[k] * node.force[d];
@@ -40,11 +49,17 @@ void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettin
   });
 }
 
-template void grid_to_particle<GeometryMode::axisymmetric>(Scene&, const ParticleBins&,
-                                                           const SolverSettings&,
-                                                           const StepParameters&);
-template void grid_to_particle<GeometryMode::plane_strain>(Scene&, const ParticleBins&,
-                                                           const SolverSettings&,
-                                                           const StepParameters&);
+template void grid_to_particle<GeometryMode::axisymmetric, false>(Scene&, const ParticleBins&,
+                                                                  const SolverSettings&,
+                                                                  const StepParameters&);
+template void grid_to_particle<GeometryMode::axisymmetric, true>(Scene&, const ParticleBins&,
+                                                                 const SolverSettings&,
+                                                                 const StepParameters&);
+template void grid_to_particle<GeometryMode::plane_strain, false>(Scene&, const ParticleBins&,
+                                                                  const SolverSettings&,
+                                                                  const StepParameters&);
+template void grid_to_particle<GeometryMode::plane_strain, true>(Scene&, const ParticleBins&,
+                                                                 const SolverSettings&,
+                                                                 const StepParameters&);
 
 } // namespace mpile::passes

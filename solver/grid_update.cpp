@@ -18,21 +18,21 @@ void apply_nodal_loads(Scene& scene, const StepParameters& step) {
   }
 }
 
-template <GeometryMode mode>
-void update_grid_velocities(Scene& scene, const SolverSettings& settings,
-                            const StepParameters& step) {
-  constexpr int dofs = has_theta(mode) ? 3 : 2;
-  Grid& grid = scene.grid;
+namespace {
+
+template <int dofs>
+void update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uint8_t>& mask,
+                             const SolverSettings& settings, const StepParameters& step) {
   const double alpha = settings.local_damping;
   const double dt_over_beta = step.dt / settings.mass_scaling;
-  parallel_for(grid.nodes.size(), [&](std::size_t i) {
-    GridNode& node = grid.nodes[i];
+  parallel_for(nodes.size(), [&](std::size_t i) {
+    GridNode& node = nodes[i];
     if (node.mass <= step.mass_floor) {
       node = GridNode{};
       return;
     }
     const double inverse_mass = 1.0 / node.mass;
-    const std::uint8_t constrained = grid.constrained[i];
+    const std::uint8_t constrained = mask[i];
     for (int d = 0; d < dofs; ++d) {
       const double velocity = node.momentum[d] * inverse_mass;
       double force = node.force[d];
@@ -46,6 +46,24 @@ void update_grid_velocities(Scene& scene, const SolverSettings& settings,
       node.force[d] = increment;
     }
   });
+}
+
+} // namespace
+
+template <GeometryMode mode>
+void update_grid_velocities(Scene& scene, const SolverSettings& settings,
+                            const StepParameters& step) {
+  constexpr int dofs = has_theta(mode) ? 3 : 2;
+  Grid& grid = scene.grid;
+  update_field_velocities<dofs>(grid.nodes, grid.constrained, settings, step);
+  // Deformable structures have their own momentum balance; rigid bodies set their fields from
+  // their DOFs instead.
+  for (const ContactPair& pair : scene.contacts) {
+    if (pair.rigid_body < 0) {
+      update_field_velocities<dofs>(grid.field_nodes(pair.field),
+                                    grid.field_constrained(pair.field), settings, step);
+    }
+  }
 }
 
 template void update_grid_velocities<GeometryMode::axisymmetric>(Scene&, const SolverSettings&,

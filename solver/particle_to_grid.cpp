@@ -1,21 +1,39 @@
 // Particle-to-grid. Reads particle position, cell, mass, volume, velocity and stress; writes node
-// mass, momentum and force (f_ext - f_int, physics.md section 2) with a colored scatter.
+// mass, momentum and force (f_ext - f_int, physics.md section 2) with a colored scatter. With
+// contact, each particle writes to its body's field (and to its mass gradient where one is kept).
 #include "engine/shape_functions.hpp"
+#include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
+
+#include <optional>
 
 namespace mpile::passes {
 
-template <GeometryMode mode>
+template <GeometryMode mode, bool contact>
 void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings) {
   Grid& grid = scene.grid;
   const Particles& p = scene.particles;
   parallel_for(grid.nodes.size(), [&](std::size_t i) { grid.nodes[i] = GridNode{}; });
+  if constexpr (contact) {
+    for (NodeField& field : grid.structure_fields) {
+      parallel_for(field.nodes.size(), [&](std::size_t i) { field.nodes[i] = GridNode{}; });
+      parallel_for(field.mass_gradient.size(), [&](std::size_t i) {
+        field.mass_gradient[i] = {0.0, 0.0};
+      });
+    }
+  }
+  [[maybe_unused]] const auto fields =
+      contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
 
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
   bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
     for (const std::int32_t q : particles) {
       const auto i = static_cast<std::size_t>(q);
+      GridNode* nodes = grid.nodes.data();
+      if constexpr (contact) {
+        nodes = fields->nodes(p.body[i]);
+      }
       const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
       const double m = p.mass[i];
       const double omega = p.volume[i];
@@ -27,7 +45,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
       const double w_yy = omega * s[YY];
       const double w_ry = omega * s[RY];
       for (int k = 0; k < 4; ++k) {
-        GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[k])];
+        GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         const double n = w.N[k];
         node.mass += n * m;
         node.momentum[0] += n * m_v_r;
@@ -43,20 +61,33 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         const double w_rt = omega * s[RT];
         const double m_v_t = m * p.v_theta[i];
         for (int k = 0; k < 4; ++k) {
-          GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[k])];
+          GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
           const double n = w.N[k];
           node.force[0] -= n * w_hoop;
           node.momentum[2] += n * m_v_t;
           node.force[2] -= w.dN_dy[k] * w_yt + (w.dN_dr[k] - n * inverse_r) * w_rt;
         }
       }
+      if constexpr (contact) {
+        if (std::array<double, 2>* gradient = fields->mass_gradient(p.body[i])) {
+          for (int k = 0; k < 4; ++k) {
+            auto& g = gradient[static_cast<std::size_t>(w.node[k])];
+            g[0] += m * w.dN_dr[k];
+            g[1] += m * w.dN_dy[k];
+          }
+        }
+      }
     }
   });
 }
 
-template void particle_to_grid<GeometryMode::axisymmetric>(Scene&, const ParticleBins&,
-                                                           const SolverSettings&);
-template void particle_to_grid<GeometryMode::plane_strain>(Scene&, const ParticleBins&,
-                                                           const SolverSettings&);
+template void particle_to_grid<GeometryMode::axisymmetric, false>(Scene&, const ParticleBins&,
+                                                                  const SolverSettings&);
+template void particle_to_grid<GeometryMode::plane_strain, false>(Scene&, const ParticleBins&,
+                                                                  const SolverSettings&);
+template void particle_to_grid<GeometryMode::axisymmetric, true>(Scene&, const ParticleBins&,
+                                                                 const SolverSettings&);
+template void particle_to_grid<GeometryMode::plane_strain, true>(Scene&, const ParticleBins&,
+                                                                 const SolverSettings&);
 
 } // namespace mpile::passes

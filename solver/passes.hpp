@@ -1,7 +1,9 @@
 #pragma once
 
 // The passes of one explicit MUSL step (physics.md section 3), each in its own file. Every pass
-// says at its top which fields it reads and which it writes.
+// says at its top which fields it reads and which it writes. The particle passes take contact =
+// true in a scene with contact: each particle then maps to its body's velocity field; a scene
+// without contact runs the single-field version and pays nothing for it.
 
 #include "engine/geometry_mode.hpp"
 #include "engine/particle_bins.hpp"
@@ -19,7 +21,7 @@ struct StepParameters {
   double mass_floor = 0.0;
 };
 
-template <GeometryMode mode>
+template <GeometryMode mode, bool contact = false>
 void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings);
 
 void apply_nodal_loads(Scene& scene, const StepParameters& step);
@@ -37,11 +39,11 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
 /// Work of the nodal loads over the step, from the updated nodal velocities.
 double nodal_load_work(const Scene& scene, const StepParameters& step);
 
-template <GeometryMode mode>
+template <GeometryMode mode, bool contact = false>
 void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                       const StepParameters& step);
 
-template <GeometryMode mode>
+template <GeometryMode mode, bool contact = false>
 void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step);
 
 struct StressPassResult {
@@ -53,7 +55,7 @@ struct StressPassResult {
                                         // velocity, or -1
 };
 
-template <GeometryMode mode>
+template <GeometryMode mode, bool contact = false>
 StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& bins,
                                              const SolverSettings& settings,
                                              const StepParameters& step);

@@ -2,23 +2,52 @@
 // colored scatter, then node velocity = momentum / mass (the node mass of this step is unchanged).
 // Constraints are applied again by the caller.
 #include "engine/shape_functions.hpp"
+#include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
+
+#include <optional>
 
 namespace mpile::passes {
 
-template <GeometryMode mode>
+namespace {
+
+template <int dofs> void clear_momentum(std::vector<GridNode>& nodes) {
+  parallel_for(nodes.size(), [&](std::size_t i) {
+    for (int d = 0; d < dofs; ++d) {
+      nodes[i].momentum[d] = 0.0;
+    }
+  });
+}
+
+template <int dofs> void momentum_to_velocity(std::vector<GridNode>& nodes, double mass_floor) {
+  parallel_for(nodes.size(), [&](std::size_t i) {
+    GridNode& node = nodes[i];
+    const double inverse_mass = node.mass > mass_floor ? 1.0 / node.mass : 0.0;
+    for (int d = 0; d < dofs; ++d) {
+      node.momentum[d] *= inverse_mass;
+    }
+  });
+}
+
+} // namespace
+
+template <GeometryMode mode, bool contact>
 void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   const Particles& p = scene.particles;
-  parallel_for(grid.nodes.size(), [&](std::size_t i) {
-    for (int d = 0; d < dofs; ++d) {
-      grid.nodes[i].momentum[d] = 0.0;
-    }
-  });
+  for (int f = 0; f < (contact ? grid.field_count() : 1); ++f) {
+    clear_momentum<dofs>(grid.field_nodes(f));
+  }
+  [[maybe_unused]] const auto fields =
+      contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
     for (const std::int32_t q : particles) {
       const auto i = static_cast<std::size_t>(q);
+      GridNode* nodes = grid.nodes.data();
+      if constexpr (contact) {
+        nodes = fields->nodes(p.body[i]);
+      }
       const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
       const double m = p.mass[i];
       double momentum[3] = {m * p.v_r[i], m * p.v_y[i], 0.0};
@@ -26,25 +55,25 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
         momentum[2] = m * p.v_theta[i];
       }
       for (int k = 0; k < 4; ++k) {
-        GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[k])];
+        GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         for (int d = 0; d < dofs; ++d) {
           node.momentum[d] += w.N[k] * momentum[d];
         }
       }
     }
   });
-  parallel_for(grid.nodes.size(), [&](std::size_t i) {
-    GridNode& node = grid.nodes[i];
-    const double inverse_mass = node.mass > step.mass_floor ? 1.0 / node.mass : 0.0;
-    for (int d = 0; d < dofs; ++d) {
-      node.momentum[d] *= inverse_mass;
-    }
-  });
+  for (int f = 0; f < (contact ? grid.field_count() : 1); ++f) {
+    momentum_to_velocity<dofs>(grid.field_nodes(f), step.mass_floor);
+  }
 }
 
-template void remap_momentum<GeometryMode::axisymmetric>(Scene&, const ParticleBins&,
-                                                         const StepParameters&);
-template void remap_momentum<GeometryMode::plane_strain>(Scene&, const ParticleBins&,
-                                                         const StepParameters&);
+template void remap_momentum<GeometryMode::axisymmetric, false>(Scene&, const ParticleBins&,
+                                                                const StepParameters&);
+template void remap_momentum<GeometryMode::axisymmetric, true>(Scene&, const ParticleBins&,
+                                                               const StepParameters&);
+template void remap_momentum<GeometryMode::plane_strain, false>(Scene&, const ParticleBins&,
+                                                                const StepParameters&);
+template void remap_momentum<GeometryMode::plane_strain, true>(Scene&, const ParticleBins&,
+                                                               const StepParameters&);
 
 } // namespace mpile::passes

@@ -3,12 +3,14 @@
 // writes particle stress, state, volume, position and cell. Runs per block without coloring: it
 // writes only to its own particles and to the B-bar sums of its own cells.
 #include "engine/shape_functions.hpp"
+#include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace mpile::passes {
@@ -39,17 +41,26 @@ void rotate_in_plane(Stress& s, double w) {
 
 } // namespace
 
-template <GeometryMode mode>
+template <GeometryMode mode, bool contact>
 StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& bins,
                                              const SolverSettings& settings,
                                              const StepParameters& step) {
-  const Grid& grid = scene.grid;
+  Grid& grid = scene.grid;
   Particles& p = scene.particles;
   const double dt = step.dt;
   const int block_cells = bins.block_cells();
   const double inverse_beta = 1.0 / settings.mass_scaling;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
+  [[maybe_unused]] const auto fields =
+      contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
+  // Gravity on a rigid body acts on its DOFs (RigidBody), not on its particles.
+  std::vector<char> rigid_material;
+  if constexpr (contact) {
+    for (const auto& material : scene.materials) {
+      rigid_material.push_back(material->is_rigid() ? 1 : 0);
+    }
+  }
 
   // One result per block, reduced serially afterwards: no shared writes, and a fixed order.
   struct BlockResult {
@@ -76,11 +87,15 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
     // 1. Strain increment and spin from the nodal velocities at x^n (physics.md section 2).
     for (std::size_t k = 0; k < particles.size(); ++k) {
       const auto i = static_cast<std::size_t>(particles[k]);
+      const GridNode* nodes = grid.nodes.data();
+      if constexpr (contact) {
+        nodes = fields->nodes(p.body[i]);
+      }
       const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
       double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
       double dtr = 0.0, dty = 0.0, vt = 0.0;
       for (int n = 0; n < 4; ++n) {
-        const GridNode& node = grid.nodes[static_cast<std::size_t>(w.node[n])];
+        const GridNode& node = nodes[static_cast<std::size_t>(w.node[n])];
         drr += w.dN_dr[n] * node.momentum[0];
         dry += w.dN_dy[n] * node.momentum[0];
         dyr += w.dN_dr[n] * node.momentum[1];
@@ -166,7 +181,13 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       if (!std::isfinite(finite_check)) {
         out.first_nonfinite = std::min(out.first_nonfinite, static_cast<std::int64_t>(i));
       }
-      out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
+      if constexpr (contact) {
+        if (rigid_material[p.material[i]] == 0) {
+          out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
+        }
+      } else {
+        out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
+      }
       p.r[i] += p.du_r[i];
       p.y[i] += p.du_y[i];
       const int cr = grid.r_axis().locate(p.r[i]);
@@ -208,9 +229,13 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
   return result;
 }
 
-template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric>(
+template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric, false>(
     Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
-template StressPassResult update_stress_and_positions<GeometryMode::plane_strain>(
+template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric, true>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template StressPassResult update_stress_and_positions<GeometryMode::plane_strain, false>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template StressPassResult update_stress_and_positions<GeometryMode::plane_strain, true>(
     Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
 
 } // namespace mpile::passes

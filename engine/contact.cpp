@@ -1,0 +1,179 @@
+#include "engine/contact.hpp"
+
+#include "engine/shape_functions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mpile {
+
+StructureOutline StructureOutline::rectangle(double r0, double r1, double y0, double y1, int bottom,
+                                             int right, int top, int left) {
+  StructureOutline outline;
+  outline.vertices = {{r0, y0}, {r1, y0}, {r1, y1}, {r0, y1}};
+  outline.edge_surface = {bottom, right, top, left};
+  return outline;
+}
+
+void StructureOutline::translate(double dr, double dy) {
+  for (auto& v : vertices) {
+    v[0] += dr;
+    v[1] += dy;
+  }
+}
+
+void StructureOutline::rotate(double angle, double r, double y) {
+  const double c = std::cos(angle);
+  const double s = std::sin(angle);
+  for (auto& v : vertices) {
+    const double dr = v[0] - r;
+    const double dy = v[1] - y;
+    v[0] = r + c * dr - s * dy;
+    v[1] = y + s * dr + c * dy;
+  }
+}
+
+void ContactPair::allocate(std::size_t node_count) {
+  area.assign(node_count, 0.0);
+  surface_area.assign(node_count * surfaces.size(), 0.0);
+  normal.assign(node_count, {0.0, 0.0});
+  node_force.assign(node_count, {0.0, 0.0, 0.0});
+  surface_force.assign(surfaces.size(), {0.0, 0.0, 0.0});
+  surface_torque.assign(surfaces.size(), 0.0);
+  outlined_nodes.clear();
+}
+
+namespace {
+
+/// Parameters in (0, 1) where the segment a + s (b - a) crosses the grid lines of one axis.
+void add_crossings(const GradedAxis& axis, double a, double b, std::vector<double>& s) {
+  if (a == b) {
+    return;
+  }
+  const double lo = std::min(a, b);
+  const double hi = std::max(a, b);
+  for (int i = 0; i < axis.node_count(); ++i) {
+    const double x = axis.node(i);
+    if (x > lo && x < hi) {
+      s.push_back((x - a) / (b - a));
+    }
+  }
+}
+
+/// The cell holding a point, taking the last cell for a point on the far grid boundary.
+int cell_of(const GradedAxis& axis, double x) {
+  const int c = axis.locate(x);
+  if (c < 0 && x == axis.end()) {
+    return axis.cell_count() - 1;
+  }
+  return c;
+}
+
+} // namespace
+
+void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair) {
+  const std::size_t surfaces = pair.surface_count();
+  for (const int node : pair.outlined_nodes) {
+    const auto i = static_cast<std::size_t>(node);
+    pair.area[i] = 0.0;
+    pair.normal[i] = {0.0, 0.0};
+    std::fill_n(pair.surface_area.begin() + static_cast<std::ptrdiff_t>(i * surfaces), surfaces,
+                0.0);
+  }
+  pair.outlined_nodes.clear();
+  const StructureOutline& outline = *pair.outline;
+  const std::size_t edges = outline.vertices.size();
+  // Two-point Gauss on [0, 1].
+  const double g = 0.5 / std::sqrt(3.0);
+  const double gauss[2] = {0.5 - g, 0.5 + g};
+  std::vector<double> cuts;
+  for (std::size_t e = 0; e < edges; ++e) {
+    const auto& a = outline.vertices[e];
+    const auto& b = outline.vertices[(e + 1) % edges];
+    const double dr = b[0] - a[0];
+    const double dy = b[1] - a[1];
+    const double length = std::hypot(dr, dy);
+    if (length == 0.0) {
+      continue;
+    }
+    const std::array<double, 2> n{dy / length, -dr / length};
+    const auto surface = static_cast<std::size_t>(outline.edge_surface[e]);
+    cuts.assign({0.0, 1.0});
+    add_crossings(grid.r_axis(), a[0], b[0], cuts);
+    add_crossings(grid.y_axis(), a[1], b[1], cuts);
+    std::sort(cuts.begin(), cuts.end());
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double s0 = cuts[k];
+      const double s1 = cuts[k + 1];
+      if (s1 <= s0) {
+        continue;
+      }
+      const double s_mid = 0.5 * (s0 + s1);
+      const int cr = cell_of(grid.r_axis(), a[0] + s_mid * dr);
+      const int cy = cell_of(grid.y_axis(), a[1] + s_mid * dy);
+      if (cr < 0 || cy < 0) {
+        continue; // this piece of the outline lies outside the grid
+      }
+      for (const double t : gauss) {
+        const double s = s0 + t * (s1 - s0);
+        const double r = a[0] + s * dr;
+        const double y = a[1] + s * dy;
+        const double weight =
+            0.5 * (s1 - s0) * length * (mode == GeometryMode::axisymmetric ? r : 1.0);
+        const CellWeights w = bilinear_weights(grid, cr, cy, r, y);
+        for (int q = 0; q < 4; ++q) {
+          const double share = weight * w.N[q];
+          if (share == 0.0) {
+            continue;
+          }
+          const auto i = static_cast<std::size_t>(w.node[q]);
+          if (pair.area[i] == 0.0) {
+            pair.outlined_nodes.push_back(w.node[q]);
+          }
+          pair.area[i] += share;
+          pair.surface_area[i * surfaces + surface] += share;
+          pair.normal[i][0] += share * n[0];
+          pair.normal[i][1] += share * n[1];
+        }
+      }
+    }
+  }
+  for (const int node : pair.outlined_nodes) {
+    auto& n = pair.normal[static_cast<std::size_t>(node)];
+    const double length = std::hypot(n[0], n[1]);
+    if (length > 0.0) {
+      n[0] /= length;
+      n[1] /= length;
+    }
+  }
+}
+
+std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
+                                          int& surface) {
+  const std::size_t edges = outline.vertices.size();
+  double best = std::numeric_limits<double>::infinity();
+  std::array<double, 2> normal{0.0, 0.0};
+  surface = 0;
+  for (std::size_t e = 0; e < edges; ++e) {
+    const auto& a = outline.vertices[e];
+    const auto& b = outline.vertices[(e + 1) % edges];
+    const double dr = b[0] - a[0];
+    const double dy = b[1] - a[1];
+    const double length2 = dr * dr + dy * dy;
+    if (length2 == 0.0) {
+      continue;
+    }
+    const double s = std::clamp(((r - a[0]) * dr + (y - a[1]) * dy) / length2, 0.0, 1.0);
+    const double distance = std::hypot(r - (a[0] + s * dr), y - (a[1] + s * dy));
+    if (distance < best) {
+      best = distance;
+      const double length = std::sqrt(length2);
+      normal = {dy / length, -dr / length};
+      surface = outline.edge_surface[e];
+    }
+  }
+  return normal;
+}
+
+} // namespace mpile

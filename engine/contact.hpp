@@ -1,0 +1,74 @@
+#pragma once
+
+#include "engine/geometry_mode.hpp"
+#include "engine/grid.hpp"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mpile {
+
+/// The known shape of a structure in the r-y plane: a closed polygon, counter-clockwise, whose
+/// edge k (vertex k to vertex k + 1) belongs to surface edge_surface[k]. The outward normal of an
+/// edge with direction (dr, dy) is (dy, -dr) / length. A rigid body's outline moves with it.
+struct StructureOutline {
+  std::vector<std::array<double, 2>> vertices;
+  std::vector<int> edge_surface;
+
+  /// The axis-aligned rectangle [r0, r1] x [y0, y1] with surfaces for its bottom, right, top and
+  /// left edges (for an open-ended pile: tip, outer shaft, head, inner shaft).
+  static StructureOutline rectangle(double r0, double r1, double y0, double y1, int bottom,
+                                    int right, int top, int left);
+  void translate(double dr, double dy);
+  /// Rotates about (r, y) by angle (rad, counter-clockwise).
+  void rotate(double angle, double r, double y);
+};
+
+/// Contact between the soil (field 0) and one structure with a field of its own (physics.md
+/// section 5): Coulomb friction mu and adhesion c_a, normals from the outline when the structure
+/// has one, from the structure's mass gradient otherwise. The per-node arrays are sized to the grid
+/// and refreshed every step; forces are those of the soil on the structure.
+struct ContactPair {
+  std::string name; // the structure's body name
+  std::uint16_t structure_body = 0;
+  int field = 1;
+  int rigid_body = -1; // index into the scene's rigid bodies, -1 for a deformable structure
+  double friction = 0.0;
+  double adhesion = 0.0; // Pa
+  std::vector<std::string> surfaces;
+  std::optional<StructureOutline> outline;
+
+  // Per node: contact area (m^2, per radian in axisymmetric mode), its share on each surface
+  // (node * surfaces + surface), the structure's outward unit normal, and the force of the last
+  // step (N [/rad]).
+  std::vector<double> area;
+  std::vector<double> surface_area;
+  std::vector<std::array<double, 2>> normal;
+  std::vector<std::array<double, 3>> node_force;
+  std::vector<int> outlined_nodes; // nodes the outline gave an area, cleared before the next step
+
+  // Sums of the last step per surface: (F_r, F_y, F_theta) and the torque about the axis.
+  std::vector<std::array<double, 3>> surface_force;
+  std::vector<double> surface_torque;
+
+  std::size_t surface_count() const { return surfaces.size(); }
+  /// Sizes the per-node arrays to the grid (once, before the first step).
+  void allocate(std::size_t node_count);
+};
+
+/// Fills area, surface_area and normal of the nodes the outline touches: for each edge, the
+/// integral of N_i (times r in axisymmetric mode) along the edge, by two-point Gauss on each piece
+/// of the edge within one cell (exact: the integrand is at most cubic along a piece). The areas of
+/// an edge sum to its length (times its mean radius), so a uniform traction gets its exact
+/// resultant; a node at a corner gets the area-weighted mean normal of its edges.
+void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair);
+
+/// Normal and surface of a node the outline gives no area (a structure node off its outline):
+/// those of the nearest edge.
+std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
+                                          int& surface);
+
+} // namespace mpile

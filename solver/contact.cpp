@@ -1,0 +1,306 @@
+// Contact between the soil and the structures (physics.md section 5) and the rigid bodies' DOFs
+// (section 6). Reads and writes the velocities of field 0 and of the structure fields at nodes
+// that both occupy; writes each pair's per-node forces and per-surface sums, and the rigid
+// bodies' state. Every node is corrected independently, so the nodal loop runs in parallel; the
+// sums use a deterministic reduction, so results do not depend on the thread count.
+#include "solver/contact_passes.hpp"
+
+#include "engine/parallel.hpp"
+
+#include <cmath>
+
+namespace mpile::passes {
+
+namespace {
+
+constexpr std::size_t max_surfaces = 8;
+
+/// Mean size of the cells on either side of a node along one axis.
+double node_spacing(const GradedAxis& axis, int i) {
+  if (i == 0) {
+    return axis.cell_size(0);
+  }
+  if (i == axis.cell_count()) {
+    return axis.cell_size(i - 1);
+  }
+  return 0.5 * (axis.cell_size(i - 1) + axis.cell_size(i));
+}
+
+/// Sets a rigid body's field to the rigid motion of DOF velocities u; the FLIP increment is the
+/// change from the velocities u_before.
+void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double, 3>& u,
+                     const std::array<double, 3>& u_before, double mass_floor,
+                     bool record_increment) {
+  std::vector<GridNode>& nodes = grid.field_nodes(body.field);
+  parallel_for(nodes.size(), [&](std::size_t i) {
+    GridNode& node = nodes[i];
+    if (node.mass <= mass_floor) {
+      return;
+    }
+    const double r = grid.node_r(static_cast<int>(i));
+    const double y = grid.node_y(static_cast<int>(i));
+    const auto v = body.velocity_at(u, r, y);
+    if (record_increment) {
+      const auto v_before = body.velocity_at(u_before, r, y);
+      for (std::size_t d = 0; d < 3; ++d) {
+        node.force[d] = v[d] - v_before[d];
+      }
+    }
+    for (std::size_t d = 0; d < 3; ++d) {
+      node.momentum[d] = v[d];
+    }
+  });
+}
+
+struct SurfaceSums {
+  std::array<double, 4 * max_surfaces> surface{}; // (F_r, F_y, F_theta, torque) per surface
+  std::array<double, 3> body{};                   // rigid DOF reactions: (F_r, F_y, moment)
+};
+
+template <GeometryMode mode>
+void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& settings,
+                  const StepParameters& step, bool record) {
+  constexpr int dofs = has_theta(mode) ? 3 : 2;
+  Grid& grid = scene.grid;
+  std::vector<GridNode>& soil = grid.nodes;
+  std::vector<GridNode>& structure = grid.field_nodes(pair.field);
+  const std::vector<std::array<double, 2>>& gradient =
+      grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].mass_gradient;
+  const bool rigid = pair.rigid_body >= 0;
+  const double beta = settings.mass_scaling;
+  const double adhesion_impulse = pair.adhesion * step.dt / beta;
+
+  parallel_for(soil.size(), [&](std::size_t i) {
+    GridNode& s = soil[i];
+    GridNode& k = structure[i];
+    if (record) {
+      pair.node_force[i] = {0.0, 0.0, 0.0};
+    }
+    if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
+      return;
+    }
+    // The structure's outward normal (into the soil) and the node's contact area.
+    std::array<double, 2> n{0.0, 0.0};
+    double area = 0.0;
+    if (pair.outline) {
+      if (pair.area[i] > 0.0) {
+        n = pair.normal[i];
+        area = pair.area[i];
+      } else {
+        int surface = 0;
+        n = nearest_edge_normal(*pair.outline, grid.node_r(static_cast<int>(i)),
+                                grid.node_y(static_cast<int>(i)), surface);
+      }
+    } else {
+      const double g = std::hypot(gradient[i][0], gradient[i][1]);
+      if (g == 0.0) {
+        return;
+      }
+      n = {-gradient[i][0] / g, -gradient[i][1] / g};
+      const int ir = static_cast<int>(i) % grid.nodes_r();
+      const int iy = static_cast<int>(i) / grid.nodes_r();
+      // A straight surface through the node with this normal, across its share of the cells.
+      area = std::abs(n[1]) * node_spacing(grid.r_axis(), ir) +
+             std::abs(n[0]) * node_spacing(grid.y_axis(), iy);
+      if constexpr (mode == GeometryMode::axisymmetric) {
+        area *= grid.node_r(static_cast<int>(i));
+      }
+      if (record) {
+        pair.area[i] = area;
+        pair.normal[i] = n;
+      }
+    }
+    // Velocity the soil is measured against: the rigid motion, or the centre of mass.
+    double reference[3] = {0.0, 0.0, 0.0};
+    for (int d = 0; d < dofs; ++d) {
+      reference[d] = rigid ? k.momentum[d]
+                           : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
+    }
+    double relative[3] = {0.0, 0.0, 0.0};
+    for (int d = 0; d < dofs; ++d) {
+      relative[d] = s.momentum[d] - reference[d];
+    }
+    const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
+    if (normal_velocity > 0.0) {
+      return; // separating: no tension, and no tangential force either
+    }
+    double tangential[3] = {relative[0] - normal_velocity * n[0],
+                            relative[1] - normal_velocity * n[1], relative[2]};
+    const double slip = std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
+                                  tangential[2] * tangential[2]);
+    // Coulomb friction on the normal impulse plus adhesion over the node's area, as velocities.
+    const double limit = pair.friction * (-normal_velocity) + adhesion_impulse * area / s.mass;
+    double change[3] = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
+    const double keep = slip > limit ? 1.0 - limit / slip : 0.0;
+    for (int d = 0; d < 3; ++d) {
+      change[d] -= (1.0 - keep) * tangential[d];
+    }
+    for (int d = 0; d < dofs; ++d) {
+      s.momentum[d] += change[d];
+      if (record) {
+        s.force[d] += change[d]; // the contact force is part of the FLIP increment
+      }
+    }
+    if (!rigid) {
+      const double ratio = s.mass / k.mass;
+      for (int d = 0; d < dofs; ++d) {
+        k.momentum[d] -= ratio * change[d];
+        if (record) {
+          k.force[d] -= ratio * change[d];
+        }
+      }
+    }
+    if (record) {
+      const double impulse_to_force = beta * s.mass / step.dt;
+      pair.node_force[i] = {-impulse_to_force * change[0], -impulse_to_force * change[1],
+                            -impulse_to_force * change[2]};
+    }
+  });
+  if (!record) {
+    return;
+  }
+
+  // Sums per surface (a node's force split by its area shares) and on the rigid DOFs.
+  const std::size_t surfaces = pair.surface_count();
+  const RigidBody* body =
+      rigid ? &scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)] : nullptr;
+  const SurfaceSums sums = parallel_reduce(
+      soil.size(), SurfaceSums{},
+      [&](std::size_t begin, std::size_t end, SurfaceSums sum) {
+        for (std::size_t i = begin; i != end; ++i) {
+          const auto& f = pair.node_force[i];
+          if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) {
+            continue;
+          }
+          const double r = grid.node_r(static_cast<int>(i));
+          const double y = grid.node_y(static_cast<int>(i));
+          const double torque = r * f[2];
+          auto add = [&](std::size_t surface, double share) {
+            for (std::size_t d = 0; d < 3; ++d) {
+              sum.surface[4 * surface + d] += share * f[d];
+            }
+            sum.surface[4 * surface + 3] += share * torque;
+          };
+          if (!pair.outline) {
+            add(0, 1.0);
+          } else if (pair.area[i] > 0.0) {
+            for (std::size_t q = 0; q < surfaces; ++q) {
+              const double share = pair.surface_area[i * surfaces + q] / pair.area[i];
+              if (share != 0.0) {
+                add(q, share);
+              }
+            }
+          } else {
+            int surface = 0;
+            nearest_edge_normal(*pair.outline, r, y, surface);
+            add(static_cast<std::size_t>(surface), 1.0);
+          }
+          if (body != nullptr) {
+            sum.body[0] += f[0];
+            sum.body[1] += f[1];
+            sum.body[2] += body->moment_of(f, r, y);
+          }
+        }
+        return sum;
+      },
+      [](SurfaceSums a, const SurfaceSums& b) {
+        for (std::size_t q = 0; q < a.surface.size(); ++q) {
+          a.surface[q] += b.surface[q];
+        }
+        for (std::size_t d = 0; d < 3; ++d) {
+          a.body[d] += b.body[d];
+        }
+        return a;
+      },
+      true, 2048);
+  for (std::size_t q = 0; q < surfaces; ++q) {
+    pair.surface_force[q] = {sums.surface[4 * q], sums.surface[4 * q + 1], sums.surface[4 * q + 2]};
+    pair.surface_torque[q] = sums.surface[4 * q + 3];
+  }
+  if (rigid) {
+    scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)].contact = sums.body;
+  }
+}
+
+} // namespace
+
+void prepare_contact(Scene& scene) {
+  for (ContactPair& pair : scene.contacts) {
+    if (pair.surface_count() > max_surfaces) {
+      throw std::invalid_argument("contact with " + pair.name + ": more than " +
+                                  std::to_string(max_surfaces) + " surfaces");
+    }
+    pair.allocate(scene.grid.node_count());
+    if (!pair.outline) {
+      auto& field = scene.grid.structure_fields[static_cast<std::size_t>(pair.field - 1)];
+      field.mass_gradient.assign(scene.grid.node_count(), {0.0, 0.0});
+    }
+  }
+}
+
+std::vector<std::array<double, 3>>
+predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step) {
+  std::vector<std::array<double, 3>> predicted;
+  for (const RigidBody& body : scene.rigid_bodies) {
+    predicted.push_back(body.predict(step.time, step.dt, settings.gravity, settings.mass_scaling));
+    set_rigid_field(scene.grid, body, predicted.back(), body.velocity, step.mass_floor, true);
+  }
+  return predicted;
+}
+
+template <GeometryMode mode>
+void resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                     bool record) {
+  if (record) {
+    for (ContactPair& pair : scene.contacts) {
+      if (pair.outline) {
+        integrate_outline(scene.grid, mode, pair);
+      }
+    }
+  }
+  for (ContactPair& pair : scene.contacts) {
+    resolve_pair<mode>(scene, pair, settings, step, record);
+  }
+}
+
+void finish_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                         const std::vector<std::array<double, 3>>& predicted) {
+  for (std::size_t b = 0; b < scene.rigid_bodies.size(); ++b) {
+    RigidBody& body = scene.rigid_bodies[b];
+    const std::array<double, 3> before = body.velocity;
+    body.finish_step(predicted[b], step.time, step.dt, settings.gravity, settings.mass_scaling);
+    set_rigid_field(scene.grid, body, body.velocity, before, step.mass_floor, true);
+  }
+}
+
+void reset_rigid_fields(Scene& scene, const StepParameters& step) {
+  for (const RigidBody& body : scene.rigid_bodies) {
+    set_rigid_field(scene.grid, body, body.velocity, body.velocity, step.mass_floor, false);
+  }
+}
+
+void move_rigid_bodies(Scene& scene, const StepParameters& step) {
+  for (ContactPair& pair : scene.contacts) {
+    if (pair.rigid_body < 0) {
+      continue;
+    }
+    RigidBody& body = scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)];
+    if (pair.outline) {
+      if (body.mode == GeometryMode::plane_strain) {
+        pair.outline->rotate(body.velocity[RIGID_ROTATION] * step.dt, body.centre[0],
+                             body.centre[1]);
+        pair.outline->translate(body.velocity[RIGID_X] * step.dt, body.velocity[RIGID_Y] * step.dt);
+      } else {
+        pair.outline->translate(0.0, body.velocity[RIGID_Y] * step.dt);
+      }
+    }
+    body.move_centre(step.dt);
+  }
+}
+
+template void resolve_contact<GeometryMode::axisymmetric>(Scene&, const SolverSettings&,
+                                                          const StepParameters&, bool);
+template void resolve_contact<GeometryMode::plane_strain>(Scene&, const SolverSettings&,
+                                                          const StepParameters&, bool);
+
+} // namespace mpile::passes

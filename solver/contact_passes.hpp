@@ -1,0 +1,39 @@
+#pragma once
+
+// The contact and rigid-body passes of a step (physics.md sections 5 and 6), used only by scenes
+// with contact. Order within a step: predict_rigid_bodies, resolve_contact (recording),
+// finish_rigid_bodies; after the MUSL remap: reset_rigid_fields, resolve_contact (not recording);
+// after the particles moved: move_rigid_bodies.
+
+#include "solver/passes.hpp"
+
+#include <array>
+#include <vector>
+
+namespace mpile::passes {
+
+/// Sizes the contact arrays (and the mass gradients of structures without an outline).
+void prepare_contact(Scene& scene);
+
+/// DOF velocities of every rigid body at the end of the step before contact; sets their fields.
+std::vector<std::array<double, 3>>
+predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step);
+
+/// The Bardenhagen correction at every node both the soil and a structure occupy. With record,
+/// also the FLIP increments, the per-node and per-surface forces and the rigid-body reactions
+/// (and the outlines' nodal areas are refreshed first).
+template <GeometryMode mode>
+void resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                     bool record);
+
+/// Force-driven DOFs take the contact reactions; fields are set to the final rigid motion.
+void finish_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                         const std::vector<std::array<double, 3>>& predicted);
+
+/// Rigid fields back to the rigid motion after the momentum remap.
+void reset_rigid_fields(Scene& scene, const StepParameters& step);
+
+/// Rigid bodies' centres and outlines follow their motion over the step.
+void move_rigid_bodies(Scene& scene, const StepParameters& step);
+
+} // namespace mpile::passes
