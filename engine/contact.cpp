@@ -94,8 +94,8 @@ void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair) {
     const double dr = b[0] - a[0];
     const double dy = b[1] - a[1];
     const double length = std::hypot(dr, dy);
-    if (length == 0.0) {
-      continue;
+    if (length == 0.0 || outline.edge_surface[e] < 0) {
+      continue; // a degenerate edge, or one that is not a contact surface
     }
     const std::array<double, 2> n{dy / length, -dr / length};
     const auto surface = static_cast<std::size_t>(outline.edge_surface[e]);
@@ -161,7 +161,7 @@ std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, doubl
     const double dr = b[0] - a[0];
     const double dy = b[1] - a[1];
     const double length2 = dr * dr + dy * dy;
-    if (length2 == 0.0) {
+    if (length2 == 0.0 || outline.edge_surface[e] < 0) {
       continue;
     }
     const double s = std::clamp(((r - a[0]) * dr + (y - a[1]) * dy) / length2, 0.0, 1.0);

@@ -12,8 +12,10 @@
 namespace mpile {
 
 /// The known shape of a structure in the r-y plane: a closed polygon, counter-clockwise, whose
-/// edge k (vertex k to vertex k + 1) belongs to surface edge_surface[k]. The outward normal of an
-/// edge with direction (dr, dy) is (dy, -dr) / length. A rigid body's outline moves with it.
+/// edge k (vertex k to vertex k + 1) belongs to surface edge_surface[k], or to none (-1: an edge
+/// the soil never touches, such as a pile head above the ground, which then gives no area). The
+/// outward normal of an edge with direction (dr, dy) is (dy, -dr) / length. A rigid body's outline
+/// moves with it.
 struct StructureOutline {
   std::vector<std::array<double, 2>> vertices;
   std::vector<int> edge_surface;

@@ -2,6 +2,7 @@
 
 #include "io/case_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mpile {
@@ -76,6 +77,47 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     }
   }
 
+  for (const ContactSpec& contact : spec.contacts) {
+    std::uint16_t b = 0;
+    while (scene->body_names[b] != contact.structure) {
+      ++b;
+    }
+    const BodySpec& body = spec.bodies[b];
+    ContactPair& pair = scene->add_contact_structure(b);
+    pair.friction = contact.friction;
+    pair.adhesion = contact.adhesion;
+    if (contact.outline) {
+      // Edges that share a name form one surface.
+      int edge_surface[4];
+      for (std::size_t e = 0; e < 4; ++e) {
+        if (contact.surfaces[e].empty()) {
+          edge_surface[e] = -1;
+          continue;
+        }
+        const auto found =
+            std::find(pair.surfaces.begin(), pair.surfaces.end(), contact.surfaces[e]);
+        edge_surface[e] = static_cast<int>(found - pair.surfaces.begin());
+        if (found == pair.surfaces.end()) {
+          pair.surfaces.push_back(contact.surfaces[e]);
+        }
+      }
+      pair.outline = StructureOutline::rectangle(
+          body.region.r_min, body.region.r_max, body.region.y_min, body.region.y_max,
+          edge_surface[0], edge_surface[1], edge_surface[2], edge_surface[3]);
+    } else {
+      pair.surfaces = {contact.surfaces[0]};
+    }
+    if (body.rigid) {
+      double body_density = 0.0;
+      for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+        if (spec.materials[m].name == body.material) {
+          body_density = scene->materials[m]->density();
+        }
+      }
+      scene->make_rigid(b, body_density, body.rigid->mass, body.rigid->inertia);
+    }
+  }
+
   Boundaries& boundaries = scene->boundaries;
   const GridFace faces[] = {GridFace::r_min, GridFace::r_max, GridFace::y_min, GridFace::y_max};
   for (std::size_t f = 0; f < 4; ++f) {
@@ -98,6 +140,13 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
       }
     }
     c.theta_is_rotation = motion.theta_is_rotation;
+    if (!motion.body.empty()) {
+      for (std::uint16_t b = 0; b < scene->body_names.size(); ++b) {
+        if (scene->body_names[b] == motion.body) {
+          c.field = scene->field_of(b);
+        }
+      }
+    }
     boundaries.constraints.push_back(std::move(c));
   }
   for (const LoadSpec& load : spec.loads) {
@@ -123,6 +172,32 @@ void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t p
         if (motion.velocity[d] && (starts == phase_index || phase_index == 0)) {
           c.velocity[d] =
               motion.velocity[d]->starting_at(starts == phase_index ? start_time : never);
+        }
+      }
+    }
+  }
+  for (const BodySpec& body : spec.bodies) {
+    if (!body.rigid) {
+      continue;
+    }
+    const std::size_t starts = phase_of(spec, body.rigid->phase);
+    if (starts != phase_index && phase_index != 0) {
+      continue;
+    }
+    const bool active = starts == phase_index;
+    for (RigidBody& rigid : scene.rigid_bodies) {
+      if (rigid.name != body.name) {
+        continue;
+      }
+      for (std::size_t d = 0; d < 3; ++d) {
+        const auto& drive = body.rigid->drive[d];
+        if (!active) {
+          // Held at rest until the drives' phase starts.
+          rigid.drive[d] = RigidDrive{RigidDrive::Kind::velocity, TimeFunction::constant(0.0)};
+        } else if (drive) {
+          rigid.drive[d] = RigidDrive{drive->kind, drive->function.starting_at(start_time)};
+        } else {
+          rigid.drive[d] = RigidDrive{RigidDrive::Kind::force, TimeFunction::constant(0.0)};
         }
       }
     }

@@ -211,7 +211,11 @@ void read_materials(TomlTable& top, CaseSpec& spec) {
   }
 }
 
-void read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes) {
+/// Reads the bodies; returns the [bodies.rigid] tables (by body index), read once the phases are
+/// known.
+std::vector<std::pair<std::size_t, TomlTable>> read_bodies(TomlTable& top, CaseSpec& spec,
+                                                           const Axes& axes) {
+  std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
   std::set<std::string> names;
   for (TomlTable& table : top.tables("bodies")) {
     BodySpec body;
@@ -275,12 +279,16 @@ void read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes) {
         table.fail("velocity", "plane strain has no theta velocity");
       }
     }
+    if (std::optional<TomlTable> rigid = table.optional_table("rigid")) {
+      rigid_tables.emplace_back(spec.bodies.size(), std::move(*rigid));
+    }
     table.finish();
     spec.bodies.push_back(std::move(body));
   }
   if (spec.bodies.empty()) {
     top.fail("bodies", "missing (required): at least one [[bodies]] table");
   }
+  return rigid_tables;
 }
 
 std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
@@ -292,6 +300,115 @@ std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
     table.fail("phase", "no phase named '" + phase + "' in [[phases]]");
   }
   return phase;
+}
+
+void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec) {
+  RigidSpec rigid;
+  const bool plane = spec.mode == GeometryMode::plane_strain;
+  if (table.has("mass")) {
+    rigid.mass = table.positive("mass");
+  }
+  const char* inertia_key = plane ? "inertia" : "polar_inertia";
+  if (table.has(inertia_key)) {
+    rigid.inertia = table.positive(inertia_key);
+  }
+  // Velocity and force keys per DOF (RigidDof order).
+  const char* velocity_keys[] = {"velocity_r", "velocity_y", "angular_velocity"};
+  const char* force_keys[] = {"force_r", "force_y", "torque"};
+  for (std::size_t d = 0; d < 3; ++d) {
+    const bool velocity = table.has(velocity_keys[d]);
+    const bool force = table.has(force_keys[d]);
+    if (velocity && force) {
+      table.fail(force_keys[d], std::string("give either ") + velocity_keys[d] + " or " +
+                                    force_keys[d] + ", not both");
+    }
+    if (d == RIGID_X && !plane && (velocity || force)) {
+      table.fail(velocity ? velocity_keys[d] : force_keys[d],
+                 "an axisymmetric rigid body has no radial motion (zero by symmetry)");
+    }
+    if (velocity || force) {
+      RigidDrive drive;
+      drive.kind = velocity ? RigidDrive::Kind::velocity : RigidDrive::Kind::force;
+      drive.function = read_time_function(table, velocity ? velocity_keys[d] : force_keys[d]);
+      rigid.drive[d] = drive;
+    }
+  }
+  rigid.phase = read_phase_reference(table, spec);
+  table.finish();
+  body.rigid = rigid;
+}
+
+void read_contacts(TomlTable& top, CaseSpec& spec) {
+  for (TomlTable& table : top.tables("contact")) {
+    ContactSpec contact;
+    contact.structure = table.string("structure");
+    const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
+                                   [&](const BodySpec& b) { return b.name == contact.structure; });
+    if (body == spec.bodies.end()) {
+      table.fail("structure", "no body named '" + contact.structure + "' in [[bodies]]");
+    }
+    for (const ContactSpec& other : spec.contacts) {
+      if (other.structure == contact.structure) {
+        table.fail("structure", "'" + contact.structure + "' already has a [[contact]] entry");
+      }
+    }
+    contact.friction = table.number_or("friction", 0.0);
+    if (!(contact.friction >= 0.0)) {
+      table.fail("friction",
+                 "must be >= 0 (mu = tan delta), got " + format_number(contact.friction));
+    }
+    contact.adhesion = table.number_or("adhesion", 0.0);
+    if (!(contact.adhesion >= 0.0)) {
+      table.fail("adhesion", "must be >= 0 (Pa), got " + format_number(contact.adhesion));
+    }
+    const std::string normals = table.string_or("normals", "outline");
+    if (normals != "outline" && normals != "mass_gradient") {
+      table.fail("normals", "must be \"outline\" or \"mass_gradient\", got \"" + normals + "\"");
+    }
+    contact.outline = normals == "outline";
+    if (std::optional<TomlTable> surfaces = table.optional_table("surfaces")) {
+      if (!contact.outline) {
+        surfaces->fail("bottom", "mass-gradient normals have one surface: use the key surface");
+      }
+      // Given a table, edges it does not name are not contact surfaces.
+      const char* edges[] = {"bottom", "right", "top", "left"};
+      for (std::size_t e = 0; e < 4; ++e) {
+        contact.surfaces[e] = surfaces->string_or(edges[e], "");
+        if (surfaces->has(edges[e]) && contact.surfaces[e].empty()) {
+          surfaces->fail(edges[e], "a surface name must not be empty (leave the edge out instead)");
+        }
+      }
+      surfaces->finish();
+      if (std::all_of(contact.surfaces.begin(), contact.surfaces.end(),
+                      [](const std::string& name) { return name.empty(); })) {
+        table.fail("surfaces", "names no edge: give at least one of bottom, right, top, left");
+      }
+    }
+    if (table.has("surface")) {
+      if (contact.outline) {
+        table.fail("surface", "an outline has four edges: name them in surfaces = { bottom = "
+                              "..., right = ..., top = ..., left = ... }");
+      }
+      contact.surfaces[0] = table.string("surface");
+    } else if (!contact.outline) {
+      contact.surfaces[0] = "interface";
+    }
+    table.finish();
+    spec.contacts.push_back(std::move(contact));
+  }
+  if (!spec.contacts.empty() && spec.contacts.size() == spec.bodies.size()) {
+    top.fail("contact", "every body is a contact structure: at least one body must be soil");
+  }
+  for (const BodySpec& body : spec.bodies) {
+    const bool structure =
+        std::any_of(spec.contacts.begin(), spec.contacts.end(),
+                    [&](const ContactSpec& c) { return c.structure == body.name; });
+    if (body.rigid && !structure) {
+      top.fail("bodies", "body '" + body.name +
+                             "' is rigid but has no [[contact]] entry: a rigid body acts on the "
+                             "soil only through contact");
+    }
+  }
 }
 
 void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
@@ -332,6 +449,22 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
                          "angular_velocity");
     }
     motion.phase = read_phase_reference(table, spec);
+    motion.body = table.string_or("body", "");
+    if (!motion.body.empty()) {
+      const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
+                                     [&](const BodySpec& b) { return b.name == motion.body; });
+      const bool structure =
+          std::any_of(spec.contacts.begin(), spec.contacts.end(),
+                      [&](const ContactSpec& c) { return c.structure == motion.body; });
+      if (body == spec.bodies.end() || !structure) {
+        table.fail("body",
+                   "'" + motion.body +
+                       "' is not a contact structure (only those have a field of their own)");
+      }
+      if (body->rigid) {
+        table.fail("body", "'" + motion.body + "' is rigid: drive it in its [bodies.rigid] table");
+      }
+    }
     table.finish();
     spec.motions.push_back(std::move(motion));
   }
@@ -542,7 +675,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
   }
 
   read_materials(top, spec);
-  read_bodies(top, spec, axes);
+  auto rigid_tables = read_bodies(top, spec, axes);
   if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
     const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
     for (std::size_t f = 0; f < 4; ++f) {
@@ -557,6 +690,10 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
   }
   read_solver(top, spec);
   read_phases(top, spec);
+  for (auto& [index, table] : rigid_tables) {
+    read_rigid_body(table, spec.bodies[index], spec);
+  }
+  read_contacts(top, spec);
   read_motions_and_loads(top, spec, axes);
   read_output(top, spec);
   top.finish();

@@ -8,6 +8,7 @@
 #include "engine/graded_axis.hpp"
 #include "engine/material_registry.hpp"
 #include "engine/particle_fill.hpp"
+#include "engine/rigid_body.hpp"
 #include "engine/time_function.hpp"
 #include "solver/solver_settings.hpp"
 
@@ -31,6 +32,15 @@ struct VelocityProfile {
   TimeFunction function; // evaluated at the position (m) instead of a time
 };
 
+/// A rigid body's mass, inertia and drives (physics.md section 6). A DOF without a drive is free;
+/// until the drives' phase starts every DOF is held at rest.
+struct RigidSpec {
+  double mass = 0.0;                              // 0: from the particles
+  double inertia = 0.0;                           // 0: from the particles
+  std::array<std::optional<RigidDrive>, 3> drive; // RigidDof order
+  std::string phase;
+};
+
 struct BodySpec {
   std::string name;
   std::string material;
@@ -38,6 +48,18 @@ struct BodySpec {
   int particles_per_direction = 2;
   std::array<double, 3> velocity{0.0, 0.0, 0.0};
   std::optional<VelocityProfile> velocity_profile;
+  std::optional<RigidSpec> rigid;
+};
+
+/// Contact between the soil (every body that is not a structure) and one structure body.
+struct ContactSpec {
+  std::string structure;
+  double friction = 0.0;
+  double adhesion = 0.0;
+  bool outline = true; // normals from the structure's region rectangle, else its mass gradient
+  /// Surface names of the outline's bottom, right, top and left edges (empty: not a contact
+  /// surface); with mass-gradient normals only the first is used.
+  std::array<std::string, 4> surfaces{"bottom", "right", "top", "left"};
 };
 
 /// Grid nodes on one grid line: r = at (all y within [from, to]) or y = at (r within [from, to]).
@@ -55,6 +77,7 @@ struct MotionSpec {
   std::array<std::optional<TimeFunction>, 3> velocity;
   bool theta_is_rotation = false;
   std::string phase; // starts with this phase (its time functions count from its start)
+  std::string body;  // a contact structure whose field it acts on; empty: the soil's field
 };
 
 /// A normal or tangential traction (Pa) on a grid line.
@@ -104,6 +127,7 @@ struct CaseSpec {
   std::vector<BodySpec> bodies;
   std::array<FaceCondition, 4> faces{FaceCondition::free, FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free};
+  std::vector<ContactSpec> contacts;
   std::vector<MotionSpec> motions;
   std::vector<LoadSpec> loads;
   SolverSettings solver;

@@ -63,6 +63,37 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
       series(base + "/M_theta", u.moment);
     }
   }
+  // Contact: the force of the soil on each surface of each structure, and the rigid DOFs.
+  const bool theta = has_theta(scene.mode);
+  for (const ContactPair& pair : scene.contacts) {
+    for (const std::string& surface : pair.surfaces) {
+      const std::string base =
+          "/reactions/" + dataset_name(pair.name) + "/" + dataset_name(surface);
+      series(base + "/F_r", u.force);
+      series(base + "/F_y", u.force);
+      if (theta) {
+        series(base + "/F_theta", u.force);
+        series(base + "/M_theta", u.moment);
+      }
+    }
+  }
+  for (const RigidBody& body : scene.rigid_bodies) {
+    const std::string base = "/bodies/" + dataset_name(body.name);
+    if (!theta) {
+      series(base + "/u_r", "m");
+      series(base + "/v_r", "m/s");
+      series(base + "/contact_F_r", u.force);
+      series(base + "/driving_F_r", u.force);
+    }
+    series(base + "/u_y", "m");
+    series(base + "/v_y", "m/s");
+    series(base + "/rotation", "rad");
+    series(base + "/angular_velocity", "rad/s");
+    series(base + "/contact_F_y", u.force);
+    series(base + "/contact_torque", u.moment);
+    series(base + "/driving_F_y", u.force);
+    series(base + "/driving_torque", u.moment);
+  }
   file_->flush();
 }
 
@@ -93,6 +124,36 @@ void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase) {
       series_.at(base + "/F_theta").append(c.reaction[2]);
       series_.at(base + "/M_theta").append(c.torque);
     }
+  }
+  const bool theta = has_theta(scene.mode);
+  for (const ContactPair& pair : scene.contacts) {
+    for (std::size_t q = 0; q < pair.surfaces.size(); ++q) {
+      const std::string base =
+          "/reactions/" + dataset_name(pair.name) + "/" + dataset_name(pair.surfaces[q]);
+      series_.at(base + "/F_r").append(pair.surface_force[q][0]);
+      series_.at(base + "/F_y").append(pair.surface_force[q][1]);
+      if (theta) {
+        series_.at(base + "/F_theta").append(pair.surface_force[q][2]);
+        series_.at(base + "/M_theta").append(pair.surface_torque[q]);
+      }
+    }
+  }
+  for (const RigidBody& body : scene.rigid_bodies) {
+    const std::string base = "/bodies/" + dataset_name(body.name);
+    if (!theta) {
+      series_.at(base + "/u_r").append(body.displacement[RIGID_X]);
+      series_.at(base + "/v_r").append(body.velocity[RIGID_X]);
+      series_.at(base + "/contact_F_r").append(body.contact[RIGID_X]);
+      series_.at(base + "/driving_F_r").append(body.driving[RIGID_X]);
+    }
+    series_.at(base + "/u_y").append(body.displacement[RIGID_Y]);
+    series_.at(base + "/v_y").append(body.velocity[RIGID_Y]);
+    series_.at(base + "/rotation").append(body.displacement[RIGID_ROTATION]);
+    series_.at(base + "/angular_velocity").append(body.velocity[RIGID_ROTATION]);
+    series_.at(base + "/contact_F_y").append(body.contact[RIGID_Y]);
+    series_.at(base + "/contact_torque").append(body.contact[RIGID_ROTATION]);
+    series_.at(base + "/driving_F_y").append(body.driving[RIGID_Y]);
+    series_.at(base + "/driving_torque").append(body.driving[RIGID_ROTATION]);
   }
   ++rows_;
   flush_if_due();
