@@ -106,9 +106,14 @@ void Boundaries::mark_constrained_dofs(Grid& grid) const {
     std::fill(mask.begin(), mask.end(), std::uint8_t{0});
   }
   for (const NodeConstraint& c : constraints) {
-    std::vector<std::uint8_t>& mask = grid.field_constrained(c.field);
-    for (const int node : c.nodes) {
-      mask[static_cast<std::size_t>(node)] |= c.dofs;
+    for (int f = 0; f < grid.field_count(); ++f) {
+      if (c.field != NodeConstraint::all_fields && c.field != f) {
+        continue;
+      }
+      std::vector<std::uint8_t>& mask = grid.field_constrained(f);
+      for (const int node : c.nodes) {
+        mask[static_cast<std::size_t>(node)] |= c.dofs;
+      }
     }
   }
 }

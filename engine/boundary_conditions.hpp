@@ -21,9 +21,11 @@ struct NodeConstraint {
   std::uint8_t dofs = 0; // DofBit mask
   std::array<std::optional<TimeFunction>, 3> velocity;
   bool theta_is_rotation = false;
-  /// The velocity field the constraint acts on: 0 for the soil (and every body without a field of
-  /// its own), k for the k-th contact structure.
-  int field = 0;
+  /// The velocity field the constraint acts on: every field (all_fields: a support holds whatever
+  /// body reaches it), 0 for the soil only, k for the k-th contact structure only. Rigid bodies'
+  /// fields follow their DOFs and are never constrained.
+  static constexpr int all_fields = -1;
+  int field = all_fields;
 
   /// Reaction of the last step: the force the support exerts on the material, summed over the node
   /// set (N, or N/rad in axisymmetric mode), and its torque about the axis (N m/rad).

@@ -34,11 +34,30 @@ void StructureOutline::rotate(double angle, double r, double y) {
   }
 }
 
+double StructureOutline::signed_distance(double r, double y) const {
+  const std::size_t edges = vertices.size();
+  double distance = -std::numeric_limits<double>::infinity();
+  for (std::size_t e = 0; e < edges; ++e) {
+    const auto& a = vertices[e];
+    const auto& b = vertices[(e + 1) % edges];
+    const double dr = b[0] - a[0];
+    const double dy = b[1] - a[1];
+    const double length = std::hypot(dr, dy);
+    if (length > 0.0) {
+      distance = std::max(distance, ((r - a[0]) * dy - (y - a[1]) * dr) / length);
+    }
+  }
+  return distance;
+}
+
 void ContactPair::allocate(std::size_t node_count) {
   area.assign(node_count, 0.0);
   surface_area.assign(node_count * surfaces.size(), 0.0);
   normal.assign(node_count, {0.0, 0.0});
   node_force.assign(node_count, {0.0, 0.0, 0.0});
+  state.assign(node_count, 0);
+  contact_normal.assign(node_count, {0.0, 0.0});
+  gap.assign(outline ? node_count : 0, 0.0);
   surface_force.assign(surfaces.size(), {0.0, 0.0, 0.0});
   surface_torque.assign(surfaces.size(), 0.0);
   outlined_nodes.clear();

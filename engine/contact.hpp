@@ -25,6 +25,9 @@ struct StructureOutline {
   static StructureOutline rectangle(double r0, double r1, double y0, double y1, int bottom,
                                     int right, int top, int left);
   void translate(double dr, double dy);
+  /// Signed distance of a point from the outline, positive outside: the largest distance from an
+  /// edge's line (exact along the edges of a convex outline, an underestimate beyond its corners).
+  double signed_distance(double r, double y) const;
   /// Rotates about (r, y) by angle (rad, counter-clockwise).
   void rotate(double angle, double r, double y);
 };
@@ -50,7 +53,19 @@ struct ContactPair {
   std::vector<double> surface_area;
   std::vector<std::array<double, 2>> normal;
   std::vector<std::array<double, 3>> node_force;
+  // Per node, from the contact pass after the momentum balance: 0 not in contact, 1 sliding, 2
+  // sticking, and the normal used. After the MUSL remap the same nodes get the same kind of
+  // correction again, without a new approach test, so that the strain increment sees the motion the
+  // particles made (as at a support); deciding contact anew there would let the strain see an
+  // opening or a slip the positions never made, and feed energy into the soil.
+  std::vector<std::uint8_t> state;
+  std::vector<std::array<double, 2>> contact_normal;
   std::vector<int> outlined_nodes; // nodes the outline gave an area, cleared before the next step
+  /// Per node, with an outline: the smallest gap between the outline and the domain of a soil
+  /// particle in the node's cells (distance minus half the particle's size; <= 0: touching).
+  /// Contact needs it: a node both bodies occupy may still have a gap smaller than a cell between
+  /// them, which the nodal test alone would never let close.
+  std::vector<double> gap;
 
   // Sums of the last step per surface: (F_r, F_y, F_theta) and the torque about the axis.
   std::vector<std::array<double, 3>> surface_force;

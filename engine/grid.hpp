@@ -31,7 +31,8 @@ enum DofBit : std::uint8_t { DOF_R = 1, DOF_Y = 2, DOF_THETA = 4 };
 struct NodeField {
   std::vector<GridNode> nodes;
   std::vector<std::uint8_t> constrained;
-  /// Gradient of the nodal mass (sum m_p grad N_i), only for a structure whose contact normals
+  /// sum m_p grad N_i(x_p) per node (it points out of the body at its surface), only for a
+  /// structure whose contact normals
   /// come from it; empty otherwise.
   std::vector<std::array<double, 2>> mass_gradient;
 };

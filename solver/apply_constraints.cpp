@@ -32,10 +32,24 @@ void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_
 } // namespace
 
 double apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                         bool record_reactions) {
+                         bool record_reactions, ConstraintFields fields) {
   Grid& grid = scene.grid;
   double work = 0.0;
   const double inertia_per_dt = settings.mass_scaling / step.dt;
+  // The fields this call constrains: the soil's, the deformable structures', or both.
+  std::vector<int> field_list;
+  if (fields != ConstraintFields::structures) {
+    field_list.push_back(0);
+  }
+  if (fields != ConstraintFields::soil) {
+    for (const ContactPair& pair : scene.contacts) {
+      if (pair.rigid_body < 0) {
+        field_list.push_back(pair.field);
+      }
+    }
+  }
+  // Reactions are summed over the fields; the first call of a step starts them from zero.
+  const bool reset_reactions = record_reactions && fields != ConstraintFields::soil;
   for (NodeConstraint& c : scene.boundaries.constraints) {
     if (c.dofs == 0) {
       continue;
@@ -53,38 +67,43 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
         prescribed_change[d] = prescribed[d] - f->mean(step.time - step.dt, step.time);
       }
     }
-    if (record_reactions) {
+    if (reset_reactions) {
       c.reaction = {0.0, 0.0, 0.0};
       c.torque = 0.0;
     }
-    std::vector<GridNode>& nodes = grid.field_nodes(c.field);
-    for (const int index : c.nodes) {
-      GridNode& node = nodes[static_cast<std::size_t>(index)];
-      if (node.mass <= step.mass_floor) {
+    for (const int field : field_list) {
+      if (c.field != NodeConstraint::all_fields && c.field != field) {
         continue;
       }
-      const double r = grid.node_r(index);
-      for (int d = 0; d < 3; ++d) {
-        if ((c.dofs & (1u << d)) == 0) {
+      std::vector<GridNode>& nodes = grid.field_nodes(field);
+      for (const int index : c.nodes) {
+        GridNode& node = nodes[static_cast<std::size_t>(index)];
+        if (node.mass <= step.mass_floor) {
           continue;
         }
-        const double scale = (d == 2 && c.theta_is_rotation) ? r : 1.0;
-        const double target = prescribed[d] * scale;
-        const double change = target - node.momentum[d];
-        if (record_reactions) {
-          node.force[d] = prescribed_change[d] * scale;
-          const double reaction = node.mass * change * inertia_per_dt;
-          c.reaction[static_cast<std::size_t>(d)] += reaction;
-          work += reaction * target * step.dt;
-          if (d == 2) {
-            c.torque += r * reaction;
+        const double r = grid.node_r(index);
+        for (int d = 0; d < 3; ++d) {
+          if ((c.dofs & (1u << d)) == 0) {
+            continue;
           }
+          const double scale = (d == 2 && c.theta_is_rotation) ? r : 1.0;
+          const double target = prescribed[d] * scale;
+          const double change = target - node.momentum[d];
+          if (record_reactions) {
+            node.force[d] = prescribed_change[d] * scale;
+            const double reaction = node.mass * change * inertia_per_dt;
+            c.reaction[static_cast<std::size_t>(d)] += reaction;
+            work += reaction * target * step.dt;
+            if (d == 2) {
+              c.torque += r * reaction;
+            }
+          }
+          node.momentum[d] = target;
         }
-        node.momentum[d] = target;
       }
     }
   }
-  if (scene.velocity_field) {
+  if (scene.velocity_field && fields != ConstraintFields::structures) {
     apply_velocity_field(scene, step, record_reactions);
   }
   return work;

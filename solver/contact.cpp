@@ -14,6 +14,9 @@ namespace mpile::passes {
 namespace {
 
 constexpr std::size_t max_surfaces = 8;
+constexpr std::uint8_t contact_free = 0;
+constexpr std::uint8_t contact_slide = 1;
+constexpr std::uint8_t contact_stick = 2;
 
 /// Mean size of the cells on either side of a node along one axis.
 double node_spacing(const GradedAxis& axis, int i) {
@@ -67,15 +70,52 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
   const std::vector<std::array<double, 2>>& gradient =
       grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].mass_gradient;
   const bool rigid = pair.rigid_body >= 0;
+  // A constrained DOF of a deformable structure moves as prescribed: for contact it is rigid.
+  const std::vector<std::uint8_t>& held = grid.field_constrained(pair.field);
   const double beta = settings.mass_scaling;
   const double adhesion_impulse = pair.adhesion * step.dt / beta;
 
+  if (!record) {
+    // After the remap: the nodes in contact in this step keep their kind of contact.
+    parallel_for(soil.size(), [&](std::size_t i) {
+      if (pair.state[i] == contact_free) {
+        return;
+      }
+      GridNode& s = soil[i];
+      GridNode& k = structure[i];
+      double change[3] = {0.0, 0.0, 0.0};
+      const auto n = pair.contact_normal[i];
+      double relative[3] = {0.0, 0.0, 0.0};
+      for (int d = 0; d < dofs; ++d) {
+        const double reference =
+            rigid || (held[i] & (1u << d)) != 0
+                ? k.momentum[d]
+                : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
+        relative[d] = s.momentum[d] - reference;
+      }
+      if (pair.state[i] == contact_stick) {
+        for (int d = 0; d < dofs; ++d) {
+          change[d] = -relative[d];
+        }
+      } else {
+        const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
+        change[0] = -normal_velocity * n[0];
+        change[1] = -normal_velocity * n[1];
+      }
+      for (int d = 0; d < dofs; ++d) {
+        s.momentum[d] += change[d];
+        if (!rigid && (held[i] & (1u << d)) == 0) {
+          k.momentum[d] -= s.mass / k.mass * change[d];
+        }
+      }
+    });
+    return;
+  }
   parallel_for(soil.size(), [&](std::size_t i) {
     GridNode& s = soil[i];
     GridNode& k = structure[i];
-    if (record) {
-      pair.node_force[i] = {0.0, 0.0, 0.0};
-    }
+    pair.node_force[i] = {0.0, 0.0, 0.0};
+    pair.state[i] = contact_free;
     if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
       return;
     }
@@ -96,7 +136,8 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
       if (g == 0.0) {
         return;
       }
-      n = {-gradient[i][0] / g, -gradient[i][1] / g};
+      // sum_p m_p grad N_i(x_p) points from the particles towards the node: outward at a surface.
+      n = {gradient[i][0] / g, gradient[i][1] / g};
       const int ir = static_cast<int>(i) % grid.nodes_r();
       const int iy = static_cast<int>(i) / grid.nodes_r();
       // A straight surface through the node with this normal, across its share of the cells.
@@ -113,8 +154,9 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
     // Velocity the soil is measured against: the rigid motion, or the centre of mass.
     double reference[3] = {0.0, 0.0, 0.0};
     for (int d = 0; d < dofs; ++d) {
-      reference[d] = rigid ? k.momentum[d]
-                           : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
+      reference[d] = rigid || (held[i] & (1u << d)) != 0
+                         ? k.momentum[d]
+                         : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
     }
     double relative[3] = {0.0, 0.0, 0.0};
     for (int d = 0; d < dofs; ++d) {
@@ -137,28 +179,23 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
     }
     for (int d = 0; d < dofs; ++d) {
       s.momentum[d] += change[d];
-      if (record) {
-        s.force[d] += change[d]; // the contact force is part of the FLIP increment
-      }
+      s.force[d] += change[d]; // the contact force is part of the FLIP increment
     }
     if (!rigid) {
       const double ratio = s.mass / k.mass;
       for (int d = 0; d < dofs; ++d) {
-        k.momentum[d] -= ratio * change[d];
-        if (record) {
+        if ((held[i] & (1u << d)) == 0) {
+          k.momentum[d] -= ratio * change[d];
           k.force[d] -= ratio * change[d];
         }
       }
     }
-    if (record) {
-      const double impulse_to_force = beta * s.mass / step.dt;
-      pair.node_force[i] = {-impulse_to_force * change[0], -impulse_to_force * change[1],
-                            -impulse_to_force * change[2]};
-    }
+    const double impulse_to_force = beta * s.mass / step.dt;
+    pair.node_force[i] = {-impulse_to_force * change[0], -impulse_to_force * change[1],
+                          -impulse_to_force * change[2]};
+    pair.state[i] = keep == 0.0 ? contact_stick : contact_slide;
+    pair.contact_normal[i] = n;
   });
-  if (!record) {
-    return;
-  }
 
   // Sums per surface (a node's force split by its area shares) and on the rigid DOFs.
   const std::size_t surfaces = pair.surface_count();

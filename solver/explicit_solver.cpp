@@ -240,15 +240,19 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
     passes::apply_nodal_loads(scene_, step);
     passes::update_grid_velocities<mode>(scene_, settings_, step);
   }
+  const auto soil_constraints =
+      contact ? passes::ConstraintFields::soil : passes::ConstraintFields::all;
   if constexpr (contact) {
     PassTimer timer(timings_.contact);
+    external_work_ += passes::apply_constraints(scene_, settings_, step, true,
+                                                passes::ConstraintFields::structures);
     const auto predicted = passes::predict_rigid_bodies(scene_, settings_, step);
     passes::resolve_contact<mode>(scene_, settings_, step, true);
     passes::finish_rigid_bodies(scene_, settings_, step, predicted);
   }
   {
     PassTimer timer(timings_.grid_update);
-    external_work_ += passes::apply_constraints(scene_, settings_, step, true);
+    external_work_ += passes::apply_constraints(scene_, settings_, step, true, soil_constraints);
     if (!scene_.boundaries.loads.empty()) {
       external_work_ += passes::nodal_load_work(scene_, step);
     }
@@ -261,10 +265,12 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
     PassTimer timer(timings_.momentum_remap);
     passes::remap_momentum<mode, contact>(scene_, bins_, step);
     if constexpr (contact) {
+      passes::apply_constraints(scene_, settings_, step, false,
+                                passes::ConstraintFields::structures);
       passes::reset_rigid_fields(scene_, step);
       passes::resolve_contact<mode>(scene_, settings_, step, false);
     }
-    passes::apply_constraints(scene_, settings_, step, false);
+    passes::apply_constraints(scene_, settings_, step, false, soil_constraints);
   }
   passes::StressPassResult result;
   {

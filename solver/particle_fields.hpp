@@ -22,6 +22,7 @@ public:
   }
 
   GridNode* nodes(std::uint16_t body) const { return nodes_[field_of_body_[body]]; }
+  bool is_soil(std::uint16_t body) const { return field_of_body_[body] == 0; }
   /// The mass-gradient array of the body's field, or nullptr when the field keeps none.
   std::array<double, 2>* mass_gradient(std::uint16_t body) const {
     return gradient_[field_of_body_[body]];

@@ -5,7 +5,11 @@
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
+#include <vector>
 
 namespace mpile::passes {
 
@@ -20,6 +24,21 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
       parallel_for(field.mass_gradient.size(), [&](std::size_t i) {
         field.mass_gradient[i] = {0.0, 0.0};
       });
+    }
+  }
+  // Gaps between the soil and each structure outline, as the smallest over the soil particles
+  // of a node's cells (ContactPair::gap).
+  struct OutlineGap {
+    const StructureOutline* outline;
+    double* gap;
+  };
+  std::vector<OutlineGap> gaps;
+  if constexpr (contact) {
+    for (ContactPair& pair : scene.contacts) {
+      if (pair.outline) {
+        std::fill(pair.gap.begin(), pair.gap.end(), std::numeric_limits<double>::infinity());
+        gaps.push_back({&*pair.outline, pair.gap.data()});
+      }
     }
   }
   [[maybe_unused]] const auto fields =
@@ -69,6 +88,19 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         }
       }
       if constexpr (contact) {
+        if (fields->is_soil(p.body[i])) {
+          // Half the particle's size (a square domain of its area in the r-y plane), widened by
+          // 1 % so that a particle whose domain ends on the outline counts as touching it.
+          const double area = has_theta(mode) ? omega / p.r[i] : omega;
+          const double half_size = 0.505 * std::sqrt(area);
+          for (const OutlineGap& g : gaps) {
+            const double gap = g.outline->signed_distance(p.r[i], p.y[i]) - half_size;
+            for (int k = 0; k < 4; ++k) {
+              double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
+              node_gap = std::min(node_gap, gap);
+            }
+          }
+        }
         if (std::array<double, 2>* gradient = fields->mass_gradient(p.body[i])) {
           for (int k = 0; k < 4; ++k) {
             auto& g = gradient[static_cast<std::size_t>(w.node[k])];

@@ -30,11 +30,16 @@ template <GeometryMode mode>
 void update_grid_velocities(Scene& scene, const SolverSettings& settings,
                             const StepParameters& step);
 
+/// Which constraints a call applies: with contact, those on structure fields come before the
+/// contact correction (which then sees the structure's prescribed velocity), those on the soil
+/// after it.
+enum class ConstraintFields { all, soil, structures };
+
 /// Sets constrained DOFs to their prescribed velocities. With record_reactions, also the velocity
 /// increment and the reaction of each constraint (after the momentum balance) and returns the work
 /// the reactions do over the step; without, only the velocities (after the MUSL remap).
 double apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                         bool record_reactions);
+                         bool record_reactions, ConstraintFields fields = ConstraintFields::all);
 
 /// Work of the nodal loads over the step, from the updated nodal velocities.
 double nodal_load_work(const Scene& scene, const StepParameters& step);
