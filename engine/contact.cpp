@@ -58,8 +58,9 @@ void ContactPair::allocate(std::size_t node_count) {
   state.assign(node_count, 0);
   contact_normal.assign(node_count, {0.0, 0.0});
   gap.assign(outline ? node_count : 0, 0.0);
-  surface_force.assign(surfaces.size(), {0.0, 0.0, 0.0});
-  surface_torque.assign(surfaces.size(), 0.0);
+  // Sums of the last step survive (a restart restores them before the solver sizes the rest).
+  surface_force.resize(surfaces.size(), {0.0, 0.0, 0.0});
+  surface_torque.resize(surfaces.size(), 0.0);
   outlined_nodes.clear();
 }
 

@@ -9,7 +9,31 @@ namespace mpile {
 
 namespace {
 
-constexpr const char* format_version = "mpile checkpoint 1";
+constexpr const char* format_version = "mpile checkpoint 2";
+
+/// A rigid body's state as one row: velocity, displacement, centre, contact, driving, work.
+std::vector<double> rigid_state(const RigidBody& b) {
+  std::vector<double> row;
+  for (const auto* part : {&b.velocity, &b.displacement, &b.contact, &b.driving}) {
+    row.insert(row.end(), part->begin(), part->end());
+  }
+  row.insert(row.end(), b.centre.begin(), b.centre.end());
+  row.push_back(b.external_work);
+  return row;
+}
+
+void restore_rigid_state(RigidBody& b, const std::vector<double>& row) {
+  std::size_t k = 0;
+  for (auto* part : {&b.velocity, &b.displacement, &b.contact, &b.driving}) {
+    for (double& value : *part) {
+      value = row.at(k++);
+    }
+  }
+  for (double& value : b.centre) {
+    value = row.at(k++);
+  }
+  b.external_work = row.at(k);
+}
 
 // Every per-particle double array, by name; the order is the file's layout.
 template <class P> auto double_fields(P& p) {
@@ -45,6 +69,27 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
         "/grid/y_nodes",
         std::vector<double>(scene.grid.y_axis().nodes().begin(), scene.grid.y_axis().nodes().end()),
         "m");
+    for (std::size_t k = 0; k < scene.rigid_bodies.size(); ++k) {
+      file.write("/rigid_bodies/" + std::to_string(k), rigid_state(scene.rigid_bodies[k]),
+                 "velocity (3), displacement (3), contact (3), driving (3), centre (2), work");
+    }
+    for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
+      const ContactPair& pair = scene.contacts[k];
+      const std::string base = "/contacts/" + std::to_string(k);
+      std::vector<double> forces;
+      for (std::size_t q = 0; q < pair.surfaces.size(); ++q) {
+        forces.insert(forces.end(), pair.surface_force[q].begin(), pair.surface_force[q].end());
+        forces.push_back(pair.surface_torque[q]);
+      }
+      file.write(base + "/surface_forces", forces, "F_r, F_y, F_theta, M_theta per surface");
+      if (pair.outline) {
+        std::vector<double> vertices;
+        for (const auto& v : pair.outline->vertices) {
+          vertices.insert(vertices.end(), v.begin(), v.end());
+        }
+        file.write(base + "/outline", vertices, "m");
+      }
+    }
     file.write("/solver/state",
                std::vector<double>{solver.time, static_cast<double>(solver.steps), solver.stable_dt,
                                    solver.last_dt, solver.external_work},
@@ -109,6 +154,28 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
   p.cell_r = file.read_int32("/particles/cell_r");
   p.cell_y = file.read_int32("/particles/cell_y");
   scene.grid.set_y_nodes(file.read_doubles("/grid/y_nodes"));
+
+  for (std::size_t k = 0; k < scene.rigid_bodies.size(); ++k) {
+    restore_rigid_state(scene.rigid_bodies[k],
+                        file.read_doubles("/rigid_bodies/" + std::to_string(k)));
+  }
+  for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
+    ContactPair& pair = scene.contacts[k];
+    const std::string base = "/contacts/" + std::to_string(k);
+    const auto forces = file.read_doubles(base + "/surface_forces");
+    pair.surface_force.resize(pair.surfaces.size());
+    pair.surface_torque.resize(pair.surfaces.size());
+    for (std::size_t q = 0; q < pair.surfaces.size(); ++q) {
+      pair.surface_force[q] = {forces.at(4 * q), forces.at(4 * q + 1), forces.at(4 * q + 2)};
+      pair.surface_torque[q] = forces.at(4 * q + 3);
+    }
+    if (pair.outline) {
+      const auto vertices = file.read_doubles(base + "/outline");
+      for (std::size_t v = 0; v < pair.outline->vertices.size(); ++v) {
+        pair.outline->vertices[v] = {vertices.at(2 * v), vertices.at(2 * v + 1)};
+      }
+    }
+  }
 
   Checkpoint checkpoint;
   const auto s = file.read_doubles("/solver/state");
