@@ -45,7 +45,20 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
       count += body == b ? 1 : 0;
     }
     out << "  " << scene->body_names[b] << ": " << count << " (material " << spec.bodies[b].material
-        << ")\n";
+        << (spec.bodies[b].rigid ? ", rigid" : "") << ")\n";
+  }
+  for (const ContactPair& pair : scene->contacts) {
+    out << "contact: soil with " << pair.name << " (mu " << pair.friction << ", adhesion "
+        << pair.adhesion << " Pa, " << (pair.outline ? "outline" : "mass-gradient")
+        << " normals), surfaces:";
+    for (const std::string& surface : pair.surfaces) {
+      out << " " << surface;
+    }
+    out << "\n";
+  }
+  for (const RigidBody& body : scene->rigid_bodies) {
+    out << "rigid body " << body.name << ": mass " << body.mass << ", inertia " << body.inertia
+        << (scene->mode == GeometryMode::axisymmetric ? " (per radian)" : " (per metre)") << "\n";
   }
   out << "boundary conditions: " << scene->boundaries.constraints.size()
       << " node sets, loads: " << scene->boundaries.loads.size() << "\n";

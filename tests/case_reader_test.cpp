@@ -186,21 +186,104 @@ std::vector<BadInput> bad_inputs() {
   };
 }
 
-TEST(CaseReader, TheValidCaseReads) {
-  const CaseSpec spec = read_case_text(valid_case, "case.toml");
-  EXPECT_EQ(spec.title, "reader test");
-  ASSERT_EQ(spec.bodies.size(), 1u);
-  EXPECT_EQ(spec.bodies[0].particles_per_direction, 2);
-  EXPECT_DOUBLE_EQ(spec.solver.gravity[1], -9.81);
-  EXPECT_DOUBLE_EQ(spec.phases.at(0).local_damping, 0.7);
-  ASSERT_EQ(spec.motions.size(), 1u);
-  EXPECT_TRUE(spec.motions[0].velocity[1].has_value());
-  EXPECT_FALSE(spec.motions[0].velocity[0].has_value());
+// A soil block and a rigid pile in contact, for the contact and rigid-body keys.
+const std::string contact_case = R"(title = "contact reader test"
+
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 10 }]
+y = [{ start = 0.0, end = 1.0, cells = 10 }]
+
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 1e7
+poisson_ratio = 0.3
+density = 1800.0
+
+[[bodies]]
+name = "soil"
+material = "soil"
+region = { r = [0.0, 0.4], y = [0.0, 1.0] }
+
+[[bodies]]
+name = "pile"
+material = "soil"
+region = { r = [0.4, 0.6], y = [0.5, 1.0] }
+
+[bodies.rigid]
+mass = 650.0
+angular_velocity = { type = "harmonic", amplitude = 0.1, frequency = 60.0 }
+force_y = -8000.0
+phase = "drive"
+
+[[contact]]
+structure = "pile"
+friction = 0.4
+adhesion = 0.0
+surfaces = { bottom = "tip", left = "inner_shaft", right = "outer_shaft" }
+
+[[phases]]
+name = "settle"
+duration = 0.1
+
+[[phases]]
+name = "drive"
+duration = 0.1
+)";
+
+std::string contact_edited(const std::string& from, const std::string& to) {
+  std::string text = contact_case;
+  const auto at = text.find(from);
+  if (at == std::string::npos) {
+    throw std::logic_error("test edit does not apply: " + from);
+  }
+  return text.replace(at, from.size(), to);
 }
 
-TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
-  const auto table = bad_inputs();
-  ASSERT_GE(table.size(), 25u);
+std::vector<BadInput> bad_contact_inputs() {
+  return {
+      {"contact with an unknown body",
+       contact_edited("structure = \"pile\"", "structure = \"pipe\""),
+       "contact[0].structure: no body named 'pipe'", "structure = "},
+      {"negative friction", contact_edited("friction = 0.4", "friction = -0.4"),
+       "contact[0].friction: must be >= 0", "friction = "},
+      {"negative adhesion", contact_edited("adhesion = 0.0", "adhesion = -5.0"),
+       "contact[0].adhesion: must be >= 0", "adhesion = "},
+      {"unknown normals",
+       contact_edited("adhesion = 0.0", "adhesion = 0.0\nnormals = \"geometric\""),
+       "contact[0].normals: must be \"outline\" or \"mass_gradient\"", "normals = "},
+      {"misspelt edge", contact_edited("bottom = \"tip\"", "botom = \"tip\""),
+       "contact[0].surfaces.botom: unknown key", "surfaces = "},
+      {"surface name with an outline",
+       contact_edited("adhesion = 0.0", "adhesion = 0.0\nsurface = \"all\""),
+       "contact[0].surface: an outline has four edges", "surface = \"all\""},
+      {"two contact entries for one structure",
+       contact_case + "\n[[contact]]\nstructure = \"pile\"\n", "already has a [[contact]] entry",
+       ""},
+      {"rigid body without contact",
+       contact_edited(
+           "[[contact]]\nstructure = \"pile\"\nfriction = 0.4\nadhesion = 0.0\n"
+           "surfaces = { bottom = \"tip\", left = \"inner_shaft\", right = \"outer_shaft\" }\n",
+           ""),
+       "body 'pile' is rigid but has no [[contact]] entry", ""},
+      {"both velocity and force on one DOF",
+       contact_edited("force_y = -8000.0", "force_y = -8000.0\nvelocity_y = -0.02"),
+       "bodies[1].rigid.force_y: give either velocity_y or force_y, not both", ""},
+      {"radial drive in axisymmetry", contact_edited("force_y = -8000.0", "force_r = 1.0"),
+       "bodies[1].rigid.force_r: an axisymmetric rigid body has no radial motion", "force_r"},
+      {"negative rigid mass", contact_edited("mass = 650.0", "mass = -650.0"),
+       "bodies[1].rigid.mass: must be positive", "mass = -650.0"},
+      {"drive phase unknown", contact_edited("phase = \"drive\"", "phase = \"install\""),
+       "bodies[1].rigid.phase: no phase named 'install'", "phase = \"install\""},
+      {"misspelt rigid key", contact_edited("mass = 650.0", "mas = 650.0"),
+       "bodies[1].rigid.mas: unknown key", "mas = 650.0"},
+      {"prescribed motion on a rigid body",
+       contact_case + "\n[[prescribed]]\nname = \"head\"\nbody = \"pile\"\nnodes = { y = 1.0 }\n"
+                      "velocity_y = -0.01\n",
+       "prescribed[0].body: 'pile' is rigid", "body = \"pile\"\nnodes"},
+  };
+}
+
+void expect_rejected(const std::vector<BadInput>& table) {
   for (const BadInput& bad : table) {
     std::string message = "no error";
     try {
@@ -218,6 +301,40 @@ TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
           << bad.what << ": expected line " << line << " in: " << message;
     }
   }
+}
+
+TEST(CaseReader, TheContactCaseReads) {
+  const CaseSpec spec = read_case_text(contact_case, "case.toml");
+  ASSERT_EQ(spec.contacts.size(), 1u);
+  EXPECT_DOUBLE_EQ(spec.contacts[0].friction, 0.4);
+  EXPECT_EQ(spec.contacts[0].surfaces[0], "tip");
+  EXPECT_EQ(spec.contacts[0].surfaces[2], ""); // the head is not a contact surface
+  ASSERT_TRUE(spec.bodies[1].rigid.has_value());
+  EXPECT_DOUBLE_EQ(spec.bodies[1].rigid->mass, 650.0);
+  EXPECT_EQ(spec.bodies[1].rigid->drive[RIGID_Y]->kind, RigidDrive::Kind::force);
+  EXPECT_EQ(spec.bodies[1].rigid->drive[RIGID_ROTATION]->kind, RigidDrive::Kind::velocity);
+}
+
+TEST(CaseReader, RejectsEachBadContactInputWithFileLineKeyAndReason) {
+  expect_rejected(bad_contact_inputs());
+}
+
+TEST(CaseReader, TheValidCaseReads) {
+  const CaseSpec spec = read_case_text(valid_case, "case.toml");
+  EXPECT_EQ(spec.title, "reader test");
+  ASSERT_EQ(spec.bodies.size(), 1u);
+  EXPECT_EQ(spec.bodies[0].particles_per_direction, 2);
+  EXPECT_DOUBLE_EQ(spec.solver.gravity[1], -9.81);
+  EXPECT_DOUBLE_EQ(spec.phases.at(0).local_damping, 0.7);
+  ASSERT_EQ(spec.motions.size(), 1u);
+  EXPECT_TRUE(spec.motions[0].velocity[1].has_value());
+  EXPECT_FALSE(spec.motions[0].velocity[0].has_value());
+}
+
+TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
+  const auto table = bad_inputs();
+  ASSERT_GE(table.size(), 25u);
+  expect_rejected(table);
 }
 
 TEST(CaseReader, RunExitsWithStatusTwoAndOneLineReasonOnBadInput) {
