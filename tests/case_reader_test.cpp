@@ -60,14 +60,17 @@ k0 = [{ body = "block", surface = 0.5, k0 = 0.5 }]
 snapshot_interval = 0.05
 )";
 
-/// Replaces the first occurrence of `from` (which must exist) by `to`.
-std::string edited(const std::string& from, const std::string& to) {
-  std::string text = valid_case;
+/// The text with the first occurrence of `from` (which must exist) replaced by `to`.
+std::string edited_text(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
   if (at == std::string::npos) {
     throw std::logic_error("test edit does not apply: " + from);
   }
   return text.replace(at, from.size(), to);
+}
+
+std::string edited(const std::string& from, const std::string& to) {
+  return edited_text(valid_case, from, to);
 }
 
 int line_of(const std::string& text, const std::string& needle) {
@@ -231,12 +234,7 @@ duration = 0.1
 )";
 
 std::string contact_edited(const std::string& from, const std::string& to) {
-  std::string text = contact_case;
-  const auto at = text.find(from);
-  if (at == std::string::npos) {
-    throw std::logic_error("test edit does not apply: " + from);
-  }
-  return text.replace(at, from.size(), to);
+  return edited_text(contact_case, from, to);
 }
 
 std::vector<BadInput> bad_contact_inputs() {
