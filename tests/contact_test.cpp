@@ -263,6 +263,12 @@ void expect_seed_torsion(const TorsionReactions& f, const std::string& label) {
 }
 
 TEST(V9TorsionWithAdhesion, RigidPileAtTheCaseFileResolution) {
+#if defined(__SANITIZE_THREAD__)
+  // 11 000 steps of 6 400 particles take over 5 minutes under ThreadSanitizer. That configuration
+  // looks for races, which the coarser V9 runs and the contact thread-identity tests exercise with
+  // the same code; the accuracy at this resolution is checked by the release and ASan builds.
+  GTEST_SKIP() << "accuracy check, run in the release and ASan configurations";
+#endif
   const std::string text = read_text(source / "cases/verification/v9_torsion_adhesion.toml");
   expect_seed_torsion(torsion_reactions(text), "V9, 40 x 40 cells");
 }
