@@ -34,20 +34,18 @@ void StructureOutline::rotate(double angle, double r, double y) {
   }
 }
 
-double StructureOutline::signed_distance(double r, double y) const {
-  const std::size_t edges = vertices.size();
-  double distance = -std::numeric_limits<double>::infinity();
+OutlineDistance::OutlineDistance(const StructureOutline& outline) {
+  const std::size_t edges = outline.vertices.size();
   for (std::size_t e = 0; e < edges; ++e) {
-    const auto& a = vertices[e];
-    const auto& b = vertices[(e + 1) % edges];
-    const double dr = b[0] - a[0];
-    const double dy = b[1] - a[1];
-    const double length = std::hypot(dr, dy);
+    const auto& a = outline.vertices[e];
+    const auto& b = outline.vertices[(e + 1) % edges];
+    const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
     if (length > 0.0) {
-      distance = std::max(distance, ((r - a[0]) * dy - (y - a[1]) * dr) / length);
+      const double n_r = (b[1] - a[1]) / length;
+      const double n_y = -(b[0] - a[0]) / length;
+      lines_.push_back({n_r, n_y, n_r * a[0] + n_y * a[1]});
     }
   }
-  return distance;
 }
 
 void ContactPair::allocate(std::size_t node_count) {

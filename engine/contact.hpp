@@ -3,8 +3,10 @@
 #include "engine/geometry_mode.hpp"
 #include "engine/grid.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,11 +27,26 @@ struct StructureOutline {
   static StructureOutline rectangle(double r0, double r1, double y0, double y1, int bottom,
                                     int right, int top, int left);
   void translate(double dr, double dy);
-  /// Signed distance of a point from the outline, positive outside: the largest distance from an
-  /// edge's line (exact along the edges of a convex outline, an underestimate beyond its corners).
-  double signed_distance(double r, double y) const;
   /// Rotates about (r, y) by angle (rad, counter-clockwise).
   void rotate(double angle, double r, double y);
+};
+
+/// Signed distance from an outline, positive outside: the largest distance from an edge's line
+/// (exact along the edges of a convex outline, an underestimate beyond its corners). The edge lines
+/// are formed once, so that the per-particle evaluation is a few multiply-adds.
+class OutlineDistance {
+public:
+  explicit OutlineDistance(const StructureOutline& outline);
+  double operator()(double r, double y) const {
+    double distance = -std::numeric_limits<double>::infinity();
+    for (const auto& [n_r, n_y, offset] : lines_) {
+      distance = std::max(distance, n_r * r + n_y * y - offset);
+    }
+    return distance;
+  }
+
+private:
+  std::vector<std::array<double, 3>> lines_; // outward unit normal and offset of each edge
 };
 
 /// Contact between the soil (field 0) and one structure with a field of its own (physics.md
@@ -46,9 +63,9 @@ struct ContactPair {
   std::vector<std::string> surfaces;
   std::optional<StructureOutline> outline;
 
-  // Per node: contact area (m^2, per radian in axisymmetric mode), its share on each surface
-  // (node * surfaces + surface), the structure's outward unit normal, and the force of the last
-  // step (N [/rad]).
+  // Per node, from the outline: contact area (m^2, per radian in axisymmetric mode), its share on
+  // each surface (node * surfaces + surface) and the structure's outward unit normal; and for every
+  // pair, the force of the last step (N [/rad]).
   std::vector<double> area;
   std::vector<double> surface_area;
   std::vector<std::array<double, 2>> normal;

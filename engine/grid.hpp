@@ -32,8 +32,7 @@ struct NodeField {
   std::vector<GridNode> nodes;
   std::vector<std::uint8_t> constrained;
   /// sum m_p grad N_i(x_p) per node (it points out of the body at its surface), only for a
-  /// structure whose contact normals
-  /// come from it; empty otherwise.
+  /// structure whose contact normals come from it; empty otherwise.
   std::vector<std::array<double, 2>> mass_gradient;
 };
 

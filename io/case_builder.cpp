@@ -29,6 +29,18 @@ std::vector<int> line_nodes(const Grid& grid, const NodeLineSpec& line) {
   return {};
 }
 
+/// Index of a body's material in the case (and in the scene, which adds them in the same order);
+/// the reader has checked that it exists.
+std::uint16_t material_of(const CaseSpec& spec, const BodySpec& body) {
+  std::uint16_t index = 0;
+  for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+    if (spec.materials[m].name == body.material) {
+      index = static_cast<std::uint16_t>(m);
+    }
+  }
+  return index;
+}
+
 std::size_t phase_of(const CaseSpec& spec, const std::string& name) {
   for (std::size_t p = 0; p < spec.phases.size(); ++p) {
     if (spec.phases[p].name == name) {
@@ -47,12 +59,7 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     scene->add_material(create_material(material.type, material.parameters));
   }
   for (const BodySpec& body : spec.bodies) {
-    std::uint16_t material = 0;
-    for (std::size_t m = 0; m < spec.materials.size(); ++m) {
-      if (spec.materials[m].name == body.material) {
-        material = static_cast<std::uint16_t>(m);
-      }
-    }
+    const std::uint16_t material = material_of(spec, body);
     const std::uint16_t index = scene->add_body(body.name);
     const std::size_t first = scene->particles.size();
     const std::size_t added =
@@ -108,13 +115,8 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
       pair.surfaces = {contact.surfaces[0]};
     }
     if (body.rigid) {
-      double body_density = 0.0;
-      for (std::size_t m = 0; m < spec.materials.size(); ++m) {
-        if (spec.materials[m].name == body.material) {
-          body_density = scene->materials[m]->density();
-        }
-      }
-      scene->make_rigid(b, body_density, body.rigid->mass, body.rigid->inertia);
+      const double density = scene->materials[material_of(spec, body)]->density();
+      scene->make_rigid(b, density, body.rigid->mass, body.rigid->inertia);
     }
   }
 
@@ -215,21 +217,13 @@ void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t p
 void apply_k0(Scene& scene, const CaseSpec& spec, const PhaseSpec& phase) {
   const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
   for (const K0Spec& k0 : phase.k0) {
-    for (std::size_t b = 0; b < scene.body_names.size(); ++b) {
-      if (scene.body_names[b] != k0.body) {
-        continue;
-      }
-      for (const BodySpec& body : spec.bodies) {
-        if (body.name != k0.body) {
-          continue;
-        }
-        for (std::size_t m = 0; m < spec.materials.size(); ++m) {
-          if (spec.materials[m].name == body.material) {
-            const double unit_weight = scene.materials[m]->density() * g;
-            initialise_geostatic_stress(scene, static_cast<std::uint16_t>(b), k0.surface,
-                                        unit_weight, k0.k0);
-          }
-        }
+    // Scene bodies are the case's bodies, in order.
+    for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
+      if (spec.bodies[b].name == k0.body) {
+        const double unit_weight =
+            scene.materials[material_of(spec, spec.bodies[b])]->density() * g;
+        initialise_geostatic_stress(scene, static_cast<std::uint16_t>(b), k0.surface, unit_weight,
+                                    k0.k0);
       }
     }
   }

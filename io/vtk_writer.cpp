@@ -39,11 +39,17 @@ vtkNew<vtkDoubleArray> vector_array(const char* name, vtkIdType count) {
   return array;
 }
 
-template <class Writer> void configure(Writer& writer, const std::string& path) {
+/// Writes a data set with an XML writer of its type: binary, zlib-compressed, appended data.
+template <class Writer, class Data> void write_xml(Data& data, const std::string& path) {
+  vtkNew<Writer> writer;
   writer->SetFileName(path.c_str());
   writer->SetDataModeToAppended();
   writer->EncodeAppendedDataOff(); // raw binary
   writer->SetCompressorTypeToZLib();
+  writer->SetInputData(data);
+  if (writer->Write() != 1) {
+    throw std::runtime_error("cannot write " + path);
+  }
 }
 
 } // namespace
@@ -113,12 +119,7 @@ void write_particles_vtu(const Scene& scene, const std::string& path) {
     }
   }
 
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  configure(writer, path);
-  writer->SetInputData(grid);
-  if (writer->Write() != 1) {
-    throw std::runtime_error("cannot write " + path);
-  }
+  write_xml<vtkXMLUnstructuredGridWriter>(grid, path);
 }
 
 namespace {
@@ -155,12 +156,7 @@ void write_grid_vtr(const Scene& scene, const std::string& path) {
   }
   grid->GetPointData()->AddArray(mass);
   grid->GetPointData()->AddArray(velocity);
-  vtkNew<vtkXMLRectilinearGridWriter> writer;
-  configure(writer, path);
-  writer->SetInputData(grid);
-  if (writer->Write() != 1) {
-    throw std::runtime_error("cannot write " + path);
-  }
+  write_xml<vtkXMLRectilinearGridWriter>(grid, path);
 }
 
 } // namespace

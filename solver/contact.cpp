@@ -75,6 +75,39 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
   const double beta = settings.mass_scaling;
   const double adhesion_impulse = pair.adhesion * step.dt / beta;
 
+  // The soil's velocity relative to what it is measured against at node i: the rigid motion or a
+  // constrained structure DOF (which moves as prescribed), otherwise the centre of mass.
+  auto relative_velocity = [&](std::size_t i, const GridNode& s, const GridNode& k) {
+    std::array<double, 3> relative{0.0, 0.0, 0.0};
+    for (int d = 0; d < dofs; ++d) {
+      const double reference =
+          rigid || (held[i] & (1u << d)) != 0
+              ? k.momentum[d]
+              : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
+      relative[static_cast<std::size_t>(d)] = s.momentum[d] - reference;
+    }
+    return relative;
+  };
+  // Applies a velocity change to the soil and the opposite impulse to a deformable structure's
+  // free DOFs; after the momentum balance it is also part of the FLIP increment.
+  auto apply = [&](std::size_t i, GridNode& s, GridNode& k, const std::array<double, 3>& change,
+                   bool increment) {
+    for (int d = 0; d < dofs; ++d) {
+      const double dv = change[static_cast<std::size_t>(d)];
+      s.momentum[d] += dv;
+      if (increment) {
+        s.force[d] += dv;
+      }
+      if (!rigid && (held[i] & (1u << d)) == 0) {
+        const double dk = s.mass / k.mass * dv;
+        k.momentum[d] -= dk;
+        if (increment) {
+          k.force[d] -= dk;
+        }
+      }
+    }
+  };
+
   if (!record) {
     // After the remap: the nodes in contact in this step keep their kind of contact.
     parallel_for(soil.size(), [&](std::size_t i) {
@@ -83,31 +116,14 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
       }
       GridNode& s = soil[i];
       GridNode& k = structure[i];
-      double change[3] = {0.0, 0.0, 0.0};
-      const auto n = pair.contact_normal[i];
-      double relative[3] = {0.0, 0.0, 0.0};
-      for (int d = 0; d < dofs; ++d) {
-        const double reference =
-            rigid || (held[i] & (1u << d)) != 0
-                ? k.momentum[d]
-                : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
-        relative[d] = s.momentum[d] - reference;
-      }
-      if (pair.state[i] == contact_stick) {
-        for (int d = 0; d < dofs; ++d) {
-          change[d] = -relative[d];
-        }
-      } else {
+      const auto relative = relative_velocity(i, s, k);
+      std::array<double, 3> change{-relative[0], -relative[1], -relative[2]};
+      if (pair.state[i] == contact_slide) {
+        const auto& n = pair.contact_normal[i];
         const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
-        change[0] = -normal_velocity * n[0];
-        change[1] = -normal_velocity * n[1];
+        change = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
       }
-      for (int d = 0; d < dofs; ++d) {
-        s.momentum[d] += change[d];
-        if (!rigid && (held[i] & (1u << d)) == 0) {
-          k.momentum[d] -= s.mass / k.mass * change[d];
-        }
-      }
+      apply(i, s, k, change, false);
     });
     return;
   }
@@ -123,6 +139,9 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
     std::array<double, 2> n{0.0, 0.0};
     double area = 0.0;
     if (pair.outline) {
+      if (pair.gap[i] > 0.0) {
+        return; // the soil near this node does not reach the structure yet
+      }
       if (pair.area[i] > 0.0) {
         n = pair.normal[i];
         area = pair.area[i];
@@ -146,50 +165,24 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
       if constexpr (mode == GeometryMode::axisymmetric) {
         area *= grid.node_r(static_cast<int>(i));
       }
-      if (record) {
-        pair.area[i] = area;
-        pair.normal[i] = n;
-      }
     }
-    // Velocity the soil is measured against: the rigid motion, or the centre of mass.
-    double reference[3] = {0.0, 0.0, 0.0};
-    for (int d = 0; d < dofs; ++d) {
-      reference[d] = rigid || (held[i] & (1u << d)) != 0
-                         ? k.momentum[d]
-                         : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
-    }
-    double relative[3] = {0.0, 0.0, 0.0};
-    for (int d = 0; d < dofs; ++d) {
-      relative[d] = s.momentum[d] - reference[d];
-    }
+    const auto relative = relative_velocity(i, s, k);
     const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
     if (normal_velocity > 0.0) {
       return; // separating: no tension, and no tangential force either
     }
-    double tangential[3] = {relative[0] - normal_velocity * n[0],
-                            relative[1] - normal_velocity * n[1], relative[2]};
+    const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
+                                           relative[1] - normal_velocity * n[1], relative[2]};
     const double slip = std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
                                   tangential[2] * tangential[2]);
     // Coulomb friction on the normal impulse plus adhesion over the node's area, as velocities.
     const double limit = pair.friction * (-normal_velocity) + adhesion_impulse * area / s.mass;
-    double change[3] = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
     const double keep = slip > limit ? 1.0 - limit / slip : 0.0;
-    for (int d = 0; d < 3; ++d) {
+    std::array<double, 3> change{-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
+    for (std::size_t d = 0; d < 3; ++d) {
       change[d] -= (1.0 - keep) * tangential[d];
     }
-    for (int d = 0; d < dofs; ++d) {
-      s.momentum[d] += change[d];
-      s.force[d] += change[d]; // the contact force is part of the FLIP increment
-    }
-    if (!rigid) {
-      const double ratio = s.mass / k.mass;
-      for (int d = 0; d < dofs; ++d) {
-        if ((held[i] & (1u << d)) == 0) {
-          k.momentum[d] -= ratio * change[d];
-          k.force[d] -= ratio * change[d];
-        }
-      }
-    }
+    apply(i, s, k, change, true);
     const double impulse_to_force = beta * s.mass / step.dt;
     pair.node_force[i] = {-impulse_to_force * change[0], -impulse_to_force * change[1],
                           -impulse_to_force * change[2]};
@@ -280,7 +273,8 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
   std::vector<std::array<double, 3>> predicted;
   for (const RigidBody& body : scene.rigid_bodies) {
     predicted.push_back(body.predict(step.time, step.dt, settings.gravity, settings.mass_scaling));
-    set_rigid_field(scene.grid, body, predicted.back(), body.velocity, step.mass_floor, true);
+    // The increment is set once the step's velocity is final (finish_rigid_bodies).
+    set_rigid_field(scene.grid, body, predicted.back(), body.velocity, step.mass_floor, false);
   }
   return predicted;
 }

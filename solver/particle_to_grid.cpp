@@ -29,7 +29,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
   // Gaps between the soil and each structure outline, as the smallest over the soil particles
   // of a node's cells (ContactPair::gap).
   struct OutlineGap {
-    const StructureOutline* outline;
+    OutlineDistance distance;
     double* gap;
   };
   std::vector<OutlineGap> gaps;
@@ -37,7 +37,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
     for (ContactPair& pair : scene.contacts) {
       if (pair.outline) {
         std::fill(pair.gap.begin(), pair.gap.end(), std::numeric_limits<double>::infinity());
-        gaps.push_back({&*pair.outline, pair.gap.data()});
+        gaps.push_back({OutlineDistance(*pair.outline), pair.gap.data()});
       }
     }
   }
@@ -94,7 +94,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
           const double area = has_theta(mode) ? omega / p.r[i] : omega;
           const double half_size = 0.505 * std::sqrt(area);
           for (const OutlineGap& g : gaps) {
-            const double gap = g.outline->signed_distance(p.r[i], p.y[i]) - half_size;
+            const double gap = g.distance(p.r[i], p.y[i]) - half_size;
             for (int k = 0; k < 4; ++k) {
               double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
               node_gap = std::min(node_gap, gap);

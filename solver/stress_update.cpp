@@ -181,11 +181,11 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       if (!std::isfinite(finite_check)) {
         out.first_nonfinite = std::min(out.first_nonfinite, static_cast<std::int64_t>(i));
       }
+      bool carries_gravity = true;
       if constexpr (contact) {
-        if (rigid_material[p.material[i]] == 0) {
-          out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
-        }
-      } else {
+        carries_gravity = rigid_material[p.material[i]] == 0;
+      }
+      if (carries_gravity) {
         out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
       }
       p.r[i] += p.du_r[i];

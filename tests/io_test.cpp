@@ -209,25 +209,31 @@ std::vector<std::string> particle_datasets() {
   return {"r", "y", "v_r", "v_y", "v_theta", "u_theta", "volume", "stress"};
 }
 
-TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
-  const auto directory = fresh_directory("restart");
-  const std::string path = write_case(directory);
+/// Runs a case whole (into directory/whole) and split (into directory/split: stopped after
+/// stop_after steps, then restarted from a copy of its checkpoint).
+void run_whole_and_split(const std::string& path, const std::filesystem::path& directory,
+                         long stop_after) {
   std::ostringstream out, err;
   RunOptions whole;
   whole.case_path = path;
   whole.output_directory = (directory / "whole").string();
   ASSERT_EQ(run_case(whole, out, err), exit_success) << err.str();
-
   RunOptions first = whole;
   first.output_directory = (directory / "split").string();
-  first.stop_after_steps = 137; // inside the settle phase, between checkpoints
+  first.stop_after_steps = stop_after;
   ASSERT_EQ(run_case(first, out, err), exit_interrupted) << err.str();
   RunOptions second = first;
   second.stop_after_steps = 0;
-  second.restart = (directory / "split" / "checkpoint.h5").string();
-  std::filesystem::copy_file(second.restart, directory / "interrupted.h5");
+  std::filesystem::copy_file(directory / "split" / "checkpoint.h5", directory / "interrupted.h5");
   second.restart = (directory / "interrupted.h5").string();
   ASSERT_EQ(run_case(second, out, err), exit_success) << err.str();
+}
+
+TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
+  const auto directory = fresh_directory("restart");
+  const std::string path = write_case(directory);
+  // Stopped inside the settle phase, between checkpoints.
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_split(path, directory, 137));
 
   Hdf5File a((directory / "whole" / "checkpoint.h5").string(), Hdf5File::Mode::read);
   Hdf5File b((directory / "split" / "checkpoint.h5").string(), Hdf5File::Mode::read);
@@ -244,7 +250,10 @@ TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
   EXPECT_EQ(hb.string_attribute("/", "status"), "complete");
 
   // The final checkpoint of a complete run has nothing left to continue.
-  RunOptions again = second;
+  std::ostringstream out, err;
+  RunOptions again;
+  again.case_path = path;
+  again.output_directory = (directory / "split").string();
   again.restart = (directory / "split" / "checkpoint.h5").string();
   EXPECT_EQ(run_case(again, out, err), exit_bad_input);
   EXPECT_NE(err.str().find("is complete; nothing to continue"), std::string::npos) << err.str();
@@ -276,20 +285,7 @@ TEST(RunCommand, RestartWithContactAndAFreeRigidBodyIsBitwiseIdentical) {
   const std::string path = (directory / "case.toml").string();
   std::ofstream(path) << c;
 
-  std::ostringstream out, err;
-  RunOptions whole;
-  whole.case_path = path;
-  whole.output_directory = (directory / "whole").string();
-  ASSERT_EQ(run_case(whole, out, err), exit_success) << err.str();
-  RunOptions first = whole;
-  first.output_directory = (directory / "split").string();
-  first.stop_after_steps = 101;
-  ASSERT_EQ(run_case(first, out, err), exit_interrupted) << err.str();
-  RunOptions second = first;
-  second.stop_after_steps = 0;
-  std::filesystem::copy_file(directory / "split" / "checkpoint.h5", directory / "interrupted.h5");
-  second.restart = (directory / "interrupted.h5").string();
-  ASSERT_EQ(run_case(second, out, err), exit_success) << err.str();
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_split(path, directory, 101));
 
   Hdf5File a((directory / "whole" / "checkpoint.h5").string(), Hdf5File::Mode::read);
   Hdf5File b((directory / "split" / "checkpoint.h5").string(), Hdf5File::Mode::read);

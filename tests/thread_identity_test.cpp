@@ -7,6 +7,7 @@
 #include "engine/particle_fill.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"
+#include "tests/bitwise.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -75,24 +76,11 @@ Outcome collapse(GeometryMode mode, int threads) {
   return outcome;
 }
 
-template <class T> bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
 void expect_identical(const Outcome& a, const Outcome& b) {
   EXPECT_EQ(std::memcmp(&a.time, &b.time, sizeof(double)), 0);
   EXPECT_EQ(std::memcmp(&a.kinetic, &b.kinetic, sizeof(double)), 0);
   EXPECT_EQ(std::memcmp(a.reaction.data(), b.reaction.data(), sizeof(a.reaction)), 0);
-  EXPECT_TRUE(bitwise_equal(a.particles.r, b.particles.r));
-  EXPECT_TRUE(bitwise_equal(a.particles.y, b.particles.y));
-  EXPECT_TRUE(bitwise_equal(a.particles.v_r, b.particles.v_r));
-  EXPECT_TRUE(bitwise_equal(a.particles.v_y, b.particles.v_y));
-  EXPECT_TRUE(bitwise_equal(a.particles.v_theta, b.particles.v_theta));
-  EXPECT_TRUE(bitwise_equal(a.particles.u_theta, b.particles.u_theta));
-  EXPECT_TRUE(bitwise_equal(a.particles.volume, b.particles.volume));
-  EXPECT_TRUE(bitwise_equal(a.particles.stress, b.particles.stress));
-  EXPECT_TRUE(bitwise_equal(a.particles.r0, b.particles.r0)); // same particle order
+  expect_particles_identical(a.particles, b.particles);
 }
 
 TEST(ThreadIdentity, AxisymmetricResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {

@@ -1,0 +1,32 @@
+#pragma once
+
+// Bitwise comparison of run results, for the thread-count identity tests.
+
+#include "engine/particles.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+namespace mpile {
+
+template <class T> bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+/// Positions, velocities, volumes, stresses and particle order, bit for bit.
+inline void expect_particles_identical(const Particles& a, const Particles& b) {
+  EXPECT_TRUE(bitwise_equal(a.r, b.r));
+  EXPECT_TRUE(bitwise_equal(a.y, b.y));
+  EXPECT_TRUE(bitwise_equal(a.v_r, b.v_r));
+  EXPECT_TRUE(bitwise_equal(a.v_y, b.v_y));
+  EXPECT_TRUE(bitwise_equal(a.v_theta, b.v_theta));
+  EXPECT_TRUE(bitwise_equal(a.u_theta, b.u_theta));
+  EXPECT_TRUE(bitwise_equal(a.volume, b.volume));
+  EXPECT_TRUE(bitwise_equal(a.stress, b.stress));
+  EXPECT_TRUE(bitwise_equal(a.r0, b.r0)); // same particle order
+}
+
+} // namespace mpile
