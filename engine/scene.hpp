@@ -5,11 +5,13 @@
 #include "engine/geometry_mode.hpp"
 #include "engine/grid.hpp"
 #include "engine/material.hpp"
+#include "engine/moving_mesh.hpp"
 #include "engine/particles.hpp"
 #include "engine/rigid_body.hpp"
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,8 @@ struct Scene {
   std::vector<std::uint8_t> field_of_body;
   std::vector<ContactPair> contacts;
   std::vector<RigidBody> rigid_bodies;
+  /// y-lines that follow a rigid body (physics.md section 7); none in a fixed-grid scene.
+  std::optional<MovingMesh> moving_mesh;
 
   bool has_contact() const { return !contacts.empty(); }
   int field_of(std::uint16_t body) const { return field_of_body.empty() ? 0 : field_of_body[body]; }

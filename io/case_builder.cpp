@@ -120,6 +120,30 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     }
   }
 
+  if (spec.moving_mesh) {
+    MovingMesh mesh;
+    for (std::size_t k = 0; k < scene->rigid_bodies.size(); ++k) {
+      if (scene->rigid_bodies[k].name == spec.moving_mesh->body) {
+        mesh.rigid_body = static_cast<int>(k);
+      }
+    }
+    const GradedAxis& y = scene->grid.y_axis();
+    mesh.reference_y.assign(y.nodes().begin(), y.nodes().end());
+    // The reader has checked that the band's ends are grid lines.
+    const auto nearest = [&](double at) {
+      int best = 0;
+      for (int i = 0; i < y.node_count(); ++i) {
+        if (std::abs(y.node(i) - at) < std::abs(y.node(best) - at)) {
+          best = i;
+        }
+      }
+      return best;
+    };
+    mesh.band_bottom = nearest(spec.moving_mesh->band_bottom);
+    mesh.band_top = nearest(spec.moving_mesh->band_top);
+    scene->moving_mesh = mesh;
+  }
+
   Boundaries& boundaries = scene->boundaries;
   const GridFace faces[] = {GridFace::r_min, GridFace::r_max, GridFace::y_min, GridFace::y_max};
   for (std::size_t f = 0; f < 4; ++f) {

@@ -1,6 +1,7 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
 #include "io/case_spec.hpp"
+#include "io/monopile_reader.hpp"
 #include "io/toml_reader.hpp"
 
 #include <algorithm>
@@ -302,13 +303,22 @@ std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
   return phase;
 }
 
+/// Reads a rigid body's drives (and mass and inertia unless a [monopile] table has derived them
+/// from the whole pile already).
 void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec) {
-  RigidSpec rigid;
+  RigidSpec rigid = body.rigid.value_or(RigidSpec{});
+  const bool derived = body.rigid.has_value();
   const bool plane = spec.mode == GeometryMode::plane_strain;
+  const char* inertia_key = plane ? "inertia" : "polar_inertia";
+  for (const char* key : {"mass", inertia_key}) {
+    if (derived && table.has(key)) {
+      table.fail(key, "the monopile's mass and polar inertia follow from pile_length, diameter, "
+                      "wall_thickness and the pile material's density; remove this key");
+    }
+  }
   if (table.has("mass")) {
     rigid.mass = table.positive("mass");
   }
-  const char* inertia_key = plane ? "inertia" : "polar_inertia";
   if (table.has(inertia_key)) {
     rigid.inertia = table.positive(inertia_key);
   }
@@ -411,6 +421,36 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
   }
 }
 
+void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes) {
+  std::optional<TomlTable> table = top.optional_table("moving_mesh");
+  if (!table) {
+    return;
+  }
+  MovingMeshSpec mesh;
+  mesh.body = table->string("body");
+  const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
+                                 [&](const BodySpec& b) { return b.name == mesh.body; });
+  if (body == spec.bodies.end() || !body->rigid) {
+    table->fail("body", "no rigid body named '" + mesh.body + "' (the band moves with one)");
+  }
+  if (spec.mode == GeometryMode::plane_strain) {
+    table->fail("body", "the moving mesh follows a body that only translates along y and spins "
+                        "about the axis: axisymmetric cases only");
+  }
+  const auto band = table->numbers("band", 2);
+  if (!(band[1] > band[0]) || !on_grid_line(axes.y, band[0]) || !on_grid_line(axes.y, band[1])) {
+    table->fail("band", "must be [y_bottom, y_top], both on y grid lines, y_top > y_bottom");
+  }
+  if (!(band[0] > axes.y.start()) || !(band[1] < axes.y.end())) {
+    table->fail("band", "must lie strictly inside the grid (the lines below and above it are "
+                        "squeezed and stretched)");
+  }
+  table->finish();
+  mesh.band_bottom = band[0];
+  mesh.band_top = band[1];
+  spec.moving_mesh = mesh;
+}
+
 void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   const bool theta = has_theta(spec.mode);
   std::set<std::string> names;
@@ -472,6 +512,10 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     LoadSpec load;
     load.name = unique_name(table);
     load.nodes = read_node_line(table, axes);
+    if (spec.moving_mesh && load.nodes.along_y) {
+      // Its nodal weights come from the y spacing, which the moving mesh changes.
+      table.fail("nodes", "a load along an r-line cannot be combined with a moving mesh");
+    }
     load.component = component_index(table, "component");
     if (load.component == 2 && !theta) {
       table.fail("component", "plane strain has no theta direction");
@@ -553,17 +597,42 @@ void read_phases(TomlTable& top, CaseSpec& spec) {
       }
     }
     for (TomlTable& k0 : table.tables("k0")) {
-      K0Spec init;
-      init.body = k0.string("body");
-      const bool known = std::any_of(spec.bodies.begin(), spec.bodies.end(),
-                                     [&](const BodySpec& b) { return b.name == init.body; });
-      if (!known) {
-        k0.fail("body", "no body named '" + init.body + "'");
+      // One body, or every body of one material (the monopile's three soil bodies).
+      const bool by_material = k0.has("material");
+      if (by_material == k0.has("body")) {
+        k0.fail("body", "give either body or material (every body of that material)");
       }
+      const std::string key = by_material ? "material" : "body";
+      const std::string name = k0.string(key);
+      K0Spec init;
       init.surface = k0.number("surface");
       init.k0 = k0.positive("k0");
       k0.finish();
-      phase.k0.push_back(init);
+      bool found = false;
+      for (const BodySpec& body : spec.bodies) {
+        if ((by_material ? body.material : body.name) == name) {
+          init.body = body.name;
+          phase.k0.push_back(init);
+          found = true;
+        }
+      }
+      if (!found) {
+        k0.fail(key,
+                "no body " + std::string(by_material ? "of material '" : "named '") + name + "'");
+      }
+    }
+    if (std::optional<TomlTable> stop = table.optional_table("stop_at")) {
+      PenetrationStop s;
+      s.body = stop->string("body");
+      const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
+                                     [&](const BodySpec& b) { return b.name == s.body; });
+      if (body == spec.bodies.end() || !body->rigid) {
+        stop->fail("body", "no rigid body named '" + s.body + "'");
+      }
+      s.penetration = stop->positive("penetration");
+      s.at_rest = stop->boolean_or("at_rest", false);
+      stop->finish();
+      phase.stop_at = s;
     }
     table.finish();
     spec.phases.push_back(std::move(phase));
@@ -596,6 +665,25 @@ void read_output(TomlTable& top, CaseSpec& spec) {
     out.checkpoint_interval = table->non_negative("checkpoint_interval");
   }
   out.grid_snapshots = table->boolean_or("grid_snapshots", false);
+  out.snapshot_penetrations = table->numbers_or("snapshot_penetrations", {});
+  if (!out.snapshot_penetrations.empty()) {
+    for (const double depth : out.snapshot_penetrations) {
+      if (!(depth > 0.0)) {
+        table->fail("snapshot_penetrations", "penetrations must be positive (m)");
+      }
+    }
+    std::sort(out.snapshot_penetrations.begin(), out.snapshot_penetrations.end());
+    std::vector<std::string> rigid;
+    for (const BodySpec& body : spec.bodies) {
+      if (body.rigid) {
+        rigid.push_back(body.name);
+      }
+    }
+    out.penetration_body = table->string_or("penetration_body", rigid.size() == 1 ? rigid[0] : "");
+    if (std::find(rigid.begin(), rigid.end(), out.penetration_body) == rigid.end()) {
+      table->fail("penetration_body", "must name the rigid body whose penetration counts");
+    }
+  }
   table->finish();
 }
 
@@ -664,18 +752,36 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     top.fail("geometry", "must be \"axisymmetric\" or \"plane_strain\", got \"" + geometry + "\"");
   }
 
-  TomlTable grid = top.table("grid");
-  spec.r_zones = read_zones(grid, "r");
-  spec.y_zones = read_zones(grid, "y");
-  grid.finish();
+  std::optional<TomlTable> monopile = top.optional_table("monopile");
+  std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
+  if (monopile) {
+    for (const char* key : {"grid", "bodies", "contact", "boundaries", "moving_mesh"}) {
+      if (top.has(key)) {
+        top.fail(key, "[monopile] builds the grid, bodies, contact, boundaries and moving mesh; "
+                      "remove this table");
+      }
+    }
+    read_materials(top, spec);
+    if (std::optional<TomlTable> drive = read_monopile(*monopile, spec)) {
+      rigid_tables.emplace_back(spec.bodies.size() - 1, std::move(*drive));
+    }
+  }
+  TomlTable grid = monopile ? *monopile : top.table("grid");
+  if (!monopile) {
+    spec.r_zones = read_zones(grid, "r");
+    spec.y_zones = read_zones(grid, "y");
+    grid.finish();
+  }
   const Axes axes{GradedAxis(spec.r_zones), GradedAxis(spec.y_zones)};
   if (spec.mode == GeometryMode::axisymmetric && axes.r.start() < 0.0) {
     grid.fail("r", "starts at r = " + format_number(axes.r.start()) +
                        " < 0; an axisymmetric grid starts at the axis or beyond it");
   }
 
-  read_materials(top, spec);
-  auto rigid_tables = read_bodies(top, spec, axes);
+  if (!monopile) {
+    read_materials(top, spec);
+    rigid_tables = read_bodies(top, spec, axes);
+  }
   if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
     const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
     for (std::size_t f = 0; f < 4; ++f) {
@@ -694,6 +800,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     read_rigid_body(table, spec.bodies[index], spec);
   }
   read_contacts(top, spec);
+  read_moving_mesh(top, spec, axes);
   read_motions_and_loads(top, spec, axes);
   read_output(top, spec);
   top.finish();

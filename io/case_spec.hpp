@@ -95,6 +95,14 @@ struct K0Spec {
   double k0 = 0.5;
 };
 
+/// Ends a phase once a rigid body has gone down by `penetration` (m, its total downward
+/// displacement), and, with at_rest, once it has also come to rest (before the next blow).
+struct PenetrationStop {
+  std::string body;
+  double penetration = 0.0;
+  bool at_rest = false;
+};
+
 struct PhaseSpec {
   std::string name;
   double duration = 0.0;
@@ -105,6 +113,7 @@ struct PhaseSpec {
   std::optional<double> mass_scaling;
   std::optional<double> courant_number;
   std::vector<K0Spec> k0;
+  std::optional<PenetrationStop> stop_at;
 };
 
 struct OutputSpec {
@@ -114,6 +123,16 @@ struct OutputSpec {
   double history_interval = 0.0;    // s; 0: every step
   double checkpoint_interval = 0.0; // s of simulated time; 0: only when stopped
   bool grid_snapshots = false;
+  /// Snapshots when a rigid body's downward displacement reaches these depths (m).
+  std::vector<double> snapshot_penetrations;
+  std::string penetration_body;
+};
+
+/// y-lines between band_bottom and band_top (grid lines) move with a rigid body.
+struct MovingMeshSpec {
+  std::string body;
+  double band_bottom = 0.0;
+  double band_top = 0.0;
 };
 
 struct CaseSpec {
@@ -130,6 +149,7 @@ struct CaseSpec {
   std::vector<ContactSpec> contacts;
   std::vector<MotionSpec> motions;
   std::vector<LoadSpec> loads;
+  std::optional<MovingMeshSpec> moving_mesh;
   SolverSettings solver;
   std::vector<PhaseSpec> phases;
   OutputSpec output;

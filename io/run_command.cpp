@@ -69,6 +69,23 @@ bool reached(double time, double target, double dt) {
   return time >= target - 1e-9 * dt;
 }
 
+const RigidBody& rigid_body_named(const Scene& scene, const std::string& name) {
+  for (const RigidBody& body : scene.rigid_bodies) {
+    if (body.name == name) {
+      return body;
+    }
+  }
+  throw std::logic_error("no rigid body named " + name);
+}
+
+/// A rigid body's penetration: its total downward displacement (m).
+double penetration_of(const Scene& scene, const std::string& name) {
+  return -rigid_body_named(scene, name).displacement[RIGID_Y];
+}
+
+/// Below this vertical speed (m/s) a pile counts as at rest between blows.
+constexpr double rest_speed = 1e-3;
+
 std::string format_time(double t) {
   std::ostringstream s;
   s << std::setprecision(6) << t;
@@ -147,6 +164,19 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   const double never = std::numeric_limits<double>::infinity();
   std::vector<double> listed = output.snapshot_times;
   std::sort(listed.begin(), listed.end());
+  const std::vector<double>& depths = output.snapshot_penetrations;
+  // The next listed penetration follows from the state, so a restarted run needs no bookkeeping.
+  std::size_t next_depth = 0;
+  auto skip_reached_depths = [&] {
+    bool passed = false;
+    while (next_depth < depths.size() &&
+           penetration_of(*scene, output.penetration_body) >= depths[next_depth]) {
+      ++next_depth;
+      passed = true;
+    }
+    return passed;
+  };
+  skip_reached_depths();
   const std::string checkpoint_path = directory + "/checkpoint.h5";
   try {
     HistoryWriter history(directory + "/history.h5", spec, *scene, options.threads,
@@ -211,6 +241,9 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             snapshot_due = true;
             ++progress.next_listed_snapshot;
           }
+          if (!depths.empty() && skip_reached_depths()) {
+            snapshot_due = true;
+          }
           if (snapshot_due) {
             snapshots.write(*scene, t);
           }
@@ -236,6 +269,18 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
                 ended = why.str();
                 break;
               }
+            }
+          }
+          if (phase.stop_at) {
+            const PenetrationStop& stop = *phase.stop_at;
+            const double depth = penetration_of(*scene, stop.body);
+            const double speed = std::abs(rigid_body_named(*scene, stop.body).velocity[RIGID_Y]);
+            if (depth >= stop.penetration && (!stop.at_rest || speed < rest_speed)) {
+              std::ostringstream why;
+              why << "at " << stop.body << " penetration " << std::setprecision(4) << depth << " m"
+                  << (stop.at_rest ? " and at rest" : "");
+              ended = why.str();
+              break;
             }
           }
           reporter.update(phase.name, t, solver->step_count());

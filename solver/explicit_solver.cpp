@@ -81,6 +81,12 @@ void ExplicitSolver::prepare() {
     passes::prepare_contact(scene_);
   }
   scene_.boundaries.mark_constrained_dofs(scene_.grid);
+  if (scene_.moving_mesh) {
+    // A restored run continues on the mesh of its rigid body's restored position.
+    const MovingMesh& mesh = *scene_.moving_mesh;
+    const RigidBody& body = scene_.rigid_bodies[static_cast<std::size_t>(mesh.rigid_body)];
+    scene_.grid.set_y_nodes(mesh.lines_at(body.displacement[RIGID_Y]));
+  }
   bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
   locate_all_particles();
   rebin();
@@ -130,6 +136,43 @@ void ExplicitSolver::locate_all_particles() {
     p.cell_r[i] = cr;
     p.cell_y[i] = cy;
   }
+}
+
+void ExplicitSolver::move_mesh() {
+  const MovingMesh& mesh = *scene_.moving_mesh;
+  const RigidBody& body = scene_.rigid_bodies[static_cast<std::size_t>(mesh.rigid_body)];
+  try {
+    scene_.grid.set_y_nodes(mesh.lines_at(body.displacement[RIGID_Y]));
+  } catch (const std::runtime_error& e) {
+    std::ostringstream s;
+    s << "step " << steps_ << ", t = " << time_ << " s: " << e.what();
+    throw SimulationError(s.str());
+  }
+  // Particles keep their positions; the lines moved under them, so their cells may have changed.
+  Particles& p = scene_.particles;
+  const GradedAxis& y_axis = scene_.grid.y_axis();
+  const long outside = parallel_reduce(
+      p.size(), -1L,
+      [&](std::size_t begin, std::size_t end, long first) {
+        for (std::size_t i = begin; i != end; ++i) {
+          const int cy = y_axis.locate(p.y[i]);
+          p.cell_y[i] = cy;
+          if (cy < 0 && first < 0) {
+            first = static_cast<long>(i);
+          }
+        }
+        return first;
+      },
+      [](long a, long b) { return a < 0 ? b : (b < 0 ? a : std::min(a, b)); });
+  if (outside >= 0) {
+    std::ostringstream s;
+    s << "step " << steps_ << ", t = " << time_
+      << " s: " << position_of(p, static_cast<std::size_t>(outside)) << " left the grid";
+    throw SimulationError(s.str());
+  }
+  rebin();
+  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
+                        settings_.max_time_step);
 }
 
 void ExplicitSolver::rebin() {
@@ -280,6 +323,10 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
   if constexpr (contact) {
     passes::move_rigid_bodies(scene_, step);
   }
+  if (scene_.moving_mesh) {
+    PassTimer timer(timings_.binning);
+    move_mesh();
+  }
   time_ += dt;
   last_dt_ = dt;
   ++steps_;
@@ -297,6 +344,9 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
       << " s: " << position_of(scene_.particles, static_cast<std::size_t>(result.particle_outside))
       << " left the grid";
     throw SimulationError(s.str());
+  }
+  if (scene_.moving_mesh) {
+    return; // move_mesh has relocated, rebinned and set the step
   }
   stable_dt_ =
       std::min(settings_.courant_number * result.min_crossing_time, settings_.max_time_step);

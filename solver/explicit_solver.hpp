@@ -77,6 +77,9 @@ private:
   template <GeometryMode mode, bool contact> void step_in_mode(double dt);
   void prepare();
   void locate_all_particles();
+  /// Moves the y-lines with the mesh's rigid body, relocates the particles in the moved cells and
+  /// recomputes the stable step from the new cell sizes.
+  void move_mesh();
   void rebin();
   void sort_particles_by_cell();
   void report_settings();

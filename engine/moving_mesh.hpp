@@ -1,0 +1,32 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mpile {
+
+/// The moving mesh of physics.md section 7 (after Al-Kafaji 2013) on a rectilinear grid: the
+/// y-lines of a band around the pile tip translate with a rigid body, so the tip stays on its grid
+/// line; the lines between the band and the bottom of the grid are compressed (or stretched)
+/// linearly, and those between the band and the top likewise. The bottom and top lines stay put.
+/// The r-lines never move (the pile walls stay on theirs: the pile only translates along y).
+struct MovingMesh {
+  int rigid_body = 0;              // index into Scene::rigid_bodies
+  int band_bottom = 0;             // index of the lowest y-line that moves with the body
+  int band_top = 0;                // index of the highest
+  std::vector<double> reference_y; // the y-lines when the body is at its initial position
+
+  /// The y-lines for a body displaced by `offset` (m) from its initial position. Throws
+  /// std::runtime_error when the band would reach the bottom or the top of the grid.
+  std::vector<double> lines_at(double offset) const;
+
+  /// How far the band can move down (negative) and up before a zone between it and the grid's
+  /// edge collapses.
+  double lowest_offset() const { return reference_y.front() - reference_y[index(band_bottom)]; }
+  double highest_offset() const { return reference_y.back() - reference_y[index(band_top)]; }
+
+private:
+  static std::size_t index(int i) { return static_cast<std::size_t>(i); }
+};
+
+} // namespace mpile

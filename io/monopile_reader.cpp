@@ -1,0 +1,112 @@
+// The [monopile] table: parameters in, the case's geometry, bodies, contact, boundaries and
+// moving mesh out (the geometry itself is built by cases/monopile/monopile_geometry).
+#include "io/monopile_reader.hpp"
+
+#include "cases/monopile/monopile_geometry.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace mpile {
+
+namespace {
+
+const MaterialSpec& material_named(TomlTable& table, const CaseSpec& spec, const std::string& key) {
+  const std::string name = table.string(key);
+  const auto found = std::find_if(spec.materials.begin(), spec.materials.end(),
+                                  [&](const MaterialSpec& m) { return m.name == name; });
+  if (found == spec.materials.end()) {
+    table.fail(key, "no material named '" + name + "' in [materials]");
+  }
+  return *found;
+}
+
+} // namespace
+
+std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
+  if (spec.mode != GeometryMode::axisymmetric) {
+    table.fail("", "the monopile model is axisymmetric: remove geometry = \"plane_strain\"");
+  }
+  MonopileParameters p;
+  struct Key {
+    const char* name;
+    double* value;
+  };
+  const Key keys[] = {{"pile_length", &p.pile_length},       {"diameter", &p.diameter},
+                      {"wall_thickness", &p.wall_thickness}, {"embedment", &p.embedment},
+                      {"soil_width", &p.soil_width},         {"soil_depth", &p.soil_depth},
+                      {"head_room", &p.head_room},           {"fine_cell", &p.fine_cell},
+                      {"fine_width", &p.fine_width},         {"coarse_cell", &p.coarse_cell},
+                      {"shaft_cell", &p.shaft_cell},         {"growth", &p.growth},
+                      {"band_below", &p.band_below},         {"band_above", &p.band_above}};
+  for (const Key& key : keys) {
+    *key.value = table.number_or(key.name, *key.value);
+  }
+  const MaterialSpec& soil = material_named(table, spec, "soil_material");
+  const MaterialSpec& pile_material = material_named(table, spec, "pile_material");
+  const long per_direction = table.integer_or("particles_per_cell", 2);
+  if (per_direction < 1 || per_direction > 8) {
+    table.fail("particles_per_cell",
+               "must lie between 1 and 8, got " + std::to_string(per_direction));
+  }
+  ContactSpec contact;
+  contact.structure = "pile";
+  contact.friction = table.number_or("friction", 0.4);
+  if (!(contact.friction >= 0.0)) {
+    table.fail("friction", "must be >= 0 (mu = tan delta)");
+  }
+  contact.adhesion = table.number_or("adhesion", 0.0);
+  if (!(contact.adhesion >= 0.0)) {
+    table.fail("adhesion", "must be >= 0 (Pa)");
+  }
+  // The pile head is above the ground: its top edge is not a contact surface.
+  contact.surfaces = {"tip", "external_shaft", "", "internal_shaft"};
+  std::optional<TomlTable> drive = table.optional_table("drive");
+
+  MonopileGeometry g;
+  try {
+    g = build_monopile_geometry(p);
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    const std::string key = message.substr(0, message.find(':'));
+    table.fail(key, message.substr(message.find(':') + 2));
+  }
+  table.finish();
+
+  spec.r_zones = g.r_zones;
+  spec.y_zones = g.y_zones;
+  const int ppc = static_cast<int>(per_direction);
+  const auto soil_body = [&](const char* name, const Rectangle& region) {
+    BodySpec body;
+    body.name = name;
+    body.material = soil.name;
+    body.region = region;
+    body.particles_per_direction = ppc;
+    spec.bodies.push_back(body);
+  };
+  soil_body("soil below the tip", g.soil_below_tip);
+  soil_body("soil plug", g.soil_plug);
+  soil_body("soil outside", g.soil_outside);
+  BodySpec pile;
+  pile.name = "pile";
+  pile.material = pile_material.name;
+  pile.region = g.pile;
+  pile.particles_per_direction = ppc;
+  const auto density = pile_material.parameters.find("density");
+  if (density == pile_material.parameters.end()) {
+    table.fail("pile_material", "material '" + pile_material.name + "' has no density");
+  }
+  RigidSpec rigid;
+  rigid.mass = g.pile_mass(p, density->second);
+  rigid.inertia = g.pile_polar_inertia(p, density->second);
+  pile.rigid = rigid;
+  spec.bodies.push_back(pile);
+  spec.contacts.push_back(contact);
+  // Seed section 3: lateral boundary fixed in its normal direction; the base fixed.
+  spec.faces = {FaceCondition::free, FaceCondition::roller, FaceCondition::fixed,
+                FaceCondition::free};
+  spec.moving_mesh = MovingMeshSpec{"pile", g.band_bottom, g.band_top};
+  return drive;
+}
+
+} // namespace mpile

@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Write a synthetic mpile run directory whose values are known exactly, for the tests of
+tools/plot_monopile.py and tools/render_sigma_ry.py.
+
+  tests/make_monopile_history.py OUT_DIR
+
+history.h5 has the layout of a real run: phase 0 holds the pile at u_y = -0.001 m, phase 1 (the
+installation) drives it down at 0.1 m/s for 5 s. With s = penetration / 0.1 m, the forces of the soil
+on the pile are, in kN/rad,
+
+  surface          F_r     F_y     F_theta
+  tip              2 s     50 s    -4 s
+  external_shaft  -20 s     8 s    -6 s
+  internal_shaft   10 s     4 s    -3 s
+
+so that |F_y| / |F_r| = 0.4 and sqrt(F_y^2 + F_theta^2) / |F_r| = 0.5 on both shafts.
+
+particles.pvd lists two snapshots of a 50 x 50 lattice of soil particles (spacing 0.02 m) on
+0 < r, y < 1 m with sigma_ry = 10 kPa/m * (r + y - 1 m) at t = 2.5 s (half of it at t = 0), around a
+block of pile particles (body 1) on 0.4 < r < 0.6 m, 0.6 < y < 1 m with an absurd sigma_ry of 1e9 Pa,
+which must never reach the colour scale.
+
+Uses Debian's python3-h5py, python3-numpy and python3-vtk9.
+"""
+import os
+import sys
+
+import h5py
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonCore import VTK_INT, vtkPoints
+from vtkmodules.vtkCommonDataModel import VTK_VERTEX, vtkCellArray, vtkUnstructuredGrid
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+
+FORCES_KN = {"tip": (2.0, 50.0, -4.0), "external_shaft": (-20.0, 8.0, -6.0),
+             "internal_shaft": (10.0, 4.0, -3.0)}
+RADIUS = {"tip": 2.0, "external_shaft": 2.05, "internal_shaft": 1.95}  # lever arms of M_theta [m]
+SPEED = 0.1  # m/s
+PHASE0_ROWS, PHASE1_ROWS, INTERVAL = 50, 501, 0.01  # rows, rows, s
+
+
+def write_history(path):
+    rows = PHASE0_ROWS + PHASE1_ROWS
+    time = np.arange(rows) * INTERVAL
+    phase = np.where(np.arange(rows) < PHASE0_ROWS, 0.0, 1.0)
+    installing = phase == 1.0
+    elapsed = np.where(installing, time - time[PHASE0_ROWS], 0.0)
+    penetration = SPEED * elapsed
+    with h5py.File(path, "w") as history:
+        history.attrs["title"] = "synthetic monopile"
+        history.attrs["status"] = "complete"
+        history.attrs["geometry"] = "axisymmetric: extensive quantities per radian"
+
+        def dataset(name, values, unit):
+            history.create_dataset(name, data=np.asarray(values, dtype=np.float64))
+            history[name].attrs["unit"] = unit
+
+        dataset("/time", time, "s")
+        dataset("/phase", phase, "index into the case's [[phases]]")
+        dataset("/bodies/pile/u_y", -0.001 - penetration, "m")
+        dataset("/bodies/pile/rotation", elapsed, "rad")
+        dataset("/bodies/pile/angular_velocity", installing.astype(float), "rad/s")
+        for surface, components in FORCES_KN.items():
+            f_r, f_y, f_theta = (1e3 * component * penetration / 0.1 for component in components)
+            # Large forces while the pile is held, which must not leak into the installation results.
+            held = np.where(installing, 0.0, 1e6)
+            dataset(f"/reactions/pile/{surface}/F_r", f_r + held, "N/rad")
+            dataset(f"/reactions/pile/{surface}/F_y", f_y + held, "N/rad")
+            dataset(f"/reactions/pile/{surface}/F_theta", f_theta, "N/rad")
+            dataset(f"/reactions/pile/{surface}/M_theta", RADIUS[surface] * f_theta, "N m/rad")
+
+
+def write_snapshot(path, scale):
+    centres = 0.01 + 0.02 * np.arange(50)
+    r, y = (a.ravel() for a in np.meshgrid(centres, centres))
+    pile = (r > 0.4) & (r < 0.6) & (y > 0.6)
+    sigma_ry = np.where(pile, 1e9, scale * 1e4 * (r + y - 1.0))
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.column_stack([r, y, np.zeros_like(r)]), deep=True))
+    cells = vtkCellArray()
+    for i in range(len(r)):
+        cells.InsertNextCell(1, [i])
+    grid = vtkUnstructuredGrid()
+    grid.SetPoints(points)
+    grid.SetCells(VTK_VERTEX, cells)
+    for name, values, kind in [("sigma_ry", sigma_ry, None), ("body", pile.astype(np.int32), VTK_INT),
+                               ("material", pile.astype(np.int32), VTK_INT)]:
+        array = numpy_to_vtk(values, deep=True, array_type=kind)
+        array.SetName(name)
+        grid.GetPointData().AddArray(array)
+    writer = vtkXMLUnstructuredGridWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(grid)
+    if writer.Write() != 1:
+        sys.exit(f"make_monopile_history: cannot write {path}")
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    out = sys.argv[1]
+    os.makedirs(out, exist_ok=True)
+    write_history(os.path.join(out, "history.h5"))
+    snapshots = [(0.0, 0.5), (2.5, 1.0)]
+    entries = []
+    for index, (time, scale) in enumerate(snapshots):
+        name = f"particles_{index:06d}.vtu"
+        write_snapshot(os.path.join(out, name), scale)
+        entries.append(f'    <DataSet timestep="{time:g}" group="" part="0" file="{name}"/>\n')
+    with open(os.path.join(out, "particles.pvd"), "w") as pvd:
+        pvd.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" '
+                  'byte_order="LittleEndian">\n  <Collection>\n' + "".join(entries)
+                  + "  </Collection>\n</VTKFile>\n")
+    print(out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

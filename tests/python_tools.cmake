@@ -1,0 +1,52 @@
+# The monopile post-processing tools on a synthetic run whose values are known exactly
+# (tests/make_monopile_history.py): the tests check printed numbers and colours, not only that the
+# tools ran.
+set(synthetic_run ${CMAKE_CURRENT_BINARY_DIR}/synthetic_monopile)
+add_test(NAME MonopileTools.MakeSyntheticRun
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/make_monopile_history.py ${synthetic_run})
+set_tests_properties(MonopileTools.MakeSyntheticRun PROPERTIES FIXTURES_SETUP synthetic_monopile)
+
+# At 0.3 m (3 s into the installation): the forces of the synthetic history in kN/rad, F_y / F_r = 0.4
+# and sqrt(F_y^2 + F_theta^2) / F_r = 0.5 on both shafts; 0.6 m is beyond the 0.5 m reached.
+add_test(NAME PlotMonopile.TableAtPenetrations
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/plot_monopile.py ${synthetic_run}
+                 --out ${synthetic_run}/table_figures --table 0.3,0.6)
+set_tests_properties(PlotMonopile.TableAtPenetrations PROPERTIES FIXTURES_REQUIRED synthetic_monopile
+  PASS_REGULAR_EXPRESSION
+  "\n\"synthetic monopile\" +0\\.3000 +3\\.0000 +6\\.000 +150\\.000 +-12\\.000 +-60\\.000 +24\\.000 +-18\\.000 +30\\.000 +12\\.000 +-9\\.000 +0\\.4000 +0\\.5000 +0\\.4000 +0\\.5000\n\"synthetic monopile\" +0\\.6000 +not reached\n")
+add_test(NAME PlotMonopile.WritesFivePngs
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/plot_monopile.py ${synthetic_run}:jacked
+                 ${synthetic_run}:again --out ${synthetic_run}/figures --smooth 0.5)
+set_tests_properties(PlotMonopile.WritesFivePngs PROPERTIES FIXTURES_REQUIRED synthetic_monopile
+  PASS_REGULAR_EXPRESSION
+  "/figures/fig3_radial_forces\\.png\n[^\n]*/figures/fig4_vertical_forces\\.png\n[^\n]*/figures/fig5_friction_ratio\\.png\n[^\n]*/figures/fig6_total_friction_ratio\\.png\n[^\n]*/figures/fig7_penetration\\.png\n")
+
+# The renderer on the synthetic snapshots: sigma_ry = 10 kPa/m * (r + y - 1 m) around a pile block
+# (body 1) whose 1e9 Pa must stay off the range and the colours. Red at the maximum (top right), blue at
+# the minimum (bottom left), so a wrong colour map, mirrored view or unfitted camera fails.
+add_test(NAME RenderSigmaRy.MissingArrayNamesTheArrays
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/render_sigma_ry.py
+                 ${synthetic_run}/particles.pvd --out ${synthetic_run}/missing.png --array sigma_zz)
+set_tests_properties(RenderSigmaRy.MissingArrayNamesTheArrays PROPERTIES FIXTURES_REQUIRED synthetic_monopile
+  PASS_REGULAR_EXPRESSION "particles_000001\\.vtu has no scalar point array sigma_zz; it has: sigma_ry, body, material")
+find_program(XVFB_RUN xvfb-run)
+if(XVFB_RUN)
+  add_test(NAME RenderSigmaRy.RangeAndColours
+           COMMAND ${XVFB_RUN} -a /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/render_sigma_ry.py
+                   ${synthetic_run}/particles.pvd --out ${synthetic_run}/sigma_ry.png --pile-body 1
+                   --check-pixel 0.95 0.95 --check-pixel 0.05 0.05 --check-pixel 0.05 0.95
+                   --check-pixel 0.5 0.8)
+  set_tests_properties(RenderSigmaRy.RangeAndColours PROPERTIES FIXTURES_REQUIRED synthetic_monopile
+    RESOURCE_LOCK xvfb
+    PASS_REGULAR_EXPRESSION
+    "sigma_ry in window: -9\\.8 to 9\\.8 kPa \\(2300 particles\\)\ncolour range: -9 to 9 kPa\npixel at \\(0\\.95, 0\\.95\\): red [^\n]*\npixel at \\(0\\.05, 0\\.05\\): blue [^\n]*\npixel at \\(0\\.05, 0\\.95\\): white [^\n]*\npixel at \\(0\\.5, 0\\.8\\): grey [^\n]*\n[^\n]*/sigma_ry\\.png\n")
+  # The first snapshot (half the field) picked by time, the top half of the domain, the pile left out.
+  add_test(NAME RenderSigmaRy.TimeWindowAndExcludedBody
+           COMMAND ${XVFB_RUN} -a /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/render_sigma_ry.py
+                   ${synthetic_run}/particles.pvd --out ${synthetic_run}/sigma_ry_top.png --time 0.2
+                   --window 0 1 0.5 1 --exclude-body 1 --check-pixel 0.95 0.95 --check-pixel 0.5 0.8)
+  set_tests_properties(RenderSigmaRy.TimeWindowAndExcludedBody PROPERTIES FIXTURES_REQUIRED synthetic_monopile
+    RESOURCE_LOCK xvfb
+    PASS_REGULAR_EXPRESSION
+    "sigma_ry in window: -2\\.4 to 4\\.9 kPa \\(1050 particles\\)\n[^\n]*\npixel at \\(0\\.95, 0\\.95\\): red [^\n]*\npixel at \\(0\\.5, 0\\.8\\): white \\(RGB 255 255 255\\)\n[^\n]*/sigma_ry_top\\.png\n")
+endif()

@@ -1,0 +1,227 @@
+#!/usr/bin/python3
+"""Draw the seed paper's figures 3 to 7 for several monopile installation runs, one line per run:
+
+  fig3_radial_forces.png          F_r against penetration on the tip, external and internal shaft
+  fig4_vertical_forces.png        F_y against penetration on the same three surfaces
+  fig5_friction_ratio.png         |F_y| / |F_r| against penetration on the internal and external shaft
+  fig6_total_friction_ratio.png   sqrt(F_y^2 + F_theta^2) / |F_r| on the same two shafts
+  fig7_penetration.png            penetration against time since the start of the installation
+
+  tools/plot_monopile.py out/jacked out/impact:"impact driven" out/torsion --out docs/figures
+  tools/plot_monopile.py out/jacked --out /tmp/figures --table 0.1,0.3,0.6
+
+Only the rows of the last phase (the installation) are used; penetration and time count from its
+first row. Forces are those of the soil on the pile per radian of circumference (r outward, y up,
+theta along the spin). Ratios are left out where |F_r| is below 1e-3 of its maximum over the
+installation. --table prints, at the first row at or beyond each penetration, the forces (Fr, Fy,
+Ft = F_theta) on the tip, external and internal shaft in kN/rad and the ratios Fy/Fr = |F_y| / |F_r|
+and Fyt/Fr = sqrt(F_y^2 + F_theta^2) / |F_r| on both shafts, one line per run and penetration.
+
+Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (installed by tools/setup.sh).
+"""
+import argparse
+import os
+import sys
+from dataclasses import dataclass
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+COMPONENTS = ("F_r", "F_y", "F_theta")
+CONVENTION = "force of the soil on the pile, per radian;\nr outward, y up"
+# Penetrations are differences of recorded displacements: a row meant to be at 0.3 m may hold
+# 0.29999999999999993 m, which still counts as reaching 0.3 m.
+REACHED_TOLERANCE = 1e-9  # m
+
+
+@dataclass
+class Run:
+    label: str
+    time: np.ndarray  # s since the first row of the installation
+    penetration: np.ndarray  # m
+    forces: dict  # surface -> component -> kN/rad
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def load(spec, body, surfaces):
+    directory, _, label = spec.partition(":")
+    path = directory if directory.endswith(".h5") else os.path.join(directory, "history.h5")
+    names = ["/time", "/phase", f"/bodies/{body}/u_y"] + [
+        f"/reactions/{body}/{surface}/{component}" for surface in surfaces for component in COMPONENTS]
+    with h5py.File(path, "r") as history:
+        for name in names:
+            if name not in history:
+                sys.exit(f"plot_monopile: {path} has no dataset {name}")
+        phase = history["/phase"][:]
+        if phase.size == 0:
+            sys.exit(f"plot_monopile: {path} has no rows")
+        rows = phase == phase.max()
+        time = history["/time"][rows]
+        u_y = history[f"/bodies/{body}/u_y"][rows]
+        forces = {surface: {component: history[f"/reactions/{body}/{surface}/{component}"][rows] / 1e3
+                            for component in COMPONENTS} for surface in surfaces}
+        label = label or text(history.attrs.get("title", directory))
+        if text(history.attrs.get("status", "")) != "complete":
+            label += " (incomplete)"
+    return Run(label, time - time[0], -(u_y - u_y[0]), forces)
+
+
+def ratio(numerator, radial):
+    """numerator / radial, NaN where radial is below 1e-3 of its maximum (no division by ~0)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(radial < 1e-3 * np.max(radial, initial=0.0), np.nan, numerator / radial)
+
+
+def shaft_ratios(forces):
+    """|F_y| / |F_r| and sqrt(F_y^2 + F_theta^2) / |F_r|."""
+    radial = np.abs(forces["F_r"])
+    return ratio(np.abs(forces["F_y"]), radial), ratio(np.hypot(forces["F_y"], forces["F_theta"]), radial)
+
+
+def running_mean(values, time, window):
+    """Mean over `window` seconds centred on each row; shorter windows at the ends, not zero-padded."""
+    n = max(1, int(round(window / np.median(np.diff(time))))) if len(time) > 1 else 1
+    kernel = np.ones(n)
+    return np.convolve(values, kernel, "same") / np.convolve(np.ones_like(values), kernel, "same")
+
+
+def save(figure, path):
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+    print(path)
+
+
+def force_figure(runs, component, symbol, surfaces, path):
+    figure, axes = plt.subplots(1, len(surfaces), figsize=(4.2 * len(surfaces), 4.4), sharex=True)
+    for ax, surface in zip(axes, surfaces):
+        for index, run in enumerate(runs):
+            ax.plot(run.penetration, run.forces[surface][component], color=f"C{index}", linewidth=0.8,
+                    label=run.label)
+        ax.set_title(surface.replace("_", " "))
+        ax.set_xlabel("penetration [m]")
+        ax.grid(True, alpha=0.3)
+    axes[0].set_ylabel(f"{symbol} [kN/rad]\n({CONVENTION})", fontsize=9)
+    axes[0].legend(fontsize=8)
+    save(figure, path)
+
+
+def ratio_figure(runs, which, ylabel, shafts, friction, smooth, path):
+    figure, axes = plt.subplots(1, len(shafts), figsize=(5.2 * len(shafts), 4.4), sharex=True, sharey=True)
+    shown = []
+    for ax, surface in zip(axes, shafts):
+        for index, run in enumerate(runs):
+            raw = shaft_ratios(run.forces[surface])[which]
+            shown.append(raw)
+            ax.plot(run.penetration, raw, color=f"C{index}", linewidth=0.6, alpha=0.5 if smooth else 1.0,
+                    label=run.label)
+            if smooth > 0:
+                # The ratio of running means, not the running mean of the ratio, so that instants where
+                # F_r passes through zero do not dominate.
+                mean = {c: running_mean(np.abs(run.forces[surface][c]), run.time, smooth) for c in COMPONENTS}
+                ax.plot(run.penetration, shaft_ratios(mean)[which], color=f"C{index}", linewidth=1.8,
+                        label=f"{run.label}, running mean over {smooth:g} s")
+        ax.axhline(friction, color="black", linestyle="--", linewidth=1.0,
+                   label=f"contact friction coefficient {friction:g}")
+        ax.set_title(surface.replace("_", " "))
+        ax.set_xlabel("penetration [m]")
+        ax.grid(True, alpha=0.3)
+    # Near the ends of the 1e-3 cut-off the ratios spike; scale the axis to the bulk of the values.
+    values = np.concatenate(shown)
+    values = values[np.isfinite(values)]
+    top = max(2.0 * friction, 1.1 * np.percentile(values, 99) if values.size else 0.0)
+    axes[0].set_ylim(0.0, top if top > 0.0 else 1.0)
+    axes[0].set_ylabel(f"{ylabel} [-]\n({CONVENTION})", fontsize=9)
+    axes[0].legend(fontsize=8)
+    save(figure, path)
+
+
+def penetration_figure(runs, path):
+    figure, ax = plt.subplots(figsize=(6.4, 4.4))
+    for index, run in enumerate(runs):
+        ax.plot(run.time, run.penetration, color=f"C{index}", linewidth=0.8, label=run.label)
+    ax.set_xlabel("time since the start of the installation [s]")
+    ax.set_ylabel("penetration [m]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    save(figure, path)
+
+
+def number(value, decimals):
+    """Fixed-point text without the sign of a value that rounds to zero ("0.000", not "-0.000")."""
+    formatted = f"{value:.{decimals}f}"
+    return formatted.lstrip("-") if float(formatted) == 0.0 else formatted
+
+
+def print_table(runs, targets, surfaces):
+    shafts = surfaces[1:]
+    short = [surface[:3] for surface in surfaces]
+    header = ["label", "penetration[m]", "time[s]"]
+    header += [f"{name}_{component}[kN/rad]" for name in short for component in ("Fr", "Fy", "Ft")]
+    header += [f"{name}_{ratio_name}" for name in short[1:] for ratio_name in ("Fy/Fr", "Fyt/Fr")]
+    lines = [header]
+    for run in runs:
+        # Quoted when it has spaces, so that the table still splits on whitespace.
+        label = f'"{run.label}"' if any(c.isspace() for c in run.label) else run.label
+        for target in targets:
+            reached = np.flatnonzero(run.penetration >= target - REACHED_TOLERANCE)
+            if reached.size == 0:
+                lines.append([label, f"{target:.4f}", "not reached"])
+                continue
+            row = reached[0]
+            cells = [label, number(run.penetration[row], 4), number(run.time[row], 4)]
+            cells += [number(run.forces[s][c][row], 3) for s in surfaces for c in COMPONENTS]
+            cells += [number(values[row], 4) for s in shafts for values in shaft_ratios(run.forces[s])]
+            lines.append(cells)
+    widths = [max(len(line[k]) for line in lines if k < len(line)) for k in range(len(header))]
+    for line in lines:
+        cells = [line[0].ljust(widths[0])] + [cell.rjust(width) for cell, width in zip(line[1:], widths[1:])]
+        print("  ".join(cells).rstrip())
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("runs", nargs="+", metavar="RUN_DIR[:LABEL]",
+                        help="output directory of a run (or its history.h5); label default: its title")
+    parser.add_argument("--out", required=True, help="directory for the PNG files")
+    parser.add_argument("--friction", type=float, default=0.4,
+                        help="contact friction coefficient, drawn dashed on the ratio figures (default 0.4)")
+    parser.add_argument("--smooth", type=float, default=0.0, metavar="SECONDS",
+                        help="also draw running means over this window on the ratio figures (default 0: off)")
+    parser.add_argument("--table", type=lambda s: [float(x) for x in s.split(",")], metavar="PENETRATIONS",
+                        help="comma-separated penetrations in m at which to print forces and ratios")
+    parser.add_argument("--body", default="pile", help="the pile's body name (default pile)")
+    parser.add_argument("--surfaces", default="tip,external_shaft,internal_shaft", metavar="TIP,EXTERNAL,INTERNAL",
+                        help="the pile's contact surfaces (default tip,external_shaft,internal_shaft)")
+    args = parser.parse_args()
+    surfaces = args.surfaces.split(",")
+    if len(surfaces) != 3:
+        parser.error("--surfaces needs three names: tip, external shaft, internal shaft")
+
+    runs = [load(spec, args.body, surfaces) for spec in args.runs]
+    if args.table:
+        print_table(runs, args.table, surfaces)
+    os.makedirs(args.out, exist_ok=True)
+    shafts = [surfaces[2], surfaces[1]]  # internal, external, as in the paper
+    force_figure(runs, "F_r", "$F_r$", surfaces, os.path.join(args.out, "fig3_radial_forces.png"))
+    force_figure(runs, "F_y", "$F_y$", surfaces, os.path.join(args.out, "fig4_vertical_forces.png"))
+    ratio_figure(runs, 0, r"$|F_y| \,/\, |F_r|$", shafts, args.friction, args.smooth,
+                 os.path.join(args.out, "fig5_friction_ratio.png"))
+    ratio_figure(runs, 1, r"$\sqrt{F_y^2 + F_\theta^2} \,/\, |F_r|$", shafts, args.friction, args.smooth,
+                 os.path.join(args.out, "fig6_total_friction_ratio.png"))
+    penetration_figure(runs, os.path.join(args.out, "fig7_penetration.png"))
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except BrokenPipeError:  # output piped into head and closed early
+        sys.exit(0)
