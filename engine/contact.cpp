@@ -168,7 +168,7 @@ void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair) {
 }
 
 std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
-                                          int& surface) {
+                                          int& surface, int only_surface) {
   const std::size_t edges = outline.vertices.size();
   double best = std::numeric_limits<double>::infinity();
   std::array<double, 2> normal{0.0, 0.0};
@@ -179,7 +179,8 @@ std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, doubl
     const double dr = b[0] - a[0];
     const double dy = b[1] - a[1];
     const double length2 = dr * dr + dy * dy;
-    if (length2 == 0.0 || outline.edge_surface[e] < 0) {
+    if (length2 == 0.0 || outline.edge_surface[e] < 0 ||
+        (only_surface >= 0 && outline.edge_surface[e] != only_surface)) {
       continue;
     }
     const double s = std::clamp(((r - a[0]) * dr + (y - a[1]) * dy) / length2, 0.0, 1.0);

@@ -101,8 +101,8 @@ struct ContactPair {
 void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair);
 
 /// Normal and surface of a node the outline gives no area (a structure node off its outline):
-/// those of the nearest edge.
+/// those of the nearest edge (of surface `only_surface` when it is not negative).
 std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
-                                          int& surface);
+                                          int& surface, int only_surface = -1);
 
 } // namespace mpile

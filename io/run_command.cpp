@@ -209,6 +209,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     ProgressReporter reporter(err, isatty(fileno(stderr)) != 0, spec.end_time());
     StopOnSignals signals;
     long steps_this_run = 0;
+    long recorded_step = -1;
     try {
       while (progress.phase < spec.phases.size()) {
         const PhaseSpec& phase = spec.phases[progress.phase];
@@ -228,6 +229,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           const double dt = solver->last_time_step();
           if (output.history_interval == 0.0 || reached(t, progress.next_history_time, dt)) {
             history.record(*solver, progress.phase);
+            recorded_step = solver->step_count();
             while (output.history_interval > 0.0 && reached(t, progress.next_history_time, dt)) {
               progress.next_history_time += output.history_interval;
             }
@@ -296,6 +298,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           }
         }
         reporter.finish();
+        // The state a phase ends in (a target penetration, equilibrium) is always in the history.
+        if (recorded_step != solver->step_count()) {
+          history.record(*solver, progress.phase);
+          recorded_step = solver->step_count();
+        }
         log.info("phase " + phase.name + " ended at t = " + format_time(solver->time()) + " s " +
                  ended + ", " + std::to_string(solver->step_count()) + " steps so far");
         ++progress.phase;

@@ -211,13 +211,34 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
             }
             sum.surface[4 * surface + 3] += share * torque;
           };
+          // A node shared by two surfaces (a tip corner) pushes along its mean normal. Each
+          // surface reports its share turned from that normal into its own: normal force along
+          // the surface's normal, friction along its tangent, so a sliding share keeps the
+          // Coulomb ratio on that surface instead of carrying the other surface's normal force
+          // (which would show a shaft friction ratio above mu). The rigid body gets the force as
+          // it acts.
+          auto add_turned = [&](std::size_t surface, double share) {
+            int unused = 0;
+            const auto m =
+                nearest_edge_normal(*pair.outline, r, y, unused, static_cast<int>(surface));
+            const auto& n = pair.contact_normal[i];
+            const double length = std::hypot(n[0], n[1]);
+            const double normal = (f[0] * n[0] + f[1] * n[1]) / length;
+            const double tangential = (-f[0] * n[1] + f[1] * n[0]) / length;
+            sum.surface[4 * surface] += share * (normal * m[0] - tangential * m[1]);
+            sum.surface[4 * surface + 1] += share * (normal * m[1] + tangential * m[0]);
+            sum.surface[4 * surface + 2] += share * f[2];
+            sum.surface[4 * surface + 3] += share * torque;
+          };
           if (!pair.outline) {
             add(0, 1.0);
           } else if (pair.area[i] > 0.0) {
             for (std::size_t q = 0; q < surfaces; ++q) {
               const double share = pair.surface_area[i * surfaces + q] / pair.area[i];
-              if (share != 0.0) {
+              if (share == 1.0) {
                 add(q, share);
+              } else if (share != 0.0) {
+                add_turned(q, share);
               }
             }
           } else {

@@ -301,6 +301,72 @@ void expect_rejected(const std::vector<BadInput>& table) {
   }
 }
 
+std::string monopile_case() {
+  std::ifstream in(std::filesystem::path(MPILE_SOURCE_DIR) / "cases/monopile/gdp_quick.toml");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string monopile_edited(const std::string& from, const std::string& to) {
+  return edited_text(monopile_case(), from, to);
+}
+
+std::vector<BadInput> bad_monopile_inputs() {
+  return {
+      {"misspelt monopile key", monopile_edited("embedment = 3.0", "embedmnt = 3.0"),
+       "monopile.embedmnt: unknown key", "embedmnt"},
+      {"unknown soil material",
+       monopile_edited("soil_material = \"sand\"", "soil_material = \"clay\""),
+       "monopile.soil_material: no material named 'clay'", "soil_material"},
+      {"missing pile material", monopile_edited("pile_material = \"steel\"\n", ""),
+       "monopile.pile_material: missing (required)", ""},
+      {"pile wider than the soil", monopile_edited("soil_width = 5.0", "soil_width = 0.3"),
+       "monopile.soil_width: must exceed the pile's outer radius", "soil_width"},
+      {"tip below the bottom", monopile_edited("embedment = 3.0", "embedment = 9.9"),
+       "monopile.band_below: the moving band reaches the bottom of the soil", ""},
+      {"embedment longer than the pile", monopile_edited("pile_length = 14.0", "pile_length = 2.0"),
+       "monopile.embedment: must be less than pile_length", ""},
+      {"wall thicker than the radius",
+       monopile_edited("wall_thickness = 0.0159", "wall_thickness = 0.5"),
+       "monopile.wall_thickness: must be positive and less than the radius", "wall_thickness"},
+      {"negative friction", monopile_edited("friction = 0.4", "friction = -0.4"),
+       "monopile.friction: must be >= 0", "friction = -0.4"},
+      {"pile mass given",
+       monopile_edited("phase = \"installation\"", "phase = \"installation\"\nmass = 650.0"),
+       "monopile.drive.mass: the monopile's mass and polar inertia follow from", "mass = 650.0"},
+      {"grid given as well",
+       "[grid]\nr = [{ start = 0.0, end = 5.0, cells = 10 }]\n" + monopile_case(),
+       "grid: [monopile] builds the grid", ""},
+      {"stop at an unknown body", monopile_edited("body = \"pile\"", "body = \"pipe\""),
+       "phases[1].stop_at.body: no rigid body named 'pipe'", "stop_at"},
+      {"K0 on an unknown material",
+       monopile_edited("{ material = \"sand\"", "{ material = \"silt\""),
+       "phases[0].k0[0].material: no body of material 'silt'", "k0 = "},
+      {"negative snapshot penetration",
+       monopile_edited("snapshot_penetrations = [0.05, 0.1]", "snapshot_penetrations = [-0.05]"),
+       "output.snapshot_penetrations: penetrations must be positive", "snapshot_penetrations"},
+  };
+}
+
+TEST(CaseReader, TheMonopileCaseBuildsTheSeedGeometry) {
+  const CaseSpec spec = read_case_text(monopile_case(), "case.toml");
+  ASSERT_EQ(spec.bodies.size(), 4u);
+  EXPECT_EQ(spec.bodies[3].name, "pile");
+  ASSERT_TRUE(spec.bodies[3].rigid.has_value());
+  // The whole 14 m pile: rho L (r2^2 - r1^2) / 2 per radian.
+  EXPECT_NEAR(spec.bodies[3].rigid->mass, 8000.0 * 14.0 * (0.373 * 0.373 - 0.3571 * 0.3571) / 2.0,
+              1e-9);
+  EXPECT_DOUBLE_EQ(spec.bodies[3].region.y_min, 7.0); // the tip, 3 m below the surface
+  ASSERT_EQ(spec.phases[0].k0.size(), 3u);            // K0 on the three soil bodies
+  ASSERT_TRUE(spec.moving_mesh.has_value());
+  EXPECT_DOUBLE_EQ(spec.phases[1].stop_at->penetration, 0.1);
+}
+
+TEST(CaseReader, RejectsEachBadMonopileInputWithFileLineKeyAndReason) {
+  expect_rejected(bad_monopile_inputs());
+}
+
 TEST(CaseReader, TheContactCaseReads) {
   const CaseSpec spec = read_case_text(contact_case, "case.toml");
   ASSERT_EQ(spec.contacts.size(), 1u);

@@ -4,8 +4,8 @@ tools/plot_monopile.py and tools/render_sigma_ry.py.
 
   tests/make_monopile_history.py OUT_DIR
 
-history.h5 has the layout of a real run: phase 0 holds the pile at u_y = -0.001 m, phase 1 (the
-installation) drives it down at 0.1 m/s for 5 s. With s = penetration / 0.1 m, the forces of the soil
+history.h5 has the layout of a real run: phase 0 holds the pile still at u_y = 0, phase 1 (the
+installation) starts where phase 0's last row is and drives it down at 0.1 m/s for 5 s. With s = penetration / 0.1 m, the forces of the soil
 on the pile are, in kN/rad,
 
   surface          F_r     F_y     F_theta
@@ -36,6 +36,15 @@ FORCES_KN = {"tip": (2.0, 50.0, -4.0), "external_shaft": (-20.0, 8.0, -6.0),
              "internal_shaft": (10.0, 4.0, -3.0)}
 RADIUS = {"tip": 2.0, "external_shaft": 2.05, "internal_shaft": 1.95}  # lever arms of M_theta [m]
 SPEED = 0.1  # m/s
+# The part of the case file the tools read: the phases, of which the installation is the last.
+CASE_TEXT = """title = "synthetic monopile"
+[[phases]]
+name = "equilibrium"
+duration = 0.5
+[[phases]]
+name = "installation"
+duration = 5.0
+"""
 PHASE0_ROWS, PHASE1_ROWS, INTERVAL = 50, 501, 0.01  # rows, rows, s
 
 
@@ -44,10 +53,11 @@ def write_history(path):
     time = np.arange(rows) * INTERVAL
     phase = np.where(np.arange(rows) < PHASE0_ROWS, 0.0, 1.0)
     installing = phase == 1.0
-    elapsed = np.where(installing, time - time[PHASE0_ROWS], 0.0)
+    elapsed = np.where(installing, time - time[PHASE0_ROWS - 1], 0.0)
     penetration = SPEED * elapsed
     with h5py.File(path, "w") as history:
         history.attrs["title"] = "synthetic monopile"
+        history.attrs["case_text"] = CASE_TEXT
         history.attrs["status"] = "complete"
         history.attrs["geometry"] = "axisymmetric: extensive quantities per radian"
 
@@ -57,7 +67,7 @@ def write_history(path):
 
         dataset("/time", time, "s")
         dataset("/phase", phase, "index into the case's [[phases]]")
-        dataset("/bodies/pile/u_y", -0.001 - penetration, "m")
+        dataset("/bodies/pile/u_y", -penetration, "m")
         dataset("/bodies/pile/rotation", elapsed, "rad")
         dataset("/bodies/pile/angular_velocity", installing.astype(float), "rad/s")
         for surface, components in FORCES_KN.items():

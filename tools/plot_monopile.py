@@ -9,9 +9,10 @@
 
   tools/plot_monopile.py out/jacked out/impact:"impact driven" out/torsion --out docs/figures
   tools/plot_monopile.py out/jacked --out /tmp/figures --table 0.1,0.3,0.6
+  tools/plot_monopile.py out/jacked_paper out/impact_paper out/gdp_paper --out docs/figures --blow-interval 0.85
 
-Only the rows of the last phase (the installation) are used; penetration and time count from its
-first row. Forces are those of the soil on the pile per radian of circumference (r outward, y up,
+Only the rows of the last phase (the installation) are used; penetration is the pile's total
+downward displacement (it is held still before), time counts from the start of the installation. Forces are those of the soil on the pile per radian of circumference (r outward, y up,
 theta along the spin). Ratios are left out where |F_r| is below 1e-3 of its maximum over the
 installation. --table prints, at the first row at or beyond each penetration, the forces (Fr, Fy,
 Ft = F_theta) on the tip, external and internal shaft in kN/rad and the ratios Fy/Fr = |F_y| / |F_r|
@@ -22,6 +23,7 @@ Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (installed by t
 import argparse
 import os
 import sys
+import tomllib
 from dataclasses import dataclass
 
 import h5py
@@ -41,7 +43,7 @@ REACHED_TOLERANCE = 1e-9  # m
 @dataclass
 class Run:
     label: str
-    time: np.ndarray  # s since the first row of the installation
+    time: np.ndarray  # s since the start of the installation
     penetration: np.ndarray  # m
     forces: dict  # surface -> component -> kN/rad
 
@@ -50,7 +52,23 @@ def text(value):
     return value.decode() if isinstance(value, bytes) else str(value)
 
 
-def load(spec, body, surfaces):
+def blow_interval(case):
+    """The interval of a pulse-train drive (impact blows) in the case, or None."""
+    for key in ("force_y", "velocity_y"):
+        drive = case.get("monopile", {}).get("drive", {}).get(key)
+        if isinstance(drive, dict) and drive.get("type") == "pulse_train":
+            return float(drive["interval"])
+    return None
+
+
+def on_blow_clock(time, simulated, real):
+    """Maps times of blows `simulated` s apart onto blows `real` s apart: blow k starts at k real.
+    Valid when the pile and soil are at rest before each blow, so the wait adds nothing else."""
+    blow = np.floor(time / simulated + 1e-9)
+    return time + blow * (real - simulated)
+
+
+def load(spec, body, surfaces, real_blow_interval=None):
     directory, _, label = spec.partition(":")
     path = directory if directory.endswith(".h5") else os.path.join(directory, "history.h5")
     names = ["/time", "/phase", f"/bodies/{body}/u_y"] + [
@@ -60,17 +78,30 @@ def load(spec, body, surfaces):
             if name not in history:
                 sys.exit(f"plot_monopile: {path} has no dataset {name}")
         phase = history["/phase"][:]
-        if phase.size == 0:
-            sys.exit(f"plot_monopile: {path} has no rows")
-        rows = phase == phase.max()
+        # The case file recorded with the history says how many phases there are, so that a run stopped
+        # before its installation is not taken for one.
+        case = tomllib.loads(text(history.attrs["case_text"])) if "case_text" in history.attrs else {}
+        last = len(case["phases"]) - 1 if case.get("phases") else phase.max(initial=0.0)
+        rows = phase == last
+        if not rows.any():
+            sys.exit(f"plot_monopile: {path} has no rows of its last phase (index {last:g}), the installation")
         time = history["/time"][rows]
+        # The installation starts where the phase before it ended (its last row), or at 0.
+        before = np.flatnonzero(phase < last)
+        start = history["/time"][before[-1]] if before.size else 0.0
         u_y = history[f"/bodies/{body}/u_y"][rows]
         forces = {surface: {component: history[f"/reactions/{body}/{surface}/{component}"][rows] / 1e3
                             for component in COMPONENTS} for surface in surfaces}
         label = label or text(history.attrs.get("title", directory))
         if text(history.attrs.get("status", "")) != "complete":
             label += " (incomplete)"
-    return Run(label, time - time[0], -(u_y - u_y[0]), forces)
+    time = time - start
+    interval = blow_interval(case)
+    if real_blow_interval and interval:
+        time = on_blow_clock(time, interval, real_blow_interval)
+    # Penetration is the pile's total downward displacement (it is held still before installing),
+    # the measure the case's stop_at and snapshot_penetrations use.
+    return Run(label, time, -u_y, forces)
 
 
 def ratio(numerator, radial):
@@ -133,7 +164,7 @@ def ratio_figure(runs, which, ylabel, shafts, friction, smooth, path):
         ax.set_title(surface.replace("_", " "))
         ax.set_xlabel("penetration [m]")
         ax.grid(True, alpha=0.3)
-    # Near the ends of the 1e-3 cut-off the ratios spike; scale the axis to the bulk of the values.
+    # Where |F_r| is small but above the cut-off the ratios spike; scale the axis to the bulk of them.
     values = np.concatenate(shown)
     values = values[np.isfinite(values)]
     top = max(2.0 * friction, 1.1 * np.percentile(values, 99) if values.size else 0.0)
@@ -200,12 +231,15 @@ def main():
     parser.add_argument("--body", default="pile", help="the pile's body name (default pile)")
     parser.add_argument("--surfaces", default="tip,external_shaft,internal_shaft", metavar="TIP,EXTERNAL,INTERNAL",
                         help="the pile's contact surfaces (default tip,external_shaft,internal_shaft)")
+    parser.add_argument("--blow-interval", type=float, metavar="SECONDS",
+                        help="for runs driven by a pulse train (impact), draw blow k at k times this interval on the "
+                             "time axis (the seed's 0.85 s when the run struck more often)")
     args = parser.parse_args()
     surfaces = args.surfaces.split(",")
     if len(surfaces) != 3:
         parser.error("--surfaces needs three names: tip, external shaft, internal shaft")
 
-    runs = [load(spec, args.body, surfaces) for spec in args.runs]
+    runs = [load(spec, args.body, surfaces, args.blow_interval) for spec in args.runs]
     if args.table:
         print_table(runs, args.table, surfaces)
     os.makedirs(args.out, exist_ok=True)

@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev
   libcli11-dev libfmt-dev libtoml11-dev
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
+  xvfb xauth
 )
 
 missing=()
