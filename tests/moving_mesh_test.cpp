@@ -119,6 +119,7 @@ k0 = [{ material = "soil", surface = 5.0, k0 = 0.5 }]
 
 struct JackedReactions {
   double max_line_offset = 0.0; // largest |tip y - its grid line| over the run (m)
+  double max_shaft_ratio = 0.0; // largest |F_y| / |F_r| on either shaft over the run
   double penetration = 0.0;
   double tip_y = 0.0, inner_r = 0.0, outer_r = 0.0; // force of the soil on the pile, mean (N/rad)
 };
@@ -135,6 +136,13 @@ JackedReactions jack(double band) {
     out.max_line_offset =
         std::max(out.max_line_offset, std::abs(tip - run.scene->grid.y_axis().node(tip_line)));
     out.penetration = -run.scene->rigid_bodies[0].displacement[RIGID_Y];
+    for (const char* shaft : {"internal_shaft", "external_shaft"}) {
+      const double radial = std::abs(run.surface_force(shaft, 0));
+      if (radial > 0.0) {
+        out.max_shaft_ratio =
+            std::max(out.max_shaft_ratio, std::abs(run.surface_force(shaft, 1)) / radial);
+      }
+    }
     // Mean over the penetration from 0.1 to 0.6 m (after the start-up transient).
     if (out.penetration > 0.1) {
       out.tip_y += run.surface_force("tip", 1);
@@ -157,6 +165,12 @@ TEST(MovingMesh, TipStaysOnItsGridLineOverSixtyCentimetresAndBandSizeDoesNotMatt
   // The tip and its line are both moved by the same displacement: equal to rounding.
   EXPECT_LT(small.max_line_offset, 1e-12);
   EXPECT_LT(large.max_line_offset, 1e-12);
+  // Every shaft node pushes normal to the shaft (no tension) with friction at most mu times its
+  // normal force, and the tip-corner nodes report their shares in the shaft's frame: the shaft
+  // resultants obey |F_y| <= mu |F_r| = 0.4 |F_r| at every step, to rounding. The jacked pile
+  // slides, so the ratio reaches mu.
+  EXPECT_LE(small.max_shaft_ratio, 0.4 * (1.0 + 1e-12));
+  EXPECT_GT(small.max_shaft_ratio, 0.4 * (1.0 - 1e-6));
   // The band size changes only how far from the tip the cells start to stretch or squeeze. The
   // reactions fluctuate by about 20 % from step to step (particles crossing cells); their means
   // over 0.5 m of penetration agree to 2.3 % (tip) and 0.6 % (shafts) between the two bands, so
