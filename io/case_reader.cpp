@@ -292,6 +292,17 @@ std::vector<std::pair<std::size_t, TomlTable>> read_bodies(TomlTable& top, CaseS
   return rigid_tables;
 }
 
+/// The key `body`, which must name a rigid body.
+std::string read_rigid_body_name(TomlTable& table, const CaseSpec& spec, const std::string& why) {
+  std::string name = table.string("body");
+  const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
+                                 [&](const BodySpec& b) { return b.name == name; });
+  if (body == spec.bodies.end() || !body->rigid) {
+    table.fail("body", "no rigid body named '" + name + "'" + why);
+  }
+  return name;
+}
+
 std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
   const std::string phase = table.string_or("phase", "");
   const bool known =
@@ -427,12 +438,7 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     return;
   }
   MovingMeshSpec mesh;
-  mesh.body = table->string("body");
-  const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
-                                 [&](const BodySpec& b) { return b.name == mesh.body; });
-  if (body == spec.bodies.end() || !body->rigid) {
-    table->fail("body", "no rigid body named '" + mesh.body + "' (the band moves with one)");
-  }
+  mesh.body = read_rigid_body_name(*table, spec, " (the band moves with one)");
   if (spec.mode == GeometryMode::plane_strain) {
     table->fail("body", "the moving mesh follows a body that only translates along y and spins "
                         "about the axis: axisymmetric cases only");
@@ -623,12 +629,7 @@ void read_phases(TomlTable& top, CaseSpec& spec) {
     }
     if (std::optional<TomlTable> stop = table.optional_table("stop_at")) {
       PenetrationStop s;
-      s.body = stop->string("body");
-      const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
-                                     [&](const BodySpec& b) { return b.name == s.body; });
-      if (body == spec.bodies.end() || !body->rigid) {
-        stop->fail("body", "no rigid body named '" + s.body + "'");
-      }
+      s.body = read_rigid_body_name(*stop, spec, "");
       s.penetration = stop->positive("penetration");
       s.at_rest = stop->boolean_or("at_rest", false);
       stop->finish();
