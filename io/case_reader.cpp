@@ -121,6 +121,10 @@ struct Axes {
   GradedAxis y;
 };
 
+Axes axes_of(const CaseSpec& spec) {
+  return {GradedAxis(spec.r_zones), GradedAxis(spec.y_zones)};
+}
+
 bool on_grid_line(const GradedAxis& axis, double x) {
   const double tolerance = 1e-9 * std::max(1.0, axis.end() - axis.start());
   for (const double node : axis.nodes()) {
@@ -753,9 +757,10 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     top.fail("geometry", "must be \"axisymmetric\" or \"plane_strain\", got \"" + geometry + "\"");
   }
 
-  std::optional<TomlTable> monopile = top.optional_table("monopile");
+  // Either a [monopile] table builds grid, bodies, contact and boundaries, or the file gives them.
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
-  if (monopile) {
+  Axes axes;
+  if (std::optional<TomlTable> monopile = top.optional_table("monopile")) {
     for (const char* key : {"grid", "bodies", "contact", "boundaries", "moving_mesh"}) {
       if (top.has(key)) {
         top.fail(key, "[monopile] builds the grid, bodies, contact, boundaries and moving mesh; "
@@ -766,20 +771,17 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     if (std::optional<TomlTable> drive = read_monopile(*monopile, spec)) {
       rigid_tables.emplace_back(spec.bodies.size() - 1, std::move(*drive));
     }
-  }
-  TomlTable grid = monopile ? *monopile : top.table("grid");
-  if (!monopile) {
+    axes = axes_of(spec);
+  } else {
+    TomlTable grid = top.table("grid");
     spec.r_zones = read_zones(grid, "r");
     spec.y_zones = read_zones(grid, "y");
     grid.finish();
-  }
-  const Axes axes{GradedAxis(spec.r_zones), GradedAxis(spec.y_zones)};
-  if (spec.mode == GeometryMode::axisymmetric && axes.r.start() < 0.0) {
-    grid.fail("r", "starts at r = " + format_number(axes.r.start()) +
-                       " < 0; an axisymmetric grid starts at the axis or beyond it");
-  }
-
-  if (!monopile) {
+    if (spec.mode == GeometryMode::axisymmetric && spec.r_zones.front().start < 0.0) {
+      grid.fail("r", "starts at r = " + format_number(spec.r_zones.front().start) +
+                         " < 0; an axisymmetric grid starts at the axis or beyond it");
+    }
+    axes = axes_of(spec);
     read_materials(top, spec);
     rigid_tables = read_bodies(top, spec, axes);
   }

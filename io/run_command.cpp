@@ -79,8 +79,8 @@ const RigidBody& rigid_body_named(const Scene& scene, const std::string& name) {
 }
 
 /// A rigid body's penetration: its total downward displacement (m).
-double penetration_of(const Scene& scene, const std::string& name) {
-  return -rigid_body_named(scene, name).displacement[RIGID_Y];
+double penetration_of(const RigidBody& body) {
+  return -body.displacement[RIGID_Y];
 }
 
 /// Below this vertical speed (m/s) a pile counts as at rest between blows.
@@ -170,7 +170,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   auto skip_reached_depths = [&] {
     bool passed = false;
     while (next_depth < depths.size() &&
-           penetration_of(*scene, output.penetration_body) >= depths[next_depth]) {
+           penetration_of(rigid_body_named(*scene, output.penetration_body)) >=
+               depths[next_depth]) {
       ++next_depth;
       passed = true;
     }
@@ -275,8 +276,9 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           }
           if (phase.stop_at) {
             const PenetrationStop& stop = *phase.stop_at;
-            const double depth = penetration_of(*scene, stop.body);
-            const double speed = std::abs(rigid_body_named(*scene, stop.body).velocity[RIGID_Y]);
+            const RigidBody& pile = rigid_body_named(*scene, stop.body);
+            const double depth = penetration_of(pile);
+            const double speed = std::abs(pile.velocity[RIGID_Y]);
             if (depth >= stop.penetration && (!stop.at_rest || speed < rest_speed)) {
               std::ostringstream why;
               why << "at " << stop.body << " penetration " << std::setprecision(4) << depth << " m"

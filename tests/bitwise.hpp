@@ -5,11 +5,21 @@
 #include "engine/particles.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <cstring>
 #include <vector>
 
 namespace mpile {
+
+/// Runs `work` on exactly `threads` worker threads (more than the machine's cores are allowed, so
+/// that three threads really run on a two-core machine).
+template <class Work> void with_threads(int threads, Work&& work) {
+  const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 4);
+  tbb::task_arena arena(threads);
+  arena.execute(work);
+}
 
 template <class T> bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() &&

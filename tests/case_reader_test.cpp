@@ -3,6 +3,7 @@
 #include "io/case_error.hpp"
 #include "io/case_spec.hpp"
 #include "io/run_command.hpp"
+#include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -302,10 +303,7 @@ void expect_rejected(const std::vector<BadInput>& table) {
 }
 
 std::string monopile_case() {
-  std::ifstream in(std::filesystem::path(MPILE_SOURCE_DIR) / "cases/monopile/gdp_quick.toml");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return read_text(source / "cases/monopile/gdp_quick.toml");
 }
 
 std::string monopile_edited(const std::string& from, const std::string& to) {

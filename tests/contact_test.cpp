@@ -11,8 +11,6 @@
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
-#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <cstring>
@@ -299,10 +297,8 @@ struct ContactOutcome {
 };
 
 ContactOutcome run_with_threads(const std::string& text, int threads) {
-  const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 4);
   ContactOutcome outcome;
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
+  with_threads(threads, [&] {
     CaseRun run(text);
     run.run([] {});
     outcome.particles = run.scene->particles;

@@ -10,8 +10,6 @@
 #include "tests/bitwise.hpp"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
-#include <tbb/task_arena.h>
 
 #include <cstring>
 
@@ -26,11 +24,8 @@ struct Outcome {
 };
 
 Outcome collapse(GeometryMode mode, int threads) {
-  // Allow more threads than cores, so that three threads really run on a two-core machine.
-  const tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 4);
   Outcome outcome;
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
+  with_threads(threads, [&] {
     const AxisZone r_zones[] = {{0.0, 0.6, 24}, {0.6, 2.0, 14}};
     const AxisZone y_zones[] = {{0.0, 1.4, 28}};
     Scene scene(mode, Grid(GradedAxis(r_zones), GradedAxis(y_zones)));
