@@ -53,6 +53,7 @@ void ContactPair::allocate(std::size_t node_count) {
   surface_area.assign(node_count * surfaces.size(), 0.0);
   normal.assign(node_count, {0.0, 0.0});
   node_force.assign(node_count, {0.0, 0.0, 0.0});
+  node_dissipation.assign(node_count, 0.0);
   state.assign(node_count, 0);
   contact_normal.assign(node_count, {0.0, 0.0});
   gap.assign(outline ? node_count : 0, 0.0);

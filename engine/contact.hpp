@@ -70,6 +70,9 @@ struct ContactPair {
   std::vector<double> surface_area;
   std::vector<std::array<double, 2>> normal;
   std::vector<std::array<double, 3>> node_force;
+  /// Per node, the kinetic energy the last step's correction took (J [/rad], >= 0): the relative
+  /// motion it removed, normal and tangential.
+  std::vector<double> node_dissipation;
   // Per node, from the contact pass after the momentum balance: 0 not in contact, 1 sliding, 2
   // sticking, and the normal used. After the MUSL remap the same nodes get the same kind of
   // correction again, without a new approach test, so that the strain increment sees the motion the

@@ -556,12 +556,18 @@ void read_solver(TomlTable& top, CaseSpec& spec) {
     s.gravity = {g[0], g[1]};
   }
   s.block_cells = static_cast<int>(table->integer_or("block_cells", s.block_cells));
+  if (table->has("min_time_step")) {
+    s.min_time_step = table->positive("min_time_step");
+  }
+  if (table->has("energy_residual_warning")) {
+    s.energy_residual_warning = table->positive("energy_residual_warning");
+  }
   try {
     s.validate();
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
     for (const char* key : {"courant_number", "max_time_step", "flip_fraction", "mass_scaling",
-                            "gravity", "block_cells"}) {
+                            "gravity", "block_cells", "min_time_step", "energy_residual_warning"}) {
       if (message.rfind(key, 0) == 0) {
         table->fail(key, message);
       }

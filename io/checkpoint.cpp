@@ -9,7 +9,7 @@ namespace mpile {
 
 namespace {
 
-constexpr const char* format_version = "mpile checkpoint 2";
+constexpr const char* format_version = "mpile checkpoint 3";
 
 /// A rigid body's state as one row: velocity, displacement, centre, contact, driving, work.
 std::vector<double> rigid_state(const RigidBody& b) {
@@ -92,8 +92,13 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     }
     file.write("/solver/state",
                std::vector<double>{solver.time, static_cast<double>(solver.steps), solver.stable_dt,
-                                   solver.last_dt, solver.external_work},
-               "time, steps, stable dt, last dt, external work");
+                                   solver.last_dt, solver.min_dt},
+               "time, steps, stable dt, last dt, dt floor");
+    const EnergyLedger& e = solver.energy;
+    file.write("/solver/energy",
+               std::vector<double>{e.external_work, e.internal_work, e.damping, e.contact,
+                                   e.kinetic_reference, e.elastic_reference},
+               "external work, internal work, damping, contact, kinetic and elastic references");
     file.write("/run/counters",
                std::vector<double>{static_cast<double>(progress.phase),
                                    static_cast<double>(progress.history_rows),
@@ -179,7 +184,10 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
 
   Checkpoint checkpoint;
   const auto s = file.read_doubles("/solver/state");
-  checkpoint.solver = {s.at(0), static_cast<long>(s.at(1)), s.at(2), s.at(3), s.at(4)};
+  const auto e = file.read_doubles("/solver/energy");
+  checkpoint.solver = {s.at(0), static_cast<long>(s.at(1)),
+                       s.at(2), s.at(3),
+                       s.at(4), EnergyLedger{e.at(0), e.at(1), e.at(2), e.at(3), e.at(4), e.at(5)}};
   const auto c = file.read_doubles("/run/counters");
   RunProgress& progress = checkpoint.progress;
   progress.phase = static_cast<std::size_t>(c.at(0));

@@ -1,7 +1,5 @@
 #include "io/history_writer.hpp"
 
-#include "solver/diagnostics.hpp"
-
 #include <cctype>
 
 namespace mpile {
@@ -51,9 +49,12 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
   series("/dt", "s");
   series("/step", "-");
   series("/phase", "index into the case's [[phases]]");
-  series("/energy/kinetic", u.energy);
-  series("/energy/internal", u.energy);
-  series("/energy/external_work", u.energy);
+  for (const char* name :
+       {"/energy/external_work", "/energy/kinetic", "/energy/elastic", "/energy/plastic",
+        "/energy/damping", "/energy/contact", "/energy/residual"}) {
+    series(name, u.energy);
+  }
+  series("/energy/relative_residual", "-");
   for (const NodeConstraint& c : scene.boundaries.constraints) {
     const std::string base = "/boundaries/" + dataset_name(c.name);
     series(base + "/F_r", u.force);
@@ -107,15 +108,21 @@ Hdf5Series& HistoryWriter::series(const std::string& name, const std::string& un
   return found->second;
 }
 
-void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase) {
+EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase) {
   const Scene& scene = solver.scene();
   series_.at("/time").append(solver.time());
   series_.at("/dt").append(solver.last_time_step());
   series_.at("/step").append(static_cast<double>(solver.step_count()));
   series_.at("/phase").append(static_cast<double>(phase));
-  series_.at("/energy/kinetic").append(kinetic_energy(scene));
-  series_.at("/energy/internal").append(elastic_energy(scene));
-  series_.at("/energy/external_work").append(solver.external_work());
+  const EnergyBalance energy = solver.energy_balance();
+  series_.at("/energy/external_work").append(energy.external_work);
+  series_.at("/energy/kinetic").append(energy.kinetic);
+  series_.at("/energy/elastic").append(energy.elastic);
+  series_.at("/energy/plastic").append(energy.plastic);
+  series_.at("/energy/damping").append(energy.damping);
+  series_.at("/energy/contact").append(energy.contact);
+  series_.at("/energy/residual").append(energy.residual);
+  series_.at("/energy/relative_residual").append(energy.relative_residual);
   for (const NodeConstraint& c : scene.boundaries.constraints) {
     const std::string base = "/boundaries/" + dataset_name(c.name);
     series_.at(base + "/F_r").append(c.reaction[0]);
@@ -157,6 +164,7 @@ void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase) {
   }
   ++rows_;
   flush_if_due();
+  return energy;
 }
 
 void HistoryWriter::flush_if_due() {

@@ -21,7 +21,8 @@ public:
   HistoryWriter(const std::string& path, const CaseSpec& spec, const Scene& scene, int threads,
                 std::size_t rows = 0);
 
-  void record(const ExplicitSolver& solver, std::size_t phase);
+  /// Appends a row; returns the energy balance it recorded.
+  EnergyBalance record(const ExplicitSolver& solver, std::size_t phase);
   std::size_t rows() const { return rows_; }
   void flush_if_due();
   /// Writes the closing attributes: wall time and status ("complete", "interrupted", ...).

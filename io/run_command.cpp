@@ -207,6 +207,24 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       write_checkpoint(checkpoint_path, spec, *scene, solver->state(), progress);
     };
 
+    // The first row whose energy residual passes the case's threshold warns, once per run.
+    bool residual_warned = false;
+    auto warn_on_energy_residual = [&](const EnergyBalance& energy) {
+      if (residual_warned ||
+          !(energy.relative_residual > solver->settings().energy_residual_warning)) {
+        return;
+      }
+      residual_warned = true;
+      std::ostringstream s;
+      s << "t = " << format_time(solver->time()) << " s: the energy residual is "
+        << std::setprecision(3) << 100.0 * energy.relative_residual
+        << " % of the energy that flowed (energy_residual_warning "
+        << 100.0 * solver->settings().energy_residual_warning << " %): external work "
+        << energy.external_work << ", kinetic " << energy.kinetic << ", elastic " << energy.elastic
+        << ", plastic " << energy.plastic << ", damping " << energy.damping << ", contact "
+        << energy.contact << " (see /energy in history.h5)";
+      log.warn(s.str());
+    };
     ProgressReporter reporter(err, isatty(fileno(stderr)) != 0, spec.end_time());
     StopOnSignals signals;
     long steps_this_run = 0;
@@ -229,7 +247,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           const double t = solver->time();
           const double dt = solver->last_time_step();
           if (output.history_interval == 0.0 || reached(t, progress.next_history_time, dt)) {
-            history.record(*solver, progress.phase);
+            warn_on_energy_residual(history.record(*solver, progress.phase));
             recorded_step = solver->step_count();
             while (output.history_interval > 0.0 && reached(t, progress.next_history_time, dt)) {
               progress.next_history_time += output.history_interval;
@@ -311,7 +329,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         if (progress.phase < spec.phases.size()) {
           progress.phase_starts.push_back(solver->time());
           activate_phase_boundaries(*scene, spec, progress.phase, solver->time());
+          const double elastic_before = elastic_energy(*scene);
           apply_k0(*scene, spec, spec.phases[progress.phase]);
+          if (!spec.phases[progress.phase].k0.empty()) {
+            solver->account_for_stress_reset(elastic_before);
+          }
           solver->change_settings(phase_settings(spec, spec.phases[progress.phase]));
         }
       }

@@ -58,11 +58,13 @@ void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double,
 struct SurfaceSums {
   std::array<double, 4 * max_surfaces> surface{}; // (F_r, F_y, F_theta, torque) per surface
   std::array<double, 3> body{};                   // rigid DOF reactions: (F_r, F_y, moment)
+  double dissipation = 0.0;
 };
 
+/// Returns the energy the correction took over the step (J [/rad]).
 template <GeometryMode mode>
-void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& settings,
-                  const StepParameters& step, bool record) {
+double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& settings,
+                    const StepParameters& step, bool record) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   std::vector<GridNode>& soil = grid.nodes;
@@ -125,12 +127,13 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
       }
       apply(i, s, k, change, false);
     });
-    return;
+    return 0.0;
   }
   parallel_for(soil.size(), [&](std::size_t i) {
     GridNode& s = soil[i];
     GridNode& k = structure[i];
     pair.node_force[i] = {0.0, 0.0, 0.0};
+    pair.node_dissipation[i] = 0.0;
     pair.state[i] = contact_free;
     if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
       return;
@@ -182,6 +185,31 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
     for (std::size_t d = 0; d < 3; ++d) {
       change[d] -= (1.0 - keep) * tangential[d];
     }
+    // The energy the correction takes is the work of its impulse m_s dv at the mean relative
+    // velocity over the step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, times kappa = 1 where the
+    // structure's DOF moves as prescribed (rigid or held) and 1 + m_s / m_k where both fields
+    // share the impulse (v_rel is then measured from the centre of mass). The velocity at the
+    // start of the step is v^{n+1} minus the increment the momentum balance left in the force
+    // slot (a rigid field's is taken at its new velocity); the end velocity alone would charge a
+    // node of little mass, whose velocity one step's force changes a lot, for energy the
+    // particles never had.
+    auto start_of_step = [](const GridNode& node) {
+      GridNode start = node;
+      for (std::size_t d = 0; d < 3; ++d) {
+        start.momentum[d] -= node.force[d];
+      }
+      return start;
+    };
+    const auto relative_start =
+        relative_velocity(i, start_of_step(s), rigid ? k : start_of_step(k));
+    double lost = 0.0;
+    for (int d = 0; d < dofs; ++d) {
+      const auto u = static_cast<std::size_t>(d);
+      const double kappa = rigid || (held[i] & (1u << d)) != 0 ? 1.0 : 1.0 + s.mass / k.mass;
+      const double mean = 0.5 * (relative_start[u] + relative[u] + change[u]);
+      lost -= kappa * mean * change[u];
+    }
+    pair.node_dissipation[i] = beta * s.mass * lost;
     apply(i, s, k, change, true);
     const double impulse_to_force = beta * s.mass / step.dt;
     pair.node_force[i] = {-impulse_to_force * change[0], -impulse_to_force * change[1],
@@ -202,6 +230,7 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
           if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) {
             continue;
           }
+          sum.dissipation += pair.node_dissipation[i];
           const double r = grid.node_r(static_cast<int>(i));
           const double y = grid.node_y(static_cast<int>(i));
           const double torque = r * f[2];
@@ -261,6 +290,7 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
         for (std::size_t d = 0; d < 3; ++d) {
           a.body[d] += b.body[d];
         }
+        a.dissipation += b.dissipation;
         return a;
       },
       true, 2048);
@@ -271,6 +301,7 @@ void resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setting
   if (rigid) {
     scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)].contact = sums.body;
   }
+  return sums.dissipation;
 }
 
 } // namespace
@@ -301,8 +332,8 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
 }
 
 template <GeometryMode mode>
-void resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                     bool record) {
+double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                       bool record) {
   if (record) {
     for (ContactPair& pair : scene.contacts) {
       if (pair.outline) {
@@ -310,9 +341,11 @@ void resolve_contact(Scene& scene, const SolverSettings& settings, const StepPar
       }
     }
   }
+  double dissipation = 0.0;
   for (ContactPair& pair : scene.contacts) {
-    resolve_pair<mode>(scene, pair, settings, step, record);
+    dissipation += resolve_pair<mode>(scene, pair, settings, step, record);
   }
+  return dissipation;
 }
 
 void finish_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step,
@@ -350,9 +383,9 @@ void move_rigid_bodies(Scene& scene, const StepParameters& step) {
   }
 }
 
-template void resolve_contact<GeometryMode::axisymmetric>(Scene&, const SolverSettings&,
-                                                          const StepParameters&, bool);
-template void resolve_contact<GeometryMode::plane_strain>(Scene&, const SolverSettings&,
-                                                          const StepParameters&, bool);
+template double resolve_contact<GeometryMode::axisymmetric>(Scene&, const SolverSettings&,
+                                                            const StepParameters&, bool);
+template double resolve_contact<GeometryMode::plane_strain>(Scene&, const SolverSettings&,
+                                                            const StepParameters&, bool);
 
 } // namespace mpile::passes

@@ -21,10 +21,11 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
 
 /// The Bardenhagen correction at every node both the soil and a structure occupy. With record,
 /// also the FLIP increments, the per-node and per-surface forces and the rigid-body reactions
-/// (and the outlines' nodal areas are refreshed first).
+/// (and the outlines' nodal areas are refreshed first), and returns the kinetic energy the
+/// correction took (J [/rad]); without record, 0.
 template <GeometryMode mode>
-void resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                     bool record);
+double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
+                       bool record);
 
 /// Force-driven DOFs take the contact reactions; fields are set to the final rigid motion.
 void finish_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step,

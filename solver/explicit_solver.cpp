@@ -2,6 +2,7 @@
 
 #include "engine/parallel.hpp"
 #include "solver/contact_passes.hpp"
+#include "solver/diagnostics.hpp"
 #include "solver/passes.hpp"
 
 #include <tbb/parallel_for.h>
@@ -43,6 +44,10 @@ ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& lo
   sort_particles_by_cell();
   stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
                         settings_.max_time_step);
+  // A thousandth of the first step: a run that needs steps that short has gone wrong.
+  min_dt_ = settings_.min_time_step > 0.0 ? settings_.min_time_step : 1e-3 * stable_dt_;
+  energy_.kinetic_reference = settings_.mass_scaling * kinetic_energy(scene_);
+  energy_.elastic_reference = elastic_energy(scene_);
   report_settings();
 }
 
@@ -54,7 +59,8 @@ ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& lo
   steps_ = restored.steps;
   stable_dt_ = restored.stable_dt;
   last_dt_ = restored.last_dt;
-  external_work_ = restored.external_work;
+  min_dt_ = restored.min_dt;
+  energy_ = restored.energy;
   report_settings();
 }
 
@@ -93,11 +99,19 @@ void ExplicitSolver::prepare() {
 }
 
 double ExplicitSolver::external_work() const {
-  double work = external_work_;
+  double work = energy_.external_work;
   for (const RigidBody& body : scene_.rigid_bodies) {
     work += body.external_work;
   }
   return work;
+}
+
+EnergyBalance ExplicitSolver::energy_balance() const {
+  return mpile::energy_balance(scene_, energy_, settings_.mass_scaling);
+}
+
+void ExplicitSolver::account_for_stress_reset(double elastic_before) {
+  energy_.elastic_reference += elastic_energy(scene_) - elastic_before;
 }
 
 void ExplicitSolver::report_settings() {
@@ -113,7 +127,15 @@ void ExplicitSolver::change_settings(const SolverSettings& settings) {
   settings.validate();
   const bool rebin_needed = settings.block_cells != settings_.block_cells;
   const bool scaling_changed = settings.mass_scaling != settings_.mass_scaling;
+  if (scaling_changed) {
+    // The same motion now carries beta times the kinetic energy; the balance starts from there.
+    energy_.kinetic_reference +=
+        (settings.mass_scaling - settings_.mass_scaling) * kinetic_energy(scene_);
+  }
   settings_ = settings;
+  if (settings_.min_time_step > 0.0) {
+    min_dt_ = settings_.min_time_step;
+  }
   if (rebin_needed) {
     bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
     rebin();
@@ -171,8 +193,28 @@ void ExplicitSolver::move_mesh() {
     throw SimulationError(s.str());
   }
   rebin();
-  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
-                        settings_.max_time_step);
+}
+
+void ExplicitSolver::set_stable_time_step(double crossing_time, double dt_taken) {
+  // The Courant number the step just taken has against the material as it is now: above 1, the
+  // waves crossed more than a cell in one step (a stiffening or a runaway velocity), and the
+  // explicit integration is no longer stable.
+  const double courant = dt_taken / crossing_time;
+  if (courant > 1.0) {
+    std::ostringstream s;
+    s << "step " << steps_ << ", t = " << time_ << " s: the Courant number reached " << courant
+      << " (dt = " << dt_taken << " s against a crossing time of " << crossing_time
+      << " s): above 1 the explicit step is unstable; lower courant_number or max_time_step";
+    throw SimulationError(s.str());
+  }
+  stable_dt_ = std::min(settings_.courant_number * crossing_time, settings_.max_time_step);
+  if (stable_dt_ < min_dt_) {
+    std::ostringstream s;
+    s << "step " << steps_ << ", t = " << time_ << " s: the time step collapsed to " << stable_dt_
+      << " s, below the floor of " << min_dt_
+      << " s (min_time_step): a particle's wave speed or velocity has run away";
+    throw SimulationError(s.str());
+  }
 }
 
 void ExplicitSolver::rebin() {
@@ -281,23 +323,34 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
   {
     PassTimer timer(timings_.grid_update);
     passes::apply_nodal_loads(scene_, step);
-    passes::update_grid_velocities<mode>(scene_, settings_, step);
+    const passes::GridUpdateResult grid =
+        passes::update_grid_velocities<mode>(scene_, settings_, step);
+    energy_.damping += grid.damping_dissipation;
+    if (grid.node_nonfinite >= 0) {
+      const int node = static_cast<int>(grid.node_nonfinite);
+      std::ostringstream s;
+      s << "step " << steps_ + 1 << ", t = " << time_ << " s: node " << node << " at (r, y) = ("
+        << scene_.grid.node_r(node) << ", " << scene_.grid.node_y(node)
+        << ") has a non-finite velocity: the run went unstable";
+      throw SimulationError(s.str());
+    }
   }
   const auto soil_constraints =
       contact ? passes::ConstraintFields::soil : passes::ConstraintFields::all;
   if constexpr (contact) {
     PassTimer timer(timings_.contact);
-    external_work_ += passes::apply_constraints(scene_, settings_, step, true,
-                                                passes::ConstraintFields::structures);
+    energy_.external_work += passes::apply_constraints(scene_, settings_, step, true,
+                                                       passes::ConstraintFields::structures);
     const auto predicted = passes::predict_rigid_bodies(scene_, settings_, step);
-    passes::resolve_contact<mode>(scene_, settings_, step, true);
+    energy_.contact += passes::resolve_contact<mode>(scene_, settings_, step, true);
     passes::finish_rigid_bodies(scene_, settings_, step, predicted);
   }
   {
     PassTimer timer(timings_.grid_update);
-    external_work_ += passes::apply_constraints(scene_, settings_, step, true, soil_constraints);
+    energy_.external_work +=
+        passes::apply_constraints(scene_, settings_, step, true, soil_constraints);
     if (!scene_.boundaries.loads.empty()) {
-      external_work_ += passes::nodal_load_work(scene_, step);
+      energy_.external_work += passes::nodal_load_work(scene_, step);
     }
   }
   {
@@ -330,7 +383,8 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
   time_ += dt;
   last_dt_ = dt;
   ++steps_;
-  external_work_ += result.gravity_work;
+  energy_.external_work += result.gravity_work;
+  energy_.internal_work += result.internal_work;
   if (result.particle_nonfinite >= 0) {
     std::ostringstream s;
     s << "step " << steps_ << ", t = " << time_ << " s: "
@@ -346,10 +400,11 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
     throw SimulationError(s.str());
   }
   if (scene_.moving_mesh) {
-    return; // move_mesh has relocated, rebinned and set the step
+    // move_mesh has relocated and rebinned; the step follows from the moved cells.
+    set_stable_time_step(passes::min_crossing_time(scene_, settings_), dt);
+    return;
   }
-  stable_dt_ =
-      std::min(settings_.courant_number * result.min_crossing_time, settings_.max_time_step);
+  set_stable_time_step(result.min_crossing_time, dt);
   if (result.block_changed) {
     PassTimer timer(timings_.binning);
     rebin();

@@ -2,6 +2,7 @@
 
 #include "engine/particle_bins.hpp"
 #include "engine/scene.hpp"
+#include "solver/energy_balance.hpp"
 #include "solver/run_log.hpp"
 #include "solver/solver_settings.hpp"
 
@@ -33,7 +34,8 @@ struct SolverState {
   long steps = 0;
   double stable_dt = 0.0;
   double last_dt = 0.0;
-  double external_work = 0.0;
+  double min_dt = 0.0; // the floor below which the time step counts as collapsed
+  EnergyLedger energy;
 };
 
 /// The explicit MPM time integrator (MUSL, physics.md section 3) over a scene.
@@ -53,14 +55,19 @@ public:
 
   double time() const { return time_; }
   long step_count() const { return steps_; }
-  /// Work done on the material since the start by gravity, loads and supports (J, per radian in
-  /// axisymmetric mode).
+  /// Work done on the material since the start by gravity, loads, supports and rigid-body drives
+  /// (J, per radian in axisymmetric mode).
   double external_work() const;
+  /// The energy balance now (docs/design.md, "Energy balance").
+  EnergyBalance energy_balance() const;
+  /// To call after the stresses were set anew (a K0 procedure between phases) from a state whose
+  /// stored elastic energy was elastic_before: the balance carries on from the new stresses.
+  void account_for_stress_reset(double elastic_before);
   /// Stable time step for the next step (s).
   double stable_time_step() const { return stable_dt_; }
   /// Length of the last step taken (s).
   double last_time_step() const { return last_dt_; }
-  SolverState state() const { return {time_, steps_, stable_dt_, last_dt_, external_work_}; }
+  SolverState state() const { return {time_, steps_, stable_dt_, last_dt_, min_dt_, energy_}; }
   const SolverSettings& settings() const { return settings_; }
   /// Replaces the settings between phases (damping on or off, for example).
   void change_settings(const SolverSettings& settings);
@@ -81,6 +88,9 @@ private:
   /// recomputes the stable step from the new cell sizes.
   void move_mesh();
   void rebin();
+  /// Sets the next step from the particles' crossing time and stops the run if the step just
+  /// taken was longer than the material allows now (Courant number above 1) or the step collapsed.
+  void set_stable_time_step(double crossing_time, double dt_taken);
   void sort_particles_by_cell();
   void report_settings();
 
@@ -92,7 +102,8 @@ private:
   double time_ = 0.0;
   double stable_dt_ = 0.0;
   double mass_floor_ = 0.0;
-  double external_work_ = 0.0;
+  double min_dt_ = 0.0;
+  EnergyLedger energy_;
   double last_dt_ = 0.0;
   long steps_ = 0;
 };

@@ -1,7 +1,10 @@
 // Grid update: the nodal momentum balance M a = f_ext - f_int (+ local damping). Reads node mass,
 // momentum, force and the constrained-DOF mask; writes node velocity v^{n+1} (in the momentum
-// slot) and the velocity increment v^{n+1} - v^n (in the force slot).
+// slot) and the velocity increment v^{n+1} - v^n (in the force slot). Returns the energy the
+// damping took and the first node whose velocity is not finite.
 #include "solver/passes.hpp"
+
+#include "engine/parallel.hpp"
 
 #include <cmath>
 
@@ -20,55 +23,83 @@ void apply_nodal_loads(Scene& scene, const StepParameters& step) {
 
 namespace {
 
+GridUpdateResult combine(GridUpdateResult a, const GridUpdateResult& b) {
+  a.damping_dissipation += b.damping_dissipation;
+  if (a.node_nonfinite < 0 || (b.node_nonfinite >= 0 && b.node_nonfinite < a.node_nonfinite)) {
+    a.node_nonfinite = b.node_nonfinite; // the lowest index, whatever the order of the joins
+  }
+  return a;
+}
+
 template <int dofs>
-void update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uint8_t>& mask,
-                             const SolverSettings& settings, const StepParameters& step) {
+GridUpdateResult
+update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uint8_t>& mask,
+                        const SolverSettings& settings, const StepParameters& step) {
   const double alpha = settings.local_damping;
   const double dt_over_beta = step.dt / settings.mass_scaling;
-  parallel_for(nodes.size(), [&](std::size_t i) {
-    GridNode& node = nodes[i];
-    if (node.mass <= step.mass_floor) {
-      node = GridNode{};
-      return;
-    }
-    const double inverse_mass = 1.0 / node.mass;
-    const std::uint8_t constrained = mask[i];
-    for (int d = 0; d < dofs; ++d) {
-      const double velocity = node.momentum[d] * inverse_mass;
-      double force = node.force[d];
-      // Local damping opposes the motion with a fraction of the unbalanced force; constrained DOFs
-      // are left alone so that their reactions stay free of it.
-      if (alpha > 0.0 && (constrained & (1u << d)) == 0 && velocity != 0.0) {
-        force -= alpha * std::abs(force) * std::copysign(1.0, velocity);
+  auto update = [&](std::size_t begin, std::size_t end, GridUpdateResult result) {
+    for (std::size_t i = begin; i != end; ++i) {
+      GridNode& node = nodes[i];
+      if (node.mass <= step.mass_floor) {
+        node = GridNode{};
+        continue;
       }
-      const double increment = dt_over_beta * force * inverse_mass;
-      node.momentum[d] = velocity + increment;
-      node.force[d] = increment;
+      const double inverse_mass = 1.0 / node.mass;
+      const std::uint8_t constrained = mask[i];
+      double finite_check = 0.0;
+      for (int d = 0; d < dofs; ++d) {
+        const double velocity = node.momentum[d] * inverse_mass;
+        double force = node.force[d];
+        // Local damping opposes the motion with a fraction of the unbalanced force; constrained
+        // DOFs are left alone so that their reactions stay free of it.
+        if (alpha > 0.0 && (constrained & (1u << d)) == 0 && velocity != 0.0) {
+          const double damping = alpha * std::abs(force) * std::copysign(1.0, velocity);
+          force -= damping;
+          // The damping force's work over the step at the mean velocity, v + dv / 2.
+          result.damping_dissipation +=
+              damping * (velocity + 0.5 * dt_over_beta * force * inverse_mass) * step.dt;
+        }
+        const double increment = dt_over_beta * force * inverse_mass;
+        node.momentum[d] = velocity + increment;
+        node.force[d] = increment;
+        finite_check += node.momentum[d];
+      }
+      if (!std::isfinite(finite_check) && result.node_nonfinite < 0) {
+        result.node_nonfinite = static_cast<std::int64_t>(i);
+      }
     }
-  });
+    return result;
+  };
+  // The damping sum must not depend on the thread count; without damping the split is free.
+  return parallel_reduce(nodes.size(), GridUpdateResult{}, update, combine, alpha > 0.0);
 }
 
 } // namespace
 
 template <GeometryMode mode>
-void update_grid_velocities(Scene& scene, const SolverSettings& settings,
-                            const StepParameters& step) {
+GridUpdateResult update_grid_velocities(Scene& scene, const SolverSettings& settings,
+                                        const StepParameters& step) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
-  update_field_velocities<dofs>(grid.nodes, grid.constrained, settings, step);
+  GridUpdateResult result =
+      update_field_velocities<dofs>(grid.nodes, grid.constrained, settings, step);
   // Deformable structures have their own momentum balance; rigid bodies set their fields from
   // their DOFs instead.
   for (const ContactPair& pair : scene.contacts) {
     if (pair.rigid_body < 0) {
-      update_field_velocities<dofs>(grid.field_nodes(pair.field),
-                                    grid.field_constrained(pair.field), settings, step);
+      GridUpdateResult field = update_field_velocities<dofs>(
+          grid.field_nodes(pair.field), grid.field_constrained(pair.field), settings, step);
+      result = combine(result, field);
     }
   }
+  return result;
 }
 
-template void update_grid_velocities<GeometryMode::axisymmetric>(Scene&, const SolverSettings&,
-                                                                 const StepParameters&);
-template void update_grid_velocities<GeometryMode::plane_strain>(Scene&, const SolverSettings&,
-                                                                 const StepParameters&);
+template GridUpdateResult update_grid_velocities<GeometryMode::axisymmetric>(Scene&,
+                                                                             const SolverSettings&,
+                                                                             const StepParameters&);
+template GridUpdateResult update_grid_velocities<GeometryMode::plane_strain>(Scene&,
+                                                                             const SolverSettings&,
+                                                                             const StepParameters&);
 
 } // namespace mpile::passes

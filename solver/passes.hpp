@@ -26,9 +26,14 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
 
 void apply_nodal_loads(Scene& scene, const StepParameters& step);
 
+struct GridUpdateResult {
+  double damping_dissipation = 0.0; // work taken by local damping over the step (J)
+  std::int64_t node_nonfinite = -1; // lowest index of a node with a non-finite velocity, or -1
+};
+
 template <GeometryMode mode>
-void update_grid_velocities(Scene& scene, const SolverSettings& settings,
-                            const StepParameters& step);
+GridUpdateResult update_grid_velocities(Scene& scene, const SolverSettings& settings,
+                                        const StepParameters& step);
 
 /// Which constraints a call applies: with contact, those on structure fields come before the
 /// contact correction (which then sees the structure's prescribed velocity), those on the soil
@@ -56,6 +61,7 @@ struct StressPassResult {
   bool block_changed = false;           // a particle moved into another scatter block
   std::int64_t particle_outside = -1;   // lowest index of a particle that left the grid, or -1
   double gravity_work = 0.0;            // sum of m g . du over the particles
+  double internal_work = 0.0;           // sum of V sigma : d eps over the particles
   std::int64_t particle_nonfinite = -1; // lowest index of a particle with a non-finite stress or
                                         // velocity, or -1
 };

@@ -25,6 +25,10 @@ void SolverSettings::validate() const {
   require(mass_scaling >= 1.0,
           "mass_scaling must be at least 1, got " + std::to_string(mass_scaling));
   require(std::isfinite(gravity[0]) && std::isfinite(gravity[1]), "gravity must be finite");
+  require(min_time_step >= 0.0 && std::isfinite(min_time_step),
+          "min_time_step must be >= 0, got " + std::to_string(min_time_step));
+  require(energy_residual_warning > 0.0, "energy_residual_warning must be positive, got " +
+                                             std::to_string(energy_residual_warning));
   require(block_cells >= 1 && block_cells <= 16,
           "block_cells must lie in [1, 16], got " + std::to_string(block_cells));
 }

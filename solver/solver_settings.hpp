@@ -24,6 +24,10 @@ struct SolverSettings {
   double mass_scaling = 1.0;
   /// Gravitational acceleration (r, y) in m/s^2; physics.md puts gravity along -y.
   std::array<double, 2> gravity{0.0, 0.0};
+  /// The time step below which a run stops as collapsed (s); 0: a thousandth of the first step.
+  double min_time_step = 0.0;
+  /// A history row whose energy residual exceeds this fraction of the energy that flowed warns.
+  double energy_residual_warning = 0.05;
   /// Cells per side of a scatter block (colored scatter).
   int block_cells = 8;
 

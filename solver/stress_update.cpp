@@ -22,10 +22,12 @@ struct BlockScratch {
   std::vector<StrainIncrement> strain;
   std::vector<double> spin;
   std::vector<double> modulus;
+  std::vector<double> work_before; // sigma^n : d eps, for the internal work
   void resize(std::size_t n) {
     strain.resize(n);
     spin.resize(n);
     modulus.resize(n);
+    work_before.resize(n);
   }
 };
 
@@ -37,6 +39,12 @@ void rotate_in_plane(Stress& s, double w) {
   s[RY] += w * (old[YY] - old[RR]);
   s[RT] += w * old[YT];
   s[YT] -= w * old[RT];
+}
+
+/// sigma : d eps with engineering shear strains.
+double stress_power(const Stress& s, const StrainIncrement& de) {
+  return s[RR] * de[RR] + s[YY] * de[YY] + s[TT] * de[TT] + s[RY] * de[RY] + s[YT] * de[YT] +
+         s[RT] * de[RT];
 }
 
 } // namespace
@@ -68,6 +76,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
     bool changed = false;
     std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
     double gravity_work = 0.0;
+    double internal_work = 0.0;
     std::int64_t first_nonfinite = std::numeric_limits<std::int64_t>::max();
   };
   std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
@@ -146,6 +155,13 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       }
     }
 
+    // The internal work over the step is the trapezoidal rule on sigma : d eps (the co-rotation
+    // above does no work), so it needs the stress before the update.
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      scratch.work_before[k] =
+          stress_power(p.stress[static_cast<std::size_t>(particles[k])], scratch.strain[k]);
+    }
+
     // 4. Constitutive update, one call per run of particles with the same material.
     for (std::size_t begin = 0; begin < particles.size();) {
       const std::uint16_t material = p.material[static_cast<std::size_t>(particles[begin])];
@@ -171,9 +187,12 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
     for (std::size_t k = 0; k < particles.size(); ++k) {
       const auto i = static_cast<std::size_t>(particles[k]);
       const StrainIncrement& de = scratch.strain[k];
+      const double volume_before = p.volume[i];
       p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
-      // A run going unstable shows here first: catch it at the particle, with its position.
       const Stress& s = p.stress[i];
+      out.internal_work +=
+          0.25 * (volume_before + p.volume[i]) * (scratch.work_before[k] + stress_power(s, de));
+      // A run going unstable shows here first: catch it at the particle, with its position.
       double finite_check = s[RR] + s[YY] + s[TT] + s[RY] + s[YT] + s[RT] + p.v_r[i] + p.v_y[i];
       if constexpr (has_theta(mode)) {
         finite_check += p.v_theta[i];
@@ -220,6 +239,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
     result.block_changed = result.block_changed || out.changed;
     first_outside = std::min(first_outside, out.first_outside);
     result.gravity_work += out.gravity_work;
+    result.internal_work += out.internal_work;
     first_nonfinite = std::min(first_nonfinite, out.first_nonfinite);
   }
   result.particle_outside =

@@ -137,34 +137,3 @@ TEST(Solver, RejectsBadScenesAndSettings) {
 
 } // namespace
 } // namespace mpile
-
-namespace mpile {
-namespace {
-
-TEST(Solver, NonFiniteStateStopsTheRunNamingTheParticle) {
-  Scene scene = elastic_block(GeometryMode::axisymmetric);
-  RunLog log;
-  ExplicitSolver solver(scene, SolverSettings{}, log);
-  // Poison one particle (as an unstable run would), found by its initial position after sorting.
-  std::size_t target = 0;
-  for (std::size_t i = 0; i < scene.particles.size(); ++i) {
-    if (scene.particles.r0[i] > 1.0 && scene.particles.y0[i] > 1.0) {
-      target = i;
-      break;
-    }
-  }
-  scene.particles.stress[target][YY] = std::numeric_limits<double>::quiet_NaN();
-  try {
-    solver.step();
-    FAIL() << "expected a SimulationError";
-  } catch (const SimulationError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("non-finite stress or velocity"), std::string::npos) << message;
-    // The poisoned particle or one it contaminated through the grid in this step is named.
-    EXPECT_NE(message.find("step 1,"), std::string::npos) << message;
-    EXPECT_NE(message.find("(r, y) = ("), std::string::npos) << message;
-  }
-}
-
-} // namespace
-} // namespace mpile

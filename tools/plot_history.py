@@ -2,7 +2,7 @@
 """Plot datasets of an mpile history.h5 against time or against another dataset, to a PNG.
 
   tools/plot_history.py out/case/history.h5 --list
-  tools/plot_history.py out/case/history.h5 /energy/kinetic /energy/internal
+  tools/plot_history.py out/case/history.h5 /energy/kinetic /energy/elastic
   tools/plot_history.py out/case/history.h5 /boundaries/top_cap/M_theta --x /time --out torque.png
 
 Uses Debian's python3-h5py and python3-matplotlib (installed by tools/setup.sh).

@@ -1,0 +1,29 @@
+#include "solver/energy_balance.hpp"
+
+#include "solver/diagnostics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mpile {
+
+EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, double mass_scaling) {
+  EnergyBalance b;
+  b.external_work = ledger.external_work;
+  for (const RigidBody& body : scene.rigid_bodies) {
+    b.external_work += body.external_work;
+  }
+  b.kinetic = mass_scaling * kinetic_energy(scene);
+  b.elastic = elastic_energy(scene);
+  b.plastic = ledger.internal_work - (b.elastic - ledger.elastic_reference);
+  b.damping = ledger.damping;
+  b.contact = ledger.contact;
+  b.residual = b.external_work - (b.kinetic - ledger.kinetic_reference) - ledger.internal_work -
+               b.damping - b.contact;
+  const double scale = std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference,
+                                 std::abs(ledger.internal_work), std::abs(b.damping + b.contact)});
+  b.relative_residual = scale > 0.0 ? std::abs(b.residual) / scale : 0.0;
+  return b;
+}
+
+} // namespace mpile

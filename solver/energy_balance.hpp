@@ -1,0 +1,42 @@
+#pragma once
+
+#include "engine/scene.hpp"
+
+namespace mpile {
+
+/// Running sums of the energy balance (docs/design.md, "Energy balance"), kept by the solver from the start
+/// of the run (J, per radian in axisymmetric mode).
+struct EnergyLedger {
+  /// Work of gravity, loads and supports on the soil (the rigid bodies keep their own).
+  double external_work = 0.0;
+  /// sum over steps and particles of V sigma : d eps: stored elastic energy plus plastic work.
+  double internal_work = 0.0;
+  /// Taken by local damping.
+  double damping = 0.0;
+  /// Taken by the contact correction (friction and the inelastic normal approach).
+  double contact = 0.0;
+  /// Kinetic and elastic energy the balance starts from; a phase that changes the mass scaling or
+  /// resets the stresses moves them, so the balance carries on across the change.
+  double kinetic_reference = 0.0;
+  double elastic_reference = 0.0;
+};
+
+/// The balance at one instant: external work = (kinetic - its reference) + internal work +
+/// damping + contact + residual, with internal work = (elastic - its reference) + plastic.
+struct EnergyBalance {
+  double external_work = 0.0;
+  double kinetic = 0.0; // with the mass scaling's inertia, the energy the dynamics conserve
+  double elastic = 0.0;
+  double plastic = 0.0;
+  double damping = 0.0;
+  double contact = 0.0;
+  double residual = 0.0;
+  /// The residual over the largest energy that flowed: |external work|, the kinetic energy now or
+  /// at the reference, |internal work|, or the dissipated sum; 0 when nothing has moved.
+  double relative_residual = 0.0;
+};
+
+/// Evaluates the balance of a scene whose inertia is scaled by mass_scaling.
+EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, double mass_scaling);
+
+} // namespace mpile

@@ -1,0 +1,85 @@
+// The energy balance against exact answers: an undamped elastic bar keeps its energy, a damped
+// column settling under its weight dissipates half the work gravity did (Clapeyron: a linear
+// elastic body stores half the work of a load applied at once), and a block sliding down a rigid
+// incline loses mu N s to friction.
+#include "case_run.hpp"
+#include "solver/diagnostics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace mpile {
+namespace {
+
+/// The largest relative residual of the V1 bar over its three periods at a Courant number, and
+/// the step it ran with.
+std::pair<double, double> bar_residual(const std::string& courant) {
+  CaseRun run(replaced(read_text(source / "cases/verification/vibrating_bar.toml"),
+                       "courant_number = 0.8", "courant_number = " + courant));
+  const double start = run.solver->energy_balance().kinetic;
+  EXPECT_NEAR(start, 0.03125, 0.03125 * 0.01); // rho A L v0^2 / 4 with the particles' quadrature
+  double worst = 0.0;
+  run.run([&] {
+    const EnergyBalance b = run.solver->energy_balance();
+    worst = std::max(worst, b.relative_residual);
+    // Linear elastic: no plastic work. The stored energy is counted on the current volume and the
+    // work on the mean volume of each step, a difference of order eps w V with the strain
+    // amplitude eps = v0 / c = 1 %: 0.5 % of the energy bounds it.
+    EXPECT_LT(std::abs(b.plastic), 0.005 * start);
+    EXPECT_EQ(b.external_work, 0.0); // a roller base does no work
+    EXPECT_EQ(b.damping, 0.0);
+  });
+  return {worst, run.solver->stable_time_step()}; // the last step was cut to land on the end
+}
+
+TEST(EnergyBalance, UndampedElasticBarKeepsItsEnergyToFirstOrderInDt) {
+  // MUSL updates velocities first, then positions with the new velocities (symplectic Euler): it
+  // conserves a modified energy, and the true energy oscillates about it with relative amplitude
+  // omega dt / 2 at twice the frequency, without drift. The residual must stay within that bound
+  // (10 % over the leading-order estimate) and halve with the step.
+  const double omega = std::numbers::pi / 50.0 * 10.0; // pi / (2 L) sqrt(E / rho)
+  const auto [coarse, dt_coarse] = bar_residual("0.8");
+  const auto [fine, dt_fine] = bar_residual("0.4");
+  EXPECT_LT(coarse, 1.1 * omega * dt_coarse / 2.0);
+  EXPECT_LT(fine, 1.1 * omega * dt_fine / 2.0);
+  EXPECT_NEAR(coarse / fine, 2.0, 0.2);
+}
+
+TEST(EnergyBalance, DampedColumnDissipatesHalfTheWorkOfGravity) {
+  CaseRun run(read_text(source / "cases/verification/self_weight_column.toml"));
+  run.run([] {});
+  const EnergyBalance b = run.solver->energy_balance();
+  ASSERT_GT(b.external_work, 0.0);
+  // At rest: kinetic ~ 0, stored = W/2 exactly for linear elasticity, damping took the rest.
+  EXPECT_LT(b.kinetic, 1e-4 * b.external_work);
+  EXPECT_NEAR(b.elastic / b.external_work, 0.5, 0.01);
+  EXPECT_NEAR(b.damping / b.external_work, 0.5, 0.01);
+  EXPECT_LT(b.relative_residual, 0.01);
+}
+
+TEST(EnergyBalance, SlidingBlockLosesMuNsToFriction) {
+  CaseRun run(read_text(source / "cases/verification/v7_block_on_incline.toml"));
+  run.run([] {});
+  const Particles& p = run.scene->particles;
+  double mass = 0.0, slide = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] == 0) {
+      mass += p.mass[i];
+      slide += p.mass[i] * (p.r[i] - p.r0[i]);
+    }
+  }
+  slide /= mass;
+  const double normal = mass * 8.49571; // m g cos 30 deg per metre
+  const EnergyBalance b = run.solver->energy_balance();
+  // The contact pass also removes the normal approach of each step (g cos a dt per step, a loss
+  // of order m (g dt)^2 per step, a few 1e-4 of the total) and the block rings elastically, so
+  // the friction loss matches mu N s to 1 %.
+  EXPECT_NEAR(b.contact / (0.3 * normal * slide), 1.0, 0.01);
+  EXPECT_LT(b.relative_residual, 0.01);
+}
+
+} // namespace
+} // namespace mpile

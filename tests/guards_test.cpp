@@ -1,0 +1,165 @@
+// The guards that stop a run going wrong: each must stop it with a message naming the cause, the
+// step and where, and `mpile run` must leave a readable history saying how the run ended.
+#include "case_run.hpp"
+#include "engine/linear_elastic.hpp"
+#include "engine/particle_fill.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/run_command.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+namespace mpile {
+namespace {
+
+const char* column = R"(title = "elastic column"
+geometry = "plane_strain"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 10 }]
+y = [{ start = 0.0, end = 2.0, cells = 20 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 10e6
+poisson_ratio = 0.3
+density = 2000.0
+[[bodies]]
+name = "column"
+material = "soil"
+region = { r = [0.0, 1.0], y = [0.0, 1.5] }
+[boundaries]
+r_min = "roller"
+r_max = "roller"
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+courant_number = 0.8
+[[phases]]
+name = "load"
+duration = 0.05
+[output]
+history_interval = 0.0
+)";
+
+/// The message of the SimulationError a run stops with ("" if it does not stop).
+std::string stop_message(CaseRun& run) {
+  try {
+    run.run([] {});
+  } catch (const SimulationError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Guards, CourantNumberAboveOneStopsTheFirstStep) {
+  CaseRun run(replaced(column, "courant_number = 0.8", "courant_number = 1.2"));
+  const std::string message = stop_message(run);
+  EXPECT_EQ(message.rfind("step 1, t = ", 0), 0u) << message;
+  EXPECT_NE(message.find("the Courant number reached 1.2"), std::string::npos) << message;
+  EXPECT_NE(message.find("lower courant_number"), std::string::npos) << message;
+}
+
+TEST(Guards, CourantNumberJustBelowOneRunsAndOneItselfStops) {
+  // 0.95 leaves room for the particles' acceleration under gravity; at 1.0 the first step's
+  // acceleration already shortens the crossing time (1.00015 after one step here), so the guard
+  // stops it: 1 is the limit, not a setting.
+  CaseRun below(replaced(column, "courant_number = 0.8", "courant_number = 0.95"));
+  EXPECT_EQ(stop_message(below), "");
+  CaseRun limit(replaced(column, "courant_number = 0.8", "courant_number = 1.0"));
+  EXPECT_NE(stop_message(limit).find("the Courant number reached 1.0"), std::string::npos);
+}
+
+TEST(Guards, TimeStepBelowTheFloorStops) {
+  CaseRun run(
+      replaced(column, "courant_number = 0.8", "courant_number = 0.8\nmin_time_step = 1.0"));
+  const std::string message = stop_message(run);
+  EXPECT_NE(message.find("the time step collapsed to"), std::string::npos) << message;
+  EXPECT_NE(message.find("below the floor of 1 s (min_time_step)"), std::string::npos) << message;
+}
+
+TEST(Guards, NonFiniteNodeIsNamedWithItsPosition) {
+  CaseRun run(column);
+  Particles& p = run.scene->particles;
+  // Poison one particle's stress: its internal force reaches the nodes of its cell first.
+  std::size_t target = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.r0[i] > 0.5 && p.r0[i] < 0.6 && p.y0[i] > 1.0 && p.y0[i] < 1.1) {
+      target = i;
+    }
+  }
+  p.stress[target][YY] = std::numeric_limits<double>::quiet_NaN();
+  const std::string message = stop_message(run);
+  EXPECT_NE(message.find("step 1, t = 0 s: node "), std::string::npos) << message;
+  EXPECT_NE(message.find("has a non-finite velocity"), std::string::npos) << message;
+  // One of the four nodes of the particle's cell, (0.5 or 0.6, 1.0 or 1.1).
+  const bool corner = message.find("(0.5, 1)") != std::string::npos ||
+                      message.find("(0.6, 1)") != std::string::npos ||
+                      message.find("(0.5, 1.1)") != std::string::npos ||
+                      message.find("(0.6, 1.1)") != std::string::npos;
+  EXPECT_TRUE(corner) << message;
+}
+
+/// Linear elasticity that returns a NaN stress for one particle: the constitutive update going
+/// wrong, which only the particle check can see.
+class FailingAtOneParticle final : public Material {
+public:
+  explicit FailingAtOneParticle(std::int32_t particle)
+      : elastic_(10e6, 0.3, 2000.0), particle_(particle) {}
+  std::string_view type() const override { return "failing"; }
+  double density() const override { return elastic_.density(); }
+  void update_stress(const StressUpdateBatch& batch) const override {
+    elastic_.update_stress(batch);
+    for (const std::int32_t i : batch.particles) {
+      if (i == particle_) {
+        batch.stress[i][RR] = std::numeric_limits<double>::infinity();
+      }
+    }
+  }
+  double constrained_modulus(const Stress& s, const double* state) const override {
+    return elastic_.constrained_modulus(s, state);
+  }
+  double elastic_energy_density(const Stress& s, const double* state) const override {
+    return elastic_.elastic_energy_density(s, state);
+  }
+
+private:
+  LinearElastic elastic_;
+  std::int32_t particle_;
+};
+
+TEST(Guards, NonFiniteParticleIsNamedWithItsPosition) {
+  CaseRun run(column);
+  run.scene->materials[0] = std::make_unique<FailingAtOneParticle>(7);
+  const std::string message = stop_message(run);
+  std::ostringstream expected;
+  expected << "step 1, t = " << run.solver->time() << " s: particle 7 at (r, y) = ("
+           << run.scene->particles.r[7] << ", " << run.scene->particles.y[7]
+           << ") has a non-finite stress or velocity";
+  EXPECT_NE(message.find(expected.str()), std::string::npos) << message;
+}
+
+TEST(Guards, UnstableRunStopsAndLeavesAReadableHistory) {
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_run";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const auto path = directory / "unstable.toml";
+  std::ofstream(path) << replaced(column, "courant_number = 0.8", "courant_number = 1.5");
+  RunOptions options;
+  options.case_path = path.string();
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_failure);
+  EXPECT_NE(err.str().find("the Courant number reached 1.5"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("outputs so far are in"), std::string::npos) << err.str();
+  Hdf5File history((directory / "out" / "history.h5").string(), Hdf5File::Mode::read);
+  const std::string status = history.string_attribute("/", "status");
+  EXPECT_EQ(status.rfind("failed: step 1, t = ", 0), 0u) << status;
+  EXPECT_NE(status.find("the Courant number reached 1.5"), std::string::npos) << status;
+  EXPECT_EQ(history.read_doubles("/time").size(), 1u); // the initial row, nothing half-written
+  EXPECT_TRUE(std::filesystem::exists(directory / "out" / "checkpoint.h5"));
+}
+
+} // namespace
+} // namespace mpile
