@@ -9,6 +9,13 @@ std::vector<double> MovingMesh::lines_at(double offset) const {
   // A zone is allowed to shrink to a tenth of its size: the cells in it would otherwise limit
   // the time step to nothing before they collapse.
   constexpr double least_share = 0.1;
+  if (travel > 0.0 && std::abs(offset) > travel) {
+    std::ostringstream s;
+    s << "the moving mesh band has moved " << offset << " m, beyond its travel of " << travel
+      << " m: the soil there was seeded for coarser cells than the band's, and rows of empty "
+         "cells would disconnect it; raise the travel (and with it the fine zone)";
+    throw std::runtime_error(s.str());
+  }
   const double below = reference_y[index(band_bottom)] - reference_y.front();
   const double above = reference_y.back() - reference_y[index(band_top)];
   if (below + offset < least_share * below || above - offset < least_share * above) {

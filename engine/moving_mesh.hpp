@@ -15,9 +15,15 @@ struct MovingMesh {
   int band_bottom = 0;             // index of the lowest y-line that moves with the body
   int band_top = 0;                // index of the highest
   std::vector<double> reference_y; // the y-lines when the body is at its initial position
+  /// How far (m) the band may move either way; 0: until a zone beside it is squeezed. Particles
+  /// are seeded once, from the cells at the start: a band carried into soil seeded for coarser
+  /// cells leaves some of its cells without particles, and the soil above such a row of empty
+  /// cells is no longer connected to the soil below it (it falls).
+  double travel = 0.0;
 
   /// The y-lines for a body displaced by `offset` (m) from its initial position. Throws
-  /// std::runtime_error when the band would reach the bottom or the top of the grid.
+  /// std::runtime_error when the band would move beyond its travel, or reach the bottom or the
+  /// top of the grid.
   std::vector<double> lines_at(double offset) const;
 
   /// How far the band can move down (negative) and up before a zone between it and the grid's

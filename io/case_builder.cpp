@@ -50,6 +50,59 @@ std::size_t phase_of(const CaseSpec& spec, const std::string& name) {
   return 0;
 }
 
+/// The moving mesh's lines (its rigid body is set once the bodies exist). The travel is rounded
+/// up to whole cells of the band, so that the band's bottom line at the start is also a line of
+/// the mesh at the end of the travel.
+MovingMesh moving_mesh_of(const MovingMeshSpec& spec, const GradedAxis& y) {
+  MovingMesh mesh;
+  mesh.reference_y.assign(y.nodes().begin(), y.nodes().end());
+  // The reader has checked that the band's ends are grid lines.
+  const auto nearest = [&](double at) {
+    int best = 0;
+    for (int i = 0; i < y.node_count(); ++i) {
+      if (std::abs(y.node(i) - at) < std::abs(y.node(best) - at)) {
+        best = i;
+      }
+    }
+    return best;
+  };
+  mesh.band_bottom = nearest(spec.band_bottom);
+  mesh.band_top = nearest(spec.band_top);
+  const double cell = y.cell_size(mesh.band_bottom);
+  mesh.travel = spec.travel > 0.0 ? std::ceil(spec.travel / cell - 1e-9) * cell : 0.0;
+  return mesh;
+}
+
+/// Fills a body's region with particles. Below a moving band with a travel, the soil is seeded
+/// for the cells it will have with the band carried all the way down: the compressed lines drag
+/// finer cells into it, and a cell finer than the spacing of the particles seeded for the cells
+/// of the start can be left empty, which disconnects the soil above it from the soil below (it
+/// falls). A point's cells only get finer as the band moves down, so that seeding holds all
+/// along; above the band's start, the cells of the start are the finest a point sees.
+std::size_t seed_body(Scene& scene, const BodySpec& body, std::uint16_t material,
+                      std::uint16_t index) {
+  const std::optional<MovingMesh>& mesh = scene.moving_mesh;
+  const int per_direction = body.particles_per_direction;
+  if (!mesh || mesh->travel == 0.0) {
+    return fill_rectangle(scene, body.region, per_direction, material, index);
+  }
+  const double split = mesh->reference_y[static_cast<std::size_t>(mesh->band_bottom)];
+  std::size_t added = 0;
+  if (body.region.y_min < split) {
+    Rectangle lower = body.region;
+    lower.y_max = std::min(lower.y_max, split);
+    scene.grid.set_y_nodes(mesh->lines_at(-mesh->travel));
+    added += fill_rectangle(scene, lower, per_direction, material, index);
+    scene.grid.set_y_nodes(mesh->reference_y);
+  }
+  if (body.region.y_max > split) {
+    Rectangle upper = body.region;
+    upper.y_min = std::max(upper.y_min, split);
+    added += fill_rectangle(scene, upper, per_direction, material, index);
+  }
+  return added;
+}
+
 } // namespace
 
 std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
@@ -58,12 +111,14 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
   for (const MaterialSpec& material : spec.materials) {
     scene->add_material(create_material(material.type, material.parameters));
   }
+  if (spec.moving_mesh) {
+    scene->moving_mesh = moving_mesh_of(*spec.moving_mesh, scene->grid.y_axis());
+  }
   for (const BodySpec& body : spec.bodies) {
     const std::uint16_t material = material_of(spec, body);
     const std::uint16_t index = scene->add_body(body.name);
     const std::size_t first = scene->particles.size();
-    const std::size_t added =
-        fill_rectangle(*scene, body.region, body.particles_per_direction, material, index);
+    const std::size_t added = seed_body(*scene, body, material, index);
     if (added == 0) {
       throw CaseError(spec.file + ": body '" + body.name +
                       "': its region holds no particle position (smaller than a cell?)");
@@ -120,28 +175,12 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     }
   }
 
-  if (spec.moving_mesh) {
-    MovingMesh mesh;
+  if (scene->moving_mesh) {
     for (std::size_t k = 0; k < scene->rigid_bodies.size(); ++k) {
       if (scene->rigid_bodies[k].name == spec.moving_mesh->body) {
-        mesh.rigid_body = static_cast<int>(k);
+        scene->moving_mesh->rigid_body = static_cast<int>(k);
       }
     }
-    const GradedAxis& y = scene->grid.y_axis();
-    mesh.reference_y.assign(y.nodes().begin(), y.nodes().end());
-    // The reader has checked that the band's ends are grid lines.
-    const auto nearest = [&](double at) {
-      int best = 0;
-      for (int i = 0; i < y.node_count(); ++i) {
-        if (std::abs(y.node(i) - at) < std::abs(y.node(best) - at)) {
-          best = i;
-        }
-      }
-      return best;
-    };
-    mesh.band_bottom = nearest(spec.moving_mesh->band_bottom);
-    mesh.band_top = nearest(spec.moving_mesh->band_top);
-    scene->moving_mesh = mesh;
   }
 
   Boundaries& boundaries = scene->boundaries;

@@ -455,6 +455,9 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     table->fail("band", "must lie strictly inside the grid (the lines below and above it are "
                         "squeezed and stretched)");
   }
+  if (table->has("travel")) {
+    mesh.travel = table->positive("travel");
+  }
   table->finish();
   mesh.band_bottom = band[0];
   mesh.band_top = band[1];
@@ -549,6 +552,13 @@ void read_solver(TomlTable& top, CaseSpec& spec) {
   }
   s.flip_fraction = table->number_or("flip_fraction", s.flip_fraction);
   s.bbar = table->boolean_or("bbar", s.bbar);
+  if (table->has("scheme")) {
+    const std::string scheme = table->string("scheme");
+    if (scheme != "musl" && scheme != "usl") {
+      table->fail("scheme", "must be \"musl\" or \"usl\", got \"" + scheme + "\"");
+    }
+    s.musl = scheme == "musl";
+  }
   s.jaumann_rate = table->boolean_or("jaumann_rate", s.jaumann_rate);
   s.mass_scaling = table->number_or("mass_scaling", s.mass_scaling);
   if (table->has("gravity")) {
@@ -641,6 +651,14 @@ void read_phases(TomlTable& top, CaseSpec& spec) {
       PenetrationStop s;
       s.body = read_rigid_body_name(*stop, spec, "");
       s.penetration = stop->positive("penetration");
+      if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
+          s.penetration > spec.moving_mesh->travel) {
+        std::ostringstream why;
+        why << "is beyond the travel of the moving band (" << spec.moving_mesh->travel
+            << " m): below that depth the soil is seeded for coarser cells than the band's; "
+               "raise [monopile] travel";
+        stop->fail("penetration", why.str());
+      }
       s.at_rest = stop->boolean_or("at_rest", false);
       stop->finish();
       phase.stop_at = s;

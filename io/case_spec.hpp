@@ -133,6 +133,7 @@ struct MovingMeshSpec {
   std::string body;
   double band_bottom = 0.0;
   double band_top = 0.0;
+  double travel = 0.0; // m the band may move from where it starts; 0: up to the squeeze limit
 };
 
 struct CaseSpec {

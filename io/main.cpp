@@ -61,6 +61,13 @@ int main(int argc, char** argv) {
   verify->add_option("--poisson", options.poisson_ratio, "Poisson ratio for V3 and V5")
       ->check(CLI::Range(-0.99, 0.4999));
   verify->add_option("--courant", options.courant_number, "Courant number");
+  std::string scheme;
+  verify->add_option("--scheme", scheme, "musl (default) or usl")
+      ->check(CLI::IsMember({"musl", "usl"}));
+  bool csv = false;
+  verify->add_flag("--csv", csv,
+                   "one CSV row per check: case, quantity, measured, reference, unit, error, "
+                   "tolerance, particles, steps, wall seconds");
 
   try {
     app.parse(argc, argv);
@@ -89,9 +96,14 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
-    std::cout << "mpile verify on " << run_options.threads << " thread(s)\n";
-    return mpile::run_verification(ids, options, std::cout) == 0 ? mpile::exit_success
-                                                                 : mpile::exit_failure;
+    if (!scheme.empty()) {
+      options.musl = scheme == "musl";
+    }
+    if (!csv) {
+      std::cout << "mpile verify on " << run_options.threads << " thread(s)\n";
+    }
+    return mpile::run_verification(ids, options, std::cout, csv) == 0 ? mpile::exit_success
+                                                                      : mpile::exit_failure;
   } catch (const std::exception& e) {
     std::cerr << "mpile: " << e.what() << '\n';
     return mpile::exit_failure;

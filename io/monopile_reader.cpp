@@ -32,13 +32,21 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
     const char* name;
     double* value;
   };
-  const Key keys[] = {{"pile_length", &p.pile_length},       {"diameter", &p.diameter},
-                      {"wall_thickness", &p.wall_thickness}, {"embedment", &p.embedment},
-                      {"soil_width", &p.soil_width},         {"soil_depth", &p.soil_depth},
-                      {"head_room", &p.head_room},           {"fine_cell", &p.fine_cell},
-                      {"fine_width", &p.fine_width},         {"coarse_cell", &p.coarse_cell},
-                      {"shaft_cell", &p.shaft_cell},         {"growth", &p.growth},
-                      {"band_below", &p.band_below},         {"band_above", &p.band_above}};
+  const Key keys[] = {{"pile_length", &p.pile_length},
+                      {"diameter", &p.diameter},
+                      {"wall_thickness", &p.wall_thickness},
+                      {"embedment", &p.embedment},
+                      {"soil_width", &p.soil_width},
+                      {"soil_depth", &p.soil_depth},
+                      {"head_room", &p.head_room},
+                      {"fine_cell", &p.fine_cell},
+                      {"fine_width", &p.fine_width},
+                      {"coarse_cell", &p.coarse_cell},
+                      {"shaft_cell", &p.shaft_cell},
+                      {"growth", &p.growth},
+                      {"band_below", &p.band_below},
+                      {"band_above", &p.band_above},
+                      {"travel", &p.travel}};
   for (const Key& key : keys) {
     *key.value = table.number_or(key.name, *key.value);
   }
@@ -105,7 +113,7 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   // Seed section 3: lateral boundary fixed in its normal direction; the base fixed.
   spec.faces = {FaceCondition::free, FaceCondition::roller, FaceCondition::fixed,
                 FaceCondition::free};
-  spec.moving_mesh = MovingMeshSpec{"pile", g.band_bottom, g.band_top};
+  spec.moving_mesh = MovingMeshSpec{"pile", g.band_bottom, g.band_top, p.travel};
   return drive;
 }
 

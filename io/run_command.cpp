@@ -218,7 +218,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       std::ostringstream s;
       s << "t = " << format_time(solver->time()) << " s: the energy residual is "
         << std::setprecision(3) << 100.0 * energy.relative_residual
-        << " % of the energy that flowed (energy_residual_warning "
+        << " % of the energy in play (energy_residual_warning "
         << 100.0 * solver->settings().energy_residual_warning << " %): external work "
         << energy.external_work << ", kinetic " << energy.kinetic << ", elastic " << energy.elastic
         << ", plastic " << energy.plastic << ", damping " << energy.damping << ", contact "

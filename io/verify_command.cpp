@@ -7,7 +7,7 @@
 namespace mpile {
 
 int run_verification(const std::vector<std::string>& ids, const verification::Options& options,
-                     std::ostream& out) {
+                     std::ostream& out, bool csv) {
   std::vector<const verification::Case*> cases;
   for (const std::string& id : ids) {
     if (id == "all") {
@@ -22,8 +22,22 @@ int run_verification(const std::vector<std::string>& ids, const verification::Op
     }
   }
   int failed = 0;
+  if (csv) {
+    out << "case,quantity,measured,reference,unit,error,tolerance,particles,steps,wall_seconds\n";
+  }
   for (const auto* c : cases) {
     const verification::Report report = c->run(options);
+    failed += report.passed() ? 0 : 1;
+    if (csv) {
+      out << std::setprecision(10);
+      for (const verification::Check& check : report.checks) {
+        out << report.id << ",\"" << check.quantity << "\"," << check.measured << ','
+            << check.reference << ",\"" << check.unit << "\"," << check.error() << ','
+            << check.tolerance << ',' << report.particles << ',' << report.steps << ','
+            << report.wall_seconds << '\n';
+      }
+      continue;
+    }
     out << report.id << "  " << report.title << "  (" << report.particles << " particles, "
         << report.steps << " steps, " << std::fixed << std::setprecision(2) << report.wall_seconds
         << " s)\n";
@@ -38,7 +52,9 @@ int run_verification(const std::vector<std::string>& ids, const verification::Op
           << " (tol " << check.tolerance << ")\n";
     }
     out.unsetf(std::ios::floatfield);
-    failed += report.passed() ? 0 : 1;
+  }
+  if (csv) {
+    return failed;
   }
   out << (cases.size() - static_cast<std::size_t>(failed)) << " of " << cases.size()
       << " verification cases within tolerance\n";

@@ -20,8 +20,9 @@ EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, dou
   b.contact = ledger.contact;
   b.residual = b.external_work - (b.kinetic - ledger.kinetic_reference) - ledger.internal_work -
                b.damping - b.contact;
-  const double scale = std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference,
-                                 std::abs(ledger.internal_work), std::abs(b.damping + b.contact)});
+  const double scale =
+      std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference, b.elastic,
+                std::abs(ledger.internal_work), std::abs(b.damping + b.contact)});
   b.relative_residual = scale > 0.0 ? std::abs(b.residual) / scale : 0.0;
   return b;
 }

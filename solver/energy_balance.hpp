@@ -4,8 +4,8 @@
 
 namespace mpile {
 
-/// Running sums of the energy balance (docs/design.md, "Energy balance"), kept by the solver from the start
-/// of the run (J, per radian in axisymmetric mode).
+/// Running sums of the energy balance (docs/design.md, "Energy balance"), kept by the solver from
+/// the start of the run (J, per radian in axisymmetric mode).
 struct EnergyLedger {
   /// Work of gravity, loads and supports on the soil (the rigid bodies keep their own).
   double external_work = 0.0;
@@ -31,8 +31,10 @@ struct EnergyBalance {
   double damping = 0.0;
   double contact = 0.0;
   double residual = 0.0;
-  /// The residual over the largest energy that flowed: |external work|, the kinetic energy now or
-  /// at the reference, |internal work|, or the dissipated sum; 0 when nothing has moved.
+  /// The residual over the largest energy in play: |external work|, the kinetic energy now or at
+  /// the reference, the stored elastic energy, |internal work|, or the dissipated sum (a state
+  /// held at rest by its initial stresses is measured against what it stores, not against the
+  /// round-off of a work that is nearly zero); 0 when there is none.
   double relative_residual = 0.0;
 };
 

@@ -357,7 +357,7 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
     PassTimer timer(timings_.grid_to_particle);
     passes::grid_to_particle<mode, contact>(scene_, bins_, settings_, step);
   }
-  {
+  if (settings_.musl) {
     PassTimer timer(timings_.momentum_remap);
     passes::remap_momentum<mode, contact>(scene_, bins_, step);
     if constexpr (contact) {

@@ -13,6 +13,9 @@ struct SolverSettings {
   double max_time_step = std::numeric_limits<double>::infinity();
   /// Particle velocity update: 1 = FLIP (no numerical dissipation), 0 = PIC, between: a blend.
   double flip_fraction = 1.0;
+  /// MUSL (true): the strain increment uses nodal velocities remapped from the updated particle
+  /// momenta; USL (false): it uses the grid's updated velocities directly, one scatter less.
+  bool musl = true;
   /// Replace each particle's volumetric strain increment by its cell's volume-weighted mean.
   bool bbar = true;
   /// Co-rotate stress with the in-plane spin (Jaumann rate) for large rotations.
@@ -26,7 +29,7 @@ struct SolverSettings {
   std::array<double, 2> gravity{0.0, 0.0};
   /// The time step below which a run stops as collapsed (s); 0: a thousandth of the first step.
   double min_time_step = 0.0;
-  /// A history row whose energy residual exceeds this fraction of the energy that flowed warns.
+  /// A history row whose energy residual exceeds this fraction of the energy in play warns.
   double energy_residual_warning = 0.05;
   /// Cells per side of a scatter block (colored scatter).
   int block_cells = 8;

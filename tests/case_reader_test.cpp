@@ -344,6 +344,11 @@ std::vector<BadInput> bad_monopile_inputs() {
       {"negative snapshot penetration",
        monopile_edited("snapshot_penetrations = [0.05, 0.1]", "snapshot_penetrations = [-0.05]"),
        "output.snapshot_penetrations: penetrations must be positive", "snapshot_penetrations"},
+      {"stop beyond the band's travel", monopile_edited("travel = 0.2", "travel = 0.05"),
+       "phases[1].stop_at.penetration: is beyond the travel of the moving band (0.05 m)",
+       "stop_at"},
+      {"non-positive travel", monopile_edited("travel = 0.2", "travel = 0.0"),
+       "monopile.travel: must be positive", "travel = 0.0"},
   };
 }
 

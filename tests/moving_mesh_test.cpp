@@ -204,3 +204,66 @@ TEST(MovingMesh, OneAndTwoThreadsGiveBitwiseIdenticalResults) {
 
 } // namespace
 } // namespace mpile
+
+namespace mpile {
+namespace {
+
+/// The fewest particles in any cell the soil below the band's start fills, with the band carried
+/// `carried` m down (a mesh copy without a travel limit, so any offset can be looked at).
+std::size_t fewest_particles_below_the_band(const std::string& text, double carried) {
+  CaseRun run(text);
+  Scene& scene = *run.scene;
+  MovingMesh mesh = *scene.moving_mesh;
+  const double band_start = mesh.reference_y[static_cast<std::size_t>(mesh.band_bottom)];
+  mesh.travel = 0.0;
+  scene.grid.set_y_nodes(mesh.lines_at(-carried));
+  const Grid& grid = scene.grid;
+  std::vector<std::size_t> count(static_cast<std::size_t>(grid.cells_r() * grid.cells_y()), 0);
+  const Particles& p = scene.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const int cr = grid.r_axis().locate(p.r[i]);
+    const int cy = grid.y_axis().locate(p.y[i]);
+    ++count[static_cast<std::size_t>(cr + grid.cells_r() * cy)];
+  }
+  std::size_t fewest = std::numeric_limits<std::size_t>::max();
+  for (int cy = 0; cy < grid.cells_y(); ++cy) {
+    if (grid.y_axis().node(cy + 1) > band_start - carried) {
+      break; // the band and above: the soil there was seeded with the band's own cells
+    }
+    for (int cr = 0; cr < grid.cells_r(); ++cr) {
+      fewest = std::min(fewest, count[static_cast<std::size_t>(cr + grid.cells_r() * cy)]);
+    }
+  }
+  return fewest;
+}
+
+TEST(MovingMesh, SoilBelowTheBandIsSeededForTheCellsItWillHave) {
+  // The paper GDP mesh (fine cells of 2.5 cm, graded below the band) with the band carried 0.6 m
+  // down. Seeded for the cells of the start, rows of cells far from the pile end up empty (and in
+  // a run the soil above them fell freely); seeded for the cells at the end of the travel, every
+  // cell keeps at least its 2 x 2 particles' worth, because a point's cells only get finer.
+  const std::string text = read_text(source / "cases/monopile/gdp_paper.toml");
+  EXPECT_GE(fewest_particles_below_the_band(text, 0.6), 4u);
+  EXPECT_GE(fewest_particles_below_the_band(text, 0.3), 4u);
+  const std::string short_travel = replaced(replaced(text, "travel = 0.75", "travel = 0.025"),
+                                            "penetration = 0.6", "penetration = 0.02");
+  EXPECT_EQ(fewest_particles_below_the_band(short_travel, 0.6), 0u);
+}
+
+TEST(MovingMesh, CarryingTheBandBeyondItsTravelStopsTheRun) {
+  const std::string text = read_text(source / "cases/monopile/gdp_paper.toml");
+  CaseRun run(text);
+  const MovingMesh& mesh = *run.scene->moving_mesh;
+  EXPECT_NEAR(mesh.travel, 0.75, 1e-12); // 30 cells of 2.5 cm
+  EXPECT_NO_THROW(mesh.lines_at(-0.75));
+  try {
+    mesh.lines_at(-0.76);
+    FAIL() << "expected the travel guard";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("beyond its travel of 0.75 m"), std::string::npos)
+        << e.what();
+  }
+}
+
+} // namespace
+} // namespace mpile

@@ -117,6 +117,10 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
 
   // y: graded from the band down to the bottom, uniform fine in the band, graded from the band up
   // to the surface (at most shaft_cell along the shaft), then uniform to the top of the grid.
+  require(p.travel > 0.0, "travel", "must be positive");
+  require(g.band_bottom - p.travel > 2.0 * p.fine_cell, "travel",
+          "the band's travel reaches the bottom of the soil (make the soil deeper or the travel "
+          "shorter)");
   append_zones(g.y_zones,
                graded_nodes(g.band_bottom, 0.0, p.fine_cell, 0.0, p.coarse_cell, p.growth));
   append_uniform(g.y_zones, g.band_bottom, g.band_top, p.fine_cell);

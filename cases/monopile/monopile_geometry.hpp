@@ -30,6 +30,9 @@ struct MonopileParameters {
   double growth = 1.15;     // ratio of neighbouring cell sizes where the mesh coarsens
   double band_below = 0.4;  // the band that moves with the pile: this far below the tip
   double band_above = 0.4;  // and this far above it
+  /// The deepest (m) the band may be carried down: the soil below the band is seeded for the cells
+  /// it will have then (io/case_builder.cpp), and a run that goes further stops.
+  double travel = 0.7;
 };
 
 /// What the parameters give: grid zones (one cell per zone where the mesh grades), the regions of

@@ -29,6 +29,7 @@ const std::vector<Case>& all_cases() {
       {"V6", "shaft torsion", run_shaft_torsion},
       {"V8", "self-weight column, gravity loading", run_self_weight_column},
       {"V8k0", "self-weight column, K0 state stays put", run_k0_column},
+      {"VHS", "Hardening Soil oedometer under a platen", run_hs_oedometer},
   };
   return cases;
 }
@@ -55,6 +56,9 @@ SolverSettings apply_options(SolverSettings settings, const Options& options) {
   }
   if (options.courant_number) {
     settings.courant_number = *options.courant_number;
+  }
+  if (options.musl) {
+    settings.musl = *options.musl;
   }
   settings.block_cells = options.block_cells;
   return settings;

@@ -37,6 +37,7 @@ struct Options {
   std::optional<double> flip_fraction; // default: per case
   std::optional<double> poisson_ratio; // for the cases with a nu-dependent closed form
   std::optional<double> courant_number;
+  std::optional<bool> musl; // default: MUSL; false: USL
   int block_cells = 8;
 };
 
@@ -75,6 +76,7 @@ Report run_uniaxial_cylinder(const Options& options);
 Report run_shaft_torsion(const Options& options);
 Report run_self_weight_column(const Options& options);
 Report run_k0_column(const Options& options);
+Report run_hs_oedometer(const Options& options);
 
 } // namespace mpile::verification
 
