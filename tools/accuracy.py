@@ -104,10 +104,14 @@ def run_verify(mpile, case, refinement, extra):
     start = time.monotonic()
     done = subprocess.run(command, capture_output=True, text=True)
     wall = time.monotonic() - start
-    # 1: some check out of tolerance, still a measurement; otherwise the run itself stopped (a
-    # guard caught an instability), which the study records as such.
-    stopped = done.stderr.strip().splitlines()[-1] if done.returncode not in (0, 1) and done.stderr.strip() else ""
-    return list(csv.DictReader(io.StringIO(done.stdout))), stopped, wall
+    # A run that stops (a guard caught an instability) prints its reason and no rows; a check out
+    # of tolerance (exit 1 with rows) is still a measurement.
+    rows = list(csv.DictReader(io.StringIO(done.stdout)))
+    stopped = ""
+    if not rows:
+        lines = done.stderr.strip().splitlines()
+        stopped = lines[-1] if lines else f"exit {done.returncode}"
+    return rows, stopped, wall
 
 
 def verify_point(mpile, study, refinement, extra):
