@@ -26,6 +26,12 @@ const Check& check_named(const Report& report, const std::string& prefix) {
   throw std::out_of_range("no check " + prefix + " in " + report.id);
 }
 
+TEST(Verification, VHSHardeningSoilOedometerFollowsItsElementTest) {
+  // Homogeneous oedometric loading of the seed's sand in a full run: every particle must follow
+  // the single-point path (tolerances 1 % of the stress increment, in the case).
+  expect_within_tolerance(run_hs_oedometer({}));
+}
+
 TEST(Verification, V1VibratingBar) {
   expect_within_tolerance(run_vibrating_bar({}));
 }
