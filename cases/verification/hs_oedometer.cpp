@@ -16,8 +16,6 @@
 
 namespace mpile::verification {
 
-namespace {
-
 HardeningSoilParameters seed_sand() {
   HardeningSoilParameters s;
   s.e50_ref = 44e6;
@@ -33,8 +31,6 @@ HardeningSoilParameters seed_sand() {
   s.density = 1656.25;
   return s;
 }
-
-} // namespace
 
 Report run_hs_oedometer(const Options& options) {
   const auto start = std::chrono::steady_clock::now();

@@ -3,6 +3,7 @@
 // Verification cases (../docs/verification.md): scenes with a closed-form or published reference,
 // built at a chosen resolution, run, and compared. The unit tests and `mpile verify` share them.
 
+#include "engine/hardening_soil.hpp"
 #include "engine/scene.hpp"
 #include "solver/equilibrium.hpp"
 #include "solver/solver_settings.hpp"
@@ -77,6 +78,9 @@ Report run_shaft_torsion(const Options& options);
 Report run_self_weight_column(const Options& options);
 Report run_k0_column(const Options& options);
 Report run_hs_oedometer(const Options& options);
+
+/// The seed paper's dry sand, Hardening Soil parameters of its Table 5 (p_ref = 100 kPa).
+HardeningSoilParameters seed_sand();
 
 } // namespace mpile::verification
 

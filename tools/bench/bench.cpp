@@ -4,6 +4,7 @@
 // line: scene, threads, particles, steps, wall seconds, particle-steps per second, bytes per
 // particle (peak resident set over particles) and each pass's share of the step. Every scene runs
 // in a child process of its own, so that the peak resident set is that scene's alone.
+#include "cases/verification/verification_case.hpp"
 #include "engine/hardening_soil.hpp"
 #include "engine/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
@@ -37,18 +38,7 @@ std::unique_ptr<Material> soil_material(Soil soil) {
   if (soil == Soil::elastic) {
     return std::make_unique<LinearElastic>(50e6, 0.3, 1650.0);
   }
-  // The seed paper's sand (Table 5).
-  HardeningSoilParameters p;
-  p.e50_ref = 44e6;
-  p.eoed_ref = 44e6;
-  p.eur_ref = 132e6;
-  p.power = 0.47;
-  p.poisson_ur = 0.2;
-  p.k0_nc = 0.5;
-  p.failure_ratio = 0.91;
-  p.friction_angle = 37.5;
-  p.density = 1656.25;
-  return std::make_unique<HardeningSoil>(p);
+  return std::make_unique<HardeningSoil>(verification::seed_sand());
 }
 
 std::unique_ptr<Scene> soil_column(GeometryMode mode, std::size_t target_particles, Soil soil) {
