@@ -58,7 +58,9 @@ void RigidBody::finish_step(const std::array<double, 3>& predicted, double time,
       next += dt * contact[k] / m;
       driving[k] = drive[k].function.mean(time, time + dt);
     }
-    external_work += (driving[k] + weight) * next * dt;
+    // The work over the step at the mean velocity, so that it matches the change of the kinetic
+    // energy of the DOF (a harmonic torque turns the pile by a lot within one step).
+    external_work += (driving[k] + weight) * 0.5 * (velocity[k] + next) * dt;
     velocity[k] = next;
     displacement[k] += next * dt;
   }

@@ -190,9 +190,9 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     // structure's DOF moves as prescribed (rigid or held) and 1 + m_s / m_k where both fields
     // share the impulse (v_rel is then measured from the centre of mass). The velocity at the
     // start of the step is v^{n+1} minus the increment the momentum balance left in the force
-    // slot (a rigid field's is taken at its new velocity); the end velocity alone would charge a
-    // node of little mass, whose velocity one step's force changes a lot, for energy the
-    // particles never had.
+    // slot (a rigid field's holds the change of its body's predicted velocity); the end velocity
+    // alone would charge a node of little mass, whose velocity one step's force changes a lot,
+    // for energy the particles never had.
     auto start_of_step = [](const GridNode& node) {
       GridNode start = node;
       for (std::size_t d = 0; d < 3; ++d) {
@@ -200,8 +200,7 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
       }
       return start;
     };
-    const auto relative_start =
-        relative_velocity(i, start_of_step(s), rigid ? k : start_of_step(k));
+    const auto relative_start = relative_velocity(i, start_of_step(s), start_of_step(k));
     double lost = 0.0;
     for (int d = 0; d < dofs; ++d) {
       const auto u = static_cast<std::size_t>(d);
@@ -325,8 +324,9 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
   std::vector<std::array<double, 3>> predicted;
   for (const RigidBody& body : scene.rigid_bodies) {
     predicted.push_back(body.predict(step.time, step.dt, settings.gravity, settings.mass_scaling));
-    // The increment is set once the step's velocity is final (finish_rigid_bodies).
-    set_rigid_field(scene.grid, body, predicted.back(), body.velocity, step.mass_floor, false);
+    // The increment from the last step's velocity, for the contact's energy; finish_rigid_bodies
+    // sets it again once the step's velocity is final.
+    set_rigid_field(scene.grid, body, predicted.back(), body.velocity, step.mass_floor, true);
   }
   return predicted;
 }

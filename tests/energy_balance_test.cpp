@@ -83,3 +83,30 @@ TEST(EnergyBalance, SlidingBlockLosesMuNsToFriction) {
 
 } // namespace
 } // namespace mpile
+
+namespace mpile {
+namespace {
+
+TEST(EnergyBalance, TorqueDrivenPileAgainstAdhesionCloses) {
+  // V9's pile driven by a harmonic torque instead of a constant spin (as the GDP cases are): the
+  // torque's work must match the pile's kinetic energy, the soil's and what the adhesive interface
+  // takes, with the rigid body's work and the contact's loss taken at the mean velocity over each
+  // step (a 20 Hz torque changes the spin a lot within one step).
+  std::string text = read_text(source / "cases/verification/v9_torsion_adhesion.toml");
+  text = replaced(text, "cells = 40", "cells = 10");
+  text = replaced(text, "angular_velocity = { type = \"constant\", value = 0.02 }",
+                  "torque = { type = \"harmonic\", amplitude = 8000.0, frequency = 20.0 }");
+  text = replaced(text, "duration = 1.0", "duration = 0.2");
+  CaseRun run(text);
+  run.run([] {});
+  const EnergyBalance b = run.solver->energy_balance();
+  EXPECT_GT(b.contact, 0.5 * b.external_work); // the interface slides and takes most of it
+  // Measured 1.4 %. While the interface still sticks (the first few milliseconds) the soil takes
+  // the pile's predicted velocity, before the pile feels the contact's reaction, which creates
+  // energy: up to a third of the little that has flowed by then (docs/design.md). Sliding, the
+  // balance closes; 3 % leaves room for that start and nothing else.
+  EXPECT_LT(b.relative_residual, 0.03);
+}
+
+} // namespace
+} // namespace mpile
