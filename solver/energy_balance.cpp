@@ -7,12 +7,17 @@
 
 namespace mpile {
 
+double total_external_work(const Scene& scene, const EnergyLedger& ledger) {
+  double work = ledger.external_work;
+  for (const RigidBody& body : scene.rigid_bodies) {
+    work += body.external_work;
+  }
+  return work;
+}
+
 EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, double mass_scaling) {
   EnergyBalance b;
-  b.external_work = ledger.external_work;
-  for (const RigidBody& body : scene.rigid_bodies) {
-    b.external_work += body.external_work;
-  }
+  b.external_work = total_external_work(scene, ledger);
   b.kinetic = mass_scaling * kinetic_energy(scene);
   b.elastic = elastic_energy(scene);
   b.plastic = ledger.internal_work - (b.elastic - ledger.elastic_reference);

@@ -38,6 +38,9 @@ struct EnergyBalance {
   double relative_residual = 0.0;
 };
 
+/// The ledger's external work plus the rigid bodies' (their drives and weights).
+double total_external_work(const Scene& scene, const EnergyLedger& ledger);
+
 /// Evaluates the balance of a scene whose inertia is scaled by mass_scaling.
 EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, double mass_scaling);
 

@@ -99,11 +99,7 @@ void ExplicitSolver::prepare() {
 }
 
 double ExplicitSolver::external_work() const {
-  double work = energy_.external_work;
-  for (const RigidBody& body : scene_.rigid_bodies) {
-    work += body.external_work;
-  }
-  return work;
+  return total_external_work(scene_, energy_);
 }
 
 EnergyBalance ExplicitSolver::energy_balance() const {

@@ -148,18 +148,15 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       }
     }
 
-    // 3. Objective rate: co-rotate the stress with the in-plane spin before the increment.
-    if (settings.jaumann_rate) {
-      for (std::size_t k = 0; k < particles.size(); ++k) {
-        rotate_in_plane(p.stress[static_cast<std::size_t>(particles[k])], scratch.spin[k]);
-      }
-    }
-
-    // The internal work over the step is the trapezoidal rule on sigma : d eps (the co-rotation
-    // above does no work), so it needs the stress before the update.
+    // 3. Objective rate: co-rotate the stress with the in-plane spin before the increment. The
+    // internal work over the step is the trapezoidal rule on sigma : d eps (the co-rotation does
+    // no work), so it needs the stress before the update too.
     for (std::size_t k = 0; k < particles.size(); ++k) {
-      scratch.work_before[k] =
-          stress_power(p.stress[static_cast<std::size_t>(particles[k])], scratch.strain[k]);
+      Stress& stress = p.stress[static_cast<std::size_t>(particles[k])];
+      if (settings.jaumann_rate) {
+        rotate_in_plane(stress, scratch.spin[k]);
+      }
+      scratch.work_before[k] = stress_power(stress, scratch.strain[k]);
     }
 
     // 4. Constitutive update, one call per run of particles with the same material.

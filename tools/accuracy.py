@@ -15,9 +15,7 @@ Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (tools/setup.sh
 import argparse
 import csv
 import io
-import math
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -129,10 +127,9 @@ def v9_point(mpile, study, cells, extra):
     with open(os.path.join(ROOT, study["case_file"])) as f:
         text = f.read()
     text = text.replace("cells = 40", f"cells = {cells}")
-    if extra:
-        text = text.replace("[solver]\n", "[solver]\n" + "\n".join(extra) + "\n")
-        if "[solver]" not in text:
-            text += "\n[solver]\n" + "\n".join(extra) + "\n"
+    if extra:  # the V9 case file has no [solver] table: the options make one
+        assert "[solver]" not in text
+        text += "\n[solver]\n" + "\n".join(extra) + "\n"
     with tempfile.TemporaryDirectory() as directory:
         path = os.path.join(directory, "v9.toml")
         with open(path, "w") as f:
@@ -185,12 +182,9 @@ def main():
             hs, errors, walls = [], [], []
             levels = study.get("cells") or study["refinements"]
             for level in levels:
-                if "case_file" in study:
-                    h = study["h"] / level
-                    error, wall, particles, steps, stopped = v9_point(args.mpile, study, level, extra)
-                else:
-                    h = study["h"] / level
-                    error, wall, particles, steps, stopped = verify_point(args.mpile, study, level, extra)
+                h = study["h"] / level
+                point = v9_point if "case_file" in study else verify_point
+                error, wall, particles, steps, stopped = point(args.mpile, study, level, extra)
                 table.append({"study": name, "options": label, "h": h, "particles": particles,
                               "steps": steps, "wall_seconds": wall, "error": error, "stopped": stopped})
                 if stopped:

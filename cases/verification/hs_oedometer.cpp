@@ -37,8 +37,8 @@ Report run_hs_oedometer(const Options& options) {
   constexpr double radius = 0.5, height = 1.0, strain = -5e-3, sigma_v0 = -100e3;
   const int n = options.refinement;
   Scene scene(GeometryMode::axisymmetric, uniform_grid(0.0, radius, 4 * n, 0.0, height, 8 * n));
-  const HardeningSoil sand(seed_sand());
   const auto material = scene.add_material(std::make_unique<HardeningSoil>(seed_sand()));
+  const Material& sand = *scene.materials[material];
   const auto body = scene.add_body("sample");
   fill_rectangle(scene, {0.0, radius, 0.0, height}, options.particles_per_direction, material,
                  body);
@@ -51,11 +51,7 @@ Report run_hs_oedometer(const Options& options) {
 
   // The platen moves by a trapezoidal velocity history over 25 wave transits of the sample.
   constexpr double load_time = 0.15;
-  NodeConstraint platen;
-  platen.name = "top platen";
-  platen.nodes = nodes_on_face(scene.grid, GridFace::y_max);
-  platen.dofs = DOF_Y;
-  platen.velocity[1] = trapezoid_velocity(strain * height, load_time);
+  const NodeConstraint platen = top_platen(scene.grid, strain * height, load_time);
   scene.boundaries.constraints = {
       axis_constraint(scene.grid),
       face_constraint(scene.grid, scene.mode, GridFace::r_max, FaceCondition::roller),
@@ -79,7 +75,8 @@ Report run_hs_oedometer(const Options& options) {
   sand.initialise_state(reference, state.data());
   constexpr int increments = 20000;
   for (int k = 0; k < increments; ++k) {
-    sand.update_point(reference, state.data(), {0.0, strain / increments, 0.0, 0.0, 0.0, 0.0});
+    update_single_point(sand, reference, state.data(),
+                        {0.0, strain / increments, 0.0, 0.0, 0.0, 0.0});
   }
 
   double mean_axial = 0.0, mean_lateral = 0.0;

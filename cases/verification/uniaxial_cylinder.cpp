@@ -28,11 +28,7 @@ Report run_uniaxial_cylinder(const Options& options) {
 
   // Top platen: a trapezoidal velocity history whose integral is exactly the platen travel.
   constexpr double load_time = 0.02;
-  NodeConstraint platen;
-  platen.name = "top platen";
-  platen.nodes = nodes_on_face(scene.grid, GridFace::y_max);
-  platen.dofs = DOF_Y;
-  platen.velocity[1] = trapezoid_velocity(strain * height, load_time);
+  const NodeConstraint platen = top_platen(scene.grid, strain * height, load_time);
   scene.boundaries.constraints = {
       axis_constraint(scene.grid),
       face_constraint(scene.grid, scene.mode, GridFace::y_min, FaceCondition::roller), platen};

@@ -98,6 +98,15 @@ TimeFunction trapezoid_velocity(double travel, double duration) {
       {{0.0, 0.0}, {0.25 * duration, peak}, {0.75 * duration, peak}, {duration, 0.0}});
 }
 
+NodeConstraint top_platen(const Grid& grid, double travel, double duration) {
+  NodeConstraint platen;
+  platen.name = "top platen";
+  platen.nodes = nodes_on_face(grid, GridFace::y_max);
+  platen.dofs = DOF_Y;
+  platen.velocity[1] = trapezoid_velocity(travel, duration);
+  return platen;
+}
+
 void OscillationMeter::sample(double t, double v) {
   amplitude_ = std::max(amplitude_, std::abs(v));
   if ((v > 0.0) != (previous_v_ > 0.0)) {

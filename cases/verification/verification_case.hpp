@@ -101,6 +101,10 @@ Check equilibrium_check(const EquilibriumResult& result);
 /// the time to accelerate, half at peak, a quarter to stop), so the load comes on without a jolt.
 TimeFunction trapezoid_velocity(double travel, double duration);
 
+/// A smooth rigid platen on the grid's top face ("top platen") that moves down by `travel` along
+/// trapezoid_velocity over `duration`; its reaction is the platen force.
+NodeConstraint top_platen(const Grid& grid, double travel, double duration);
+
 /// Follows a sampled oscillation: its largest amplitude and its period from the zero crossings
 /// (linearly interpolated between samples, half a period apart).
 class OscillationMeter {
