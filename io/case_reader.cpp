@@ -572,12 +572,16 @@ void read_solver(TomlTable& top, CaseSpec& spec) {
   if (table->has("energy_residual_warning")) {
     s.energy_residual_warning = table->positive("energy_residual_warning");
   }
+  if (table->has("energy_residual_limit")) {
+    s.energy_residual_limit = table->positive("energy_residual_limit");
+  }
   try {
     s.validate();
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
-    for (const char* key : {"courant_number", "max_time_step", "flip_fraction", "mass_scaling",
-                            "gravity", "block_cells", "min_time_step", "energy_residual_warning"}) {
+    for (const char* key :
+         {"courant_number", "max_time_step", "flip_fraction", "mass_scaling", "gravity",
+          "block_cells", "min_time_step", "energy_residual_warning", "energy_residual_limit"}) {
       if (message.rfind(key, 0) == 0) {
         table->fail(key, message);
       }

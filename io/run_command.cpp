@@ -207,23 +207,32 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       write_checkpoint(checkpoint_path, spec, *scene, solver->state(), progress);
     };
 
-    // The first row whose energy residual passes the case's threshold warns, once per run.
+    // The first row whose energy residual passes the case's warning threshold warns, once per
+    // run; a row past the limit stops the run as unstable (the row is already in the history).
     bool residual_warned = false;
-    auto warn_on_energy_residual = [&](const EnergyBalance& energy) {
-      if (residual_warned ||
-          !(energy.relative_residual > solver->settings().energy_residual_warning)) {
+    auto check_energy_residual = [&](const EnergyBalance& energy) {
+      const SolverSettings& settings = solver->settings();
+      const bool over_limit = !(energy.relative_residual <= settings.energy_residual_limit);
+      if (residual_warned && !over_limit) {
         return;
       }
-      residual_warned = true;
+      if (!over_limit && !(energy.relative_residual > settings.energy_residual_warning)) {
+        return;
+      }
       std::ostringstream s;
       s << "t = " << format_time(solver->time()) << " s: the energy residual is "
-        << std::setprecision(3) << 100.0 * energy.relative_residual
-        << " % of the energy in play (energy_residual_warning "
-        << 100.0 * solver->settings().energy_residual_warning << " %): external work "
-        << energy.external_work << ", kinetic " << energy.kinetic << ", elastic " << energy.elastic
-        << ", plastic " << energy.plastic << ", damping " << energy.damping << ", contact "
-        << energy.contact << " (see /energy in history.h5)";
-      log.warn(s.str());
+        << std::setprecision(3) << 100.0 * energy.relative_residual << " % of the energy in play ("
+        << (over_limit ? "energy_residual_limit " : "energy_residual_warning ")
+        << 100.0 * (over_limit ? settings.energy_residual_limit : settings.energy_residual_warning)
+        << " %): external work " << energy.external_work << ", kinetic " << energy.kinetic
+        << ", elastic " << energy.elastic << ", plastic " << energy.plastic << ", damping "
+        << energy.damping << ", contact " << energy.contact;
+      if (over_limit) {
+        throw SimulationError("step " + std::to_string(solver->step_count()) + ", " + s.str() +
+                              ": the run went unstable");
+      }
+      residual_warned = true;
+      log.warn(s.str() + " (see /energy in history.h5)");
     };
     ProgressReporter reporter(err, isatty(fileno(stderr)) != 0, spec.end_time());
     StopOnSignals signals;
@@ -247,7 +256,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           const double t = solver->time();
           const double dt = solver->last_time_step();
           if (output.history_interval == 0.0 || reached(t, progress.next_history_time, dt)) {
-            warn_on_energy_residual(history.record(*solver, progress.phase));
+            check_energy_residual(history.record(*solver, progress.phase));
             recorded_step = solver->step_count();
             while (output.history_interval > 0.0 && reached(t, progress.next_history_time, dt)) {
               progress.next_history_time += output.history_interval;

@@ -29,6 +29,10 @@ void SolverSettings::validate() const {
           "min_time_step must be >= 0, got " + std::to_string(min_time_step));
   require(energy_residual_warning > 0.0, "energy_residual_warning must be positive, got " +
                                              std::to_string(energy_residual_warning));
+  require(energy_residual_limit > energy_residual_warning,
+          "energy_residual_limit must exceed energy_residual_warning (" +
+              std::to_string(energy_residual_warning) + "), got " +
+              std::to_string(energy_residual_limit));
   require(block_cells >= 1 && block_cells <= 16,
           "block_cells must lie in [1, 16], got " + std::to_string(block_cells));
 }
