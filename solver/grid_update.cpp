@@ -34,6 +34,7 @@ GridUpdateResult combine(GridUpdateResult a, const GridUpdateResult& b) {
 template <int dofs>
 GridUpdateResult
 update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uint8_t>& mask,
+                        const std::vector<const std::vector<GridNode>*>& contact_fields,
                         const SolverSettings& settings, const StepParameters& step) {
   const double alpha = settings.local_damping;
   const double dt_over_beta = step.dt / settings.mass_scaling;
@@ -46,13 +47,23 @@ update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uin
       }
       const double inverse_mass = 1.0 / node.mass;
       const std::uint8_t constrained = mask[i];
+      // A node the field shares with a contact partner is held there by the contact force, which
+      // acts after this update: its unbalanced force is mostly that support, not out-of-balance,
+      // and damping it would hold the bodies apart like friction (a disc resting on soil kept
+      // two thirds of its weight off the soil). The equilibrium check counts it as held too.
+      bool shared = false;
+      if (alpha > 0.0) {
+        for (const std::vector<GridNode>* other : contact_fields) {
+          shared = shared || (*other)[i].mass > step.mass_floor;
+        }
+      }
       double finite_check = 0.0;
       for (int d = 0; d < dofs; ++d) {
         const double velocity = node.momentum[d] * inverse_mass;
         double force = node.force[d];
         // Local damping opposes the motion with a fraction of the unbalanced force; constrained
         // DOFs are left alone so that their reactions stay free of it.
-        if (alpha > 0.0 && (constrained & (1u << d)) == 0 && velocity != 0.0) {
+        if (alpha > 0.0 && !shared && (constrained & (1u << d)) == 0 && velocity != 0.0) {
           const double damping = alpha * std::abs(force) * std::copysign(1.0, velocity);
           force -= damping;
           // The damping force's work over the step at the mean velocity, v + dv / 2.
@@ -81,14 +92,20 @@ GridUpdateResult update_grid_velocities(Scene& scene, const SolverSettings& sett
                                         const StepParameters& step) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
+  // The soil's contact partners are the structures; a structure's partner is the soil.
+  std::vector<const std::vector<GridNode>*> structures;
+  for (const ContactPair& pair : scene.contacts) {
+    structures.push_back(&grid.field_nodes(pair.field));
+  }
+  const std::vector<const std::vector<GridNode>*> soil{&grid.nodes};
   GridUpdateResult result =
-      update_field_velocities<dofs>(grid.nodes, grid.constrained, settings, step);
+      update_field_velocities<dofs>(grid.nodes, grid.constrained, structures, settings, step);
   // Deformable structures have their own momentum balance; rigid bodies set their fields from
   // their DOFs instead.
   for (const ContactPair& pair : scene.contacts) {
     if (pair.rigid_body < 0) {
       GridUpdateResult field = update_field_velocities<dofs>(
-          grid.field_nodes(pair.field), grid.field_constrained(pair.field), settings, step);
+          grid.field_nodes(pair.field), grid.field_constrained(pair.field), soil, settings, step);
       result = combine(result, field);
     }
   }

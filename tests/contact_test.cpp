@@ -177,6 +177,22 @@ INSTANTIATE_TEST_SUITE_P(V7, BlockOnIncline,
                                          InclineRow{45.0, 0.3, 2.4279, 0.03},
                                          InclineRow{30.0, 0.7, 0.0, 0.0}));
 
+TEST(ContactDamping, DiscAtRestOnSoilPassesItsWholeWeightThroughContact) {
+  // cases/stability/stiff_contact_block.toml with the disc's modulus lowered 100 times (the
+  // stiffness does not enter the static forces; the step grows tenfold): a disc on soft soil
+  // brought to rest by local damping. The contact force on it must balance its weight,
+  // 8000 * 9.81 * 0.1 * 0.4^2 / 2 = 627.8 N/rad. Local damping acting on the unbalanced force at
+  // the nodes the two fields share (which only contact balances) held up two thirds of it.
+  std::string text = read_text(source / "cases/stability/stiff_contact_block.toml");
+  text = replaced(text, "young_modulus = 220e9", "young_modulus = 2.2e9");
+  text = replaced(text, "duration = 0.5", "duration = 0.3");
+  CaseRun run(text);
+  run.run([] {});
+  const double weight = 8000.0 * 9.81 * 0.1 * 0.4 * 0.4 / 2.0;
+  // 1 %: the disc is at rest to an out-of-balance ratio of 1e-3 after 0.3 s of damping.
+  EXPECT_NEAR(run.surface_force("disc surface", 1), weight, 0.01 * weight);
+}
+
 // ---------------------------------------------------------------------------------------------
 // V9: the seed's torsion with adhesion, from cases/verification/v9_torsion_adhesion.toml.
 

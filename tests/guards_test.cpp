@@ -163,13 +163,15 @@ TEST(Guards, UnstableRunStopsAndLeavesAReadableHistory) {
 
 TEST(Guards, EnergyResidualPastTheLimitStopsTheRun) {
   // The column under suddenly applied gravity closes its energy balance to O(omega dt) (a few
-  // 1e-3 here), never exactly: a limit of 1e-9 must stop it at the first row past the limit, with
-  // that row kept in the history. (A physical blow-up trips the default 50 %: docs/stability.md.)
+  // 1e-3 here), never exactly: a limit of 1e-9 is passed from the first rows on, and the run must
+  // stop once it has stayed past it for 100 steps, with every row up to then in the history.
+  // (A physical blow-up trips the default 50 %: docs/stability.md.)
   const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_energy";
   std::filesystem::remove_all(directory);
   std::filesystem::create_directories(directory);
   const auto path = directory / "energy.toml";
-  std::ofstream(path) << replaced(column, "courant_number = 0.8",
+  std::ofstream(path) << replaced(replaced(column, "duration = 0.05", "duration = 0.5"),
+                                  "courant_number = 0.8",
                                   "courant_number = 0.8\nenergy_residual_warning = 5e-10\n"
                                   "energy_residual_limit = 1e-9");
   RunOptions options;
@@ -177,7 +179,7 @@ TEST(Guards, EnergyResidualPastTheLimitStopsTheRun) {
   options.output_directory = (directory / "out").string();
   std::ostringstream out, err;
   EXPECT_EQ(run_case(options, out, err), exit_failure);
-  EXPECT_NE(err.str().find("% of the energy in play (energy_residual_limit 1e-07 %)"),
+  EXPECT_NE(err.str().find("% of the energy in play (energy_residual_limit 1e-07 % since step "),
             std::string::npos)
       << err.str();
   EXPECT_NE(err.str().find("the run went unstable"), std::string::npos) << err.str();
@@ -185,11 +187,17 @@ TEST(Guards, EnergyResidualPastTheLimitStopsTheRun) {
   const std::string status = history.string_attribute("/", "status");
   EXPECT_EQ(status.rfind("failed: step ", 0), 0u) << status;
   const std::vector<double> residual = history.read_doubles("/energy/relative_residual");
-  ASSERT_GE(residual.size(), 2u);
-  EXPECT_GT(residual.back(), 1e-9); // the row that tripped the guard is written
-  for (std::size_t i = 0; i + 1 < residual.size(); ++i) {
-    EXPECT_LE(residual[i], 1e-9) << "row " << i;
+  const std::vector<double> step = history.read_doubles("/step");
+  ASSERT_GE(residual.size(), 3u);
+  // Rows from the first past the limit to the stop span exactly 100 steps (a row every step).
+  std::size_t first = 0;
+  while (first < residual.size() && !(residual[first] > 1e-9)) {
+    ++first;
   }
+  ASSERT_LT(first, residual.size());
+  EXPECT_EQ(step.back() - step[first], 100.0);
+  EXPECT_EQ(status.find("failed: step " + std::to_string(static_cast<long>(step.back())) + ","), 0u)
+      << status;
 }
 
 } // namespace
