@@ -61,3 +61,14 @@ add_test(NAME AccuracyTool.V6StudyOrders
 set_tests_properties(AccuracyTool.V6StudyOrders PROPERTIES
   PASS_REGULAR_EXPRESSION
   "MUSL, C = 0\\.8 +observed order in h: 0\\.[5-9][0-9]\n.*USL, C = 0\\.8 +observed order in h: (2\\.[5-9]|3\\.[0-3])[0-9]\n.*table -> [^\n]*accuracy_v6/accuracy\\.csv")
+
+# The stability tool on its Courant rows and the disc: each run's outcome read from its history.
+# The bar is stable up to C = 0.95 and the Courant guard stops it at step 1 from C = 1.0 on; the
+# disc's contact force must equal its weight to 0.1 % (docs/stability.md). A tool that mislabels
+# settings, reads the wrong status or measures the wrong surface prints other rows.
+add_test(NAME StabilityTool.CourantRowsAndDisc
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/stability.py --rows courant disc
+                 --no-docs --mpile $<TARGET_FILE:mpile> --out ${CMAKE_CURRENT_BINARY_DIR}/stability)
+set_tests_properties(StabilityTool.CourantRowsAndDisc PROPERTIES
+  PASS_REGULAR_EXPRESSION
+  "C = 0\\.95 +stable[^\n]*\n[^\n]*C = 1\\.0 +stopped: step 1, t = [^\n]*Courant number reached 1\\.0[^\n]*\n[^\n]*C = 1\\.2 +stopped: step 1, [^\n]*Courant number reached 1\\.2[^\n]*\n.*E ratio 2\\.2e5 \\| stable \\|[^\n]*its weight 627\\.8, [+-]0\\.0[0-9] %")
