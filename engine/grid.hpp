@@ -81,6 +81,16 @@ public:
     return field == 0 ? constrained
                       : structure_fields[static_cast<std::size_t>(field - 1)].constrained;
   }
+  /// Whether any structure field has more than mass_floor at the node: there contact, not the
+  /// node's own momentum balance, decides the soil's motion.
+  bool structure_occupies(std::size_t node, double mass_floor) const {
+    for (const NodeField& field : structure_fields) {
+      if (field.nodes[node].mass > mass_floor) {
+        return true;
+      }
+    }
+    return false;
+  }
   /// Adds a structure field (all nodes empty) and returns its index.
   int add_structure_field();
 

@@ -218,9 +218,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     auto check_energy_residual = [&](const EnergyBalance& energy) {
       const SolverSettings& settings = solver->settings();
       const bool over_limit = !(energy.relative_residual <= settings.energy_residual_limit);
-      over_limit_since = !over_limit            ? -1
-                         : over_limit_since < 0 ? solver->step_count()
-                                                : over_limit_since;
+      if (!over_limit) {
+        over_limit_since = -1;
+      } else if (over_limit_since < 0) {
+        over_limit_since = solver->step_count();
+      }
       const bool blown_up = over_limit && solver->step_count() - over_limit_since >= blow_up_steps;
       if (!blown_up &&
           (residual_warned || !(energy.relative_residual > settings.energy_residual_warning))) {

@@ -256,10 +256,7 @@ double ExplicitSolver::unbalanced_force_ratio() {
           }
           s.held += node.mass * node.mass * g2;
           // A node a structure also occupies is held by the contact force, as a support holds.
-          bool touches_structure = false;
-          for (const NodeField& field : grid.structure_fields) {
-            touches_structure = touches_structure || field.nodes[i].mass > mass_floor_;
-          }
+          const bool touches_structure = grid.structure_occupies(i, mass_floor_);
           for (int d = 0; d < dofs; ++d) {
             const double f2 = node.force[d] * node.force[d];
             const bool held = touches_structure || (grid.constrained[i] & (1u << d)) != 0;

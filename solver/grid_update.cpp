@@ -31,11 +31,12 @@ GridUpdateResult combine(GridUpdateResult a, const GridUpdateResult& b) {
   return a;
 }
 
-template <int dofs>
+/// partner_occupies(i): whether the field's contact partner has mass at node i.
+template <int dofs, class PartnerOccupies>
 GridUpdateResult
 update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uint8_t>& mask,
-                        const std::vector<const std::vector<GridNode>*>& contact_fields,
-                        const SolverSettings& settings, const StepParameters& step) {
+                        PartnerOccupies partner_occupies, const SolverSettings& settings,
+                        const StepParameters& step) {
   const double alpha = settings.local_damping;
   const double dt_over_beta = step.dt / settings.mass_scaling;
   auto update = [&](std::size_t begin, std::size_t end, GridUpdateResult result) {
@@ -51,12 +52,7 @@ update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uin
       // acts after this update: its unbalanced force is mostly that support, not out-of-balance,
       // and damping it would hold the bodies apart like friction (a disc resting on soil kept
       // two thirds of its weight off the soil). The equilibrium check counts it as held too.
-      bool shared = false;
-      if (alpha > 0.0) {
-        for (const std::vector<GridNode>* other : contact_fields) {
-          shared = shared || (*other)[i].mass > step.mass_floor;
-        }
-      }
+      const bool shared = alpha > 0.0 && partner_occupies(i);
       double finite_check = 0.0;
       for (int d = 0; d < dofs; ++d) {
         const double velocity = node.momentum[d] * inverse_mass;
@@ -93,19 +89,17 @@ GridUpdateResult update_grid_velocities(Scene& scene, const SolverSettings& sett
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   // The soil's contact partners are the structures; a structure's partner is the soil.
-  std::vector<const std::vector<GridNode>*> structures;
-  for (const ContactPair& pair : scene.contacts) {
-    structures.push_back(&grid.field_nodes(pair.field));
-  }
-  const std::vector<const std::vector<GridNode>*> soil{&grid.nodes};
-  GridUpdateResult result =
-      update_field_velocities<dofs>(grid.nodes, grid.constrained, structures, settings, step);
+  GridUpdateResult result = update_field_velocities<dofs>(
+      grid.nodes, grid.constrained,
+      [&](std::size_t i) { return grid.structure_occupies(i, step.mass_floor); }, settings, step);
+  const auto soil_occupies = [&](std::size_t i) { return grid.nodes[i].mass > step.mass_floor; };
   // Deformable structures have their own momentum balance; rigid bodies set their fields from
   // their DOFs instead.
   for (const ContactPair& pair : scene.contacts) {
     if (pair.rigid_body < 0) {
-      GridUpdateResult field = update_field_velocities<dofs>(
-          grid.field_nodes(pair.field), grid.field_constrained(pair.field), soil, settings, step);
+      GridUpdateResult field = update_field_velocities<dofs>(grid.field_nodes(pair.field),
+                                                             grid.field_constrained(pair.field),
+                                                             soil_occupies, settings, step);
       result = combine(result, field);
     }
   }

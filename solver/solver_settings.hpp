@@ -31,8 +31,8 @@ struct SolverSettings {
   double min_time_step = 0.0;
   /// A history row whose energy residual exceeds this fraction of the energy in play warns.
   double energy_residual_warning = 0.05;
-  /// A history row whose energy residual exceeds this fraction stops the run as unstable: energy
-  /// the physics cannot account for exceeds half the energy in play (an energy blow-up).
+  /// An energy residual that stays above this fraction for 100 steps stops the run as unstable:
+  /// energy the physics cannot account for exceeds half the energy in play (an energy blow-up).
   double energy_residual_limit = 0.5;
   /// Cells per side of a scatter block (colored scatter).
   int block_cells = 8;
