@@ -408,20 +408,22 @@ double HardeningSoil::update_point(Stress& stress, double* state,
   const double nu = P.poisson_ur;
   // Substeps keep each trial increment small against the confinement, so that moduli frozen at the
   // start of a substep stay accurate (hardening_soil.md 2.2).
-  const PrincipalStress start = principal_compression(stress);
-  const double e_start = unloading_modulus(start.values[2]);
+  PrincipalValues now = principal_compression_values(stress);
+  const double e_start = unloading_modulus(now.values[2]);
   const double shear_start = e_start / (2.0 * (1.0 + nu));
   const double lame_start = e_start * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
   const double volumetric = strain[RR] + strain[YY] + strain[TT];
   double trial_size = 0.0;
   for (int c = 0; c < 3; ++c) {
-    trial_size += std::pow(lame_start * volumetric + 2.0 * shear_start * strain[c], 2);
+    const double normal = lame_start * volumetric + 2.0 * shear_start * strain[c];
+    trial_size += normal * normal;
   }
   for (int c = 3; c < 6; ++c) {
-    trial_size += 2.0 * std::pow(shear_start * strain[c], 2);
+    const double shear = shear_start * strain[c];
+    trial_size += 2.0 * shear * shear;
   }
   trial_size = std::sqrt(trial_size);
-  const double scale = 0.1 * (std::max(start.values[2], 0.0) + a_ + P.stiffness_floor * P.p_ref);
+  const double scale = 0.1 * (std::max(now.values[2], 0.0) + a_ + P.stiffness_floor * P.p_ref);
   const int substeps = std::clamp(static_cast<int>(std::ceil(trial_size / scale)), 1, 100);
   StrainIncrement part = strain;
   for (double& c : part) {
@@ -430,9 +432,11 @@ double HardeningSoil::update_point(Stress& stress, double* state,
 
   double modulus = 0.0;
   for (int step = 0; step < substeps; ++step) {
-    const PrincipalStress now = principal_compression(stress);
+    if (step > 0) {
+      now = principal_compression_values(stress);
+    }
     const Principal& s = now.values;
-    const double e = unloading_modulus(s[2]);
+    const double e = step == 0 ? e_start : unloading_modulus(s[2]);
     const Elasticity elastic{e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)),
                              e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))};
     modulus = elastic.lambda + 2.0 * elastic.shear;
@@ -449,48 +453,78 @@ double HardeningSoil::update_point(Stress& stress, double* state,
     // Elastic trial on the full tensor (engine convention, tension positive).
     Stress trial_stress = stress;
     add_isotropic_elastic_increment(trial_stress, part, elastic.lambda, elastic.shear);
-    const PrincipalStress trial = principal_compression(trial_stress);
-    const Principal& t = trial.values;
     const double gamma_n = state[GAMMA_P];
     const double cap_n = std::max(state[P_P], P.cap_floor);
 
-    // Tension: the apex.
-    if (mean(t) <= -P.tension_limit) {
-      stress = compose_from_principal({-P.tension_limit, -P.tension_limit, -P.tension_limit},
-                                      trial.directions);
+    // Tension: the apex (isotropic, so no directions are needed).
+    if (trace(trial_stress) / 3.0 >= P.tension_limit) {
+      stress = {P.tension_limit, P.tension_limit, P.tension_limit, 0.0, 0.0, 0.0};
       continue;
     }
+    // Most steps are elastic, and an elastic step needs neither the principal directions nor the
+    // return: the trial stands if it lies inside both surfaces by more than the uncertainty of its
+    // principal values can move the residuals (their slopes: 1 + dq_f/dsigma_3 < 10 for shear,
+    // (1 + delta) / alpha for the cap). The stress then carries no rounding of a recomposition.
+    const PrincipalValues trial_values = principal_compression_values(trial_stress);
+    const Principal& t = trial_values.values;
+    double largest = P.p_ref;
+    for (const double value : t) {
+      largest = std::max(largest, std::abs(value));
+    }
+    const double margin =
+        1e-10 * largest - 10.0 * trial_values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
+    if (t[0] - t[2] - yield_deviator(gamma_n, t[2]) <= margin && cap_surface(t, cap_n) <= margin) {
+      state[P_P] = cap_n;
+      stress = trial_stress;
+      continue;
+    }
+
+    const PrincipalStress trial = principal_compression(trial_stress);
     const double cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
-    const HardeningSoilReturn returner(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening, t,
-                                       gamma_n, cap_n);
+    const HardeningSoilReturn returner(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening,
+                                       trial.values, gamma_n, cap_n);
     const double tolerance = returner.tolerance();
-    ReturnState trial_state{t, gamma_n, cap_n};
+    ReturnState trial_state{trial.values, gamma_n, cap_n};
     auto admissible = [&](const ReturnState& r) {
       return ordered(r.stress, tolerance) && returner.shear_residual(r) <= tolerance &&
              returner.cap_residual(r) <= tolerance;
     };
+    // The trial's residuals, once: they decide both whether it stands and which mechanisms to try.
+    const double shear_trial = returner.shear_residual(trial_state);
+    const double cap_trial = returner.cap_residual(trial_state);
+    if (shear_trial <= tolerance && cap_trial <= tolerance) {
+      // Inside after all (the quick test keeps a margin; the decomposition's values are ordered).
+      state[P_P] = cap_n;
+      stress = trial_stress;
+      continue;
+    }
     ReturnState result = trial_state;
-    if (!admissible(trial_state)) {
+    {
       // Active sets in the order shear, cap, shear + cap; each with its corner variants, keeping
       // the first that satisfies every surface and the principal order.
       bool found = false;
-      auto attempt = [&](auto&& make) {
+      auto attempt = [&](auto&& make, bool plane_decides) {
         for (int corner = 0; corner < 3 && !found; ++corner) {
           const ReturnState r = make(corner);
           if (admissible(r)) {
             result = r;
             found = true;
+          } else if (plane_decides && corner == 0 && ordered(r.stress, tolerance)) {
+            // The shear corners split the multiplier so that two principal stresses end equal,
+            // and clamp to the plane's return while the plane keeps the order: they would only
+            // repeat this (inadmissible) state.
+            break;
           }
         }
       };
-      if (returner.shear_residual(trial_state) > tolerance) {
-        attempt([&](int corner) { return returner.shear_return(corner); });
+      if (shear_trial > tolerance) {
+        attempt([&](int corner) { return returner.shear_return(corner); }, true);
       }
-      if (!found && returner.cap_residual(trial_state) > tolerance) {
-        attempt([&](int corner) { return returner.cap_return(corner); });
+      if (!found && cap_trial > tolerance) {
+        attempt([&](int corner) { return returner.cap_return(corner); }, false);
       }
       if (!found) {
-        attempt([&](int corner) { return returner.combined_return(corner); });
+        attempt([&](int corner) { return returner.combined_return(corner); }, false);
       }
       if (!found) {
         // Near a triaxial corner the cap's own direction can break the principal order while the

@@ -2,6 +2,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 namespace mpile {
 
 Eigen::Matrix3d to_matrix(const std::array<double, 6>& t, bool engineering_shear) {
@@ -32,6 +36,49 @@ PrincipalStress principal_compression(const Stress& stress) {
     p.values[static_cast<std::size_t>(k)] = solver.eigenvalues()(2 - k);
     p.directions.col(k) = solver.eigenvectors().col(2 - k);
   }
+  return p;
+}
+
+PrincipalValues principal_compression_values(const Stress& stress) {
+  PrincipalValues p;
+  std::array<double, 3>& v = p.values;
+  if (stress[RT] == 0.0 && stress[YT] == 0.0) {
+    // An r-y block and the out-of-plane value: the block's pair from the half-difference and the
+    // shear, without cancellation.
+    const double centre = -0.5 * (stress[RR] + stress[YY]);
+    const double half_difference = 0.5 * (stress[RR] - stress[YY]);
+    const double radius = std::sqrt(half_difference * half_difference + stress[RY] * stress[RY]);
+    v = {centre + radius, centre - radius, -stress[TT]};
+    if (v[2] > v[1]) {
+      std::swap(v[1], v[2]);
+      if (v[1] > v[0]) {
+        std::swap(v[0], v[1]);
+      }
+    }
+    return p;
+  }
+  // Trigonometric roots of the characteristic cubic of the deviator B = A - q I (A = -sigma):
+  // with s = |B| / sqrt(6), the roots are q + 2 s cos(phi + 2 pi k / 3), phi = acos(det(B) /
+  // (2 s^3)) / 3, which lies in [0, pi/3] and so orders them.
+  const double q = -(stress[RR] + stress[YY] + stress[TT]) / 3.0;
+  const double b11 = -stress[RR] - q, b22 = -stress[YY] - q, b33 = -stress[TT] - q;
+  const double b12 = -stress[RY], b23 = -stress[YT], b13 = -stress[RT];
+  const double off = b12 * b12 + b23 * b23 + b13 * b13;
+  const double s2 = (b11 * b11 + b22 * b22 + b33 * b33 + 2.0 * off) / 6.0;
+  if (!(s2 > 0.0)) { // theta shears so small that their squares underflow: isotropic
+    v = {q, q, q};
+    return p;
+  }
+  const double s = std::sqrt(s2);
+  const double determinant =
+      b11 * (b22 * b33 - b23 * b23) - b12 * (b12 * b33 - b23 * b13) + b13 * (b12 * b23 - b22 * b13);
+  const double r = std::clamp(determinant / (2.0 * s2 * s), -1.0, 1.0);
+  const double phi = std::acos(r) / 3.0;
+  v[0] = q + 2.0 * s * std::cos(phi);
+  v[2] = q + 2.0 * s * std::cos(phi + 2.0 * std::numbers::pi / 3.0);
+  v[1] = std::clamp(3.0 * q - v[0] - v[2], v[2], v[0]); // ordered despite rounding
+  // An error of a few ulps in r moves phi by sqrt(ulps) near r = +-1: about 3e-8 s.
+  p.uncertainty = 1e-6 * s;
   return p;
 }
 

@@ -29,6 +29,19 @@ struct PrincipalStress {
 /// triaxial corners): the directions are then any orthonormal basis of the repeated subspace.
 PrincipalStress principal_compression(const Stress& stress);
 
+/// Principal compressive stresses alone (compression positive, descending), for the test of a
+/// trial stress, where directions are needed only if it turns out plastic. uncertainty bounds the
+/// error of the values: zero (rounding only) when the theta shears vanish, as without torsion, for
+/// the tensor is then an r-y block and the out-of-plane stress; otherwise the values come from the
+/// closed form of the characteristic cubic, whose double root is ill-conditioned, so that where
+/// two principal stresses nearly coincide they may be off by about 1e-8 of the deviatoric stress
+/// (uncertainty is set 30 times higher). Decisions on them must keep that margin.
+struct PrincipalValues {
+  std::array<double, 3> values{};
+  double uncertainty = 0.0;
+};
+PrincipalValues principal_compression_values(const Stress& stress);
+
 /// Recomposes an engine stress (tension positive) from principal compressions and directions.
 Stress compose_from_principal(const std::array<double, 3>& compression,
                               const Eigen::Matrix3d& directions);

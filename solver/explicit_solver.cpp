@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace mpile {
@@ -92,6 +93,7 @@ void ExplicitSolver::prepare() {
     const MovingMesh& mesh = *scene_.moving_mesh;
     const RigidBody& body = scene_.rigid_bodies[static_cast<std::size_t>(mesh.rigid_body)];
     scene_.grid.set_y_nodes(mesh.lines_at(body.displacement[RIGID_Y]));
+    signal_speed_.assign(p.size(), 0.0);
   }
   bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
   locate_all_particles();
@@ -156,7 +158,7 @@ void ExplicitSolver::locate_all_particles() {
   }
 }
 
-void ExplicitSolver::move_mesh() {
+double ExplicitSolver::move_mesh() {
   const MovingMesh& mesh = *scene_.moving_mesh;
   const RigidBody& body = scene_.rigid_bodies[static_cast<std::size_t>(mesh.rigid_body)];
   try {
@@ -167,39 +169,60 @@ void ExplicitSolver::move_mesh() {
     throw SimulationError(s.str());
   }
   // Particles keep their positions; the lines moved under them, so their cells may have changed.
+  // The same loop takes the crossing time of the moved cells from the signal speeds the stress
+  // pass kept (before rebinning, which may reorder the particles).
+  struct Relocation {
+    long first_outside = -1;
+    double crossing_time = std::numeric_limits<double>::infinity();
+  };
   Particles& p = scene_.particles;
   const GradedAxis& y_axis = scene_.grid.y_axis();
-  const long outside = parallel_reduce(
-      p.size(), -1L,
-      [&](std::size_t begin, std::size_t end, long first) {
+  const Relocation relocation = parallel_reduce(
+      p.size(), Relocation{},
+      [&](std::size_t begin, std::size_t end, Relocation r) {
         for (std::size_t i = begin; i != end; ++i) {
           const int cy = y_axis.locate(p.y[i]);
           p.cell_y[i] = cy;
-          if (cy < 0 && first < 0) {
-            first = static_cast<long>(i);
+          if (cy < 0) {
+            if (r.first_outside < 0) {
+              r.first_outside = static_cast<long>(i);
+            }
+            continue;
           }
+          r.crossing_time = std::min(r.crossing_time,
+                                     scene_.grid.cell_min_size(p.cell_r[i], cy) / signal_speed_[i]);
         }
-        return first;
+        return r;
       },
-      [](long a, long b) { return a < 0 ? b : (b < 0 ? a : std::min(a, b)); });
-  if (outside >= 0) {
+      [](const Relocation& a, const Relocation& b) {
+        return Relocation{a.first_outside < 0   ? b.first_outside
+                          : b.first_outside < 0 ? a.first_outside
+                                                : std::min(a.first_outside, b.first_outside),
+                          std::min(a.crossing_time, b.crossing_time)};
+      });
+  if (relocation.first_outside >= 0) {
     std::ostringstream s;
     s << "step " << steps_ << ", t = " << time_
-      << " s: " << position_of(p, static_cast<std::size_t>(outside)) << " left the grid";
+      << " s: " << position_of(p, static_cast<std::size_t>(relocation.first_outside))
+      << " left the grid";
     throw SimulationError(s.str());
   }
   rebin();
+  return relocation.crossing_time;
 }
 
-void ExplicitSolver::set_stable_time_step(double crossing_time, double dt_taken) {
-  // The Courant number the step just taken has against the material as it is now: above 1, the
-  // waves crossed more than a cell in one step (a stiffening or a runaway velocity), and the
-  // explicit integration is no longer stable.
-  const double courant = dt_taken / crossing_time;
+void ExplicitSolver::set_stable_time_step(double step_crossing_time, double crossing_time,
+                                          double dt_taken) {
+  // The Courant number the step just taken has against the material as it is now, in the cells
+  // the step was computed in: above 1, the waves crossed more than a cell in one step (a
+  // stiffening or a runaway velocity), and the explicit integration is no longer stable. A particle
+  // that has just moved into a smaller cell (or a cell the moving mesh squeezed) is not judged by
+  // it: that cell sets the next step, not the one taken.
+  const double courant = dt_taken / step_crossing_time;
   if (courant > 1.0) {
     std::ostringstream s;
     s << "step " << steps_ << ", t = " << time_ << " s: the Courant number reached " << courant
-      << " (dt = " << dt_taken << " s against a crossing time of " << crossing_time
+      << " (dt = " << dt_taken << " s against a crossing time of " << step_crossing_time
       << " s): above 1 the explicit step is unstable; lower courant_number or max_time_step";
     throw SimulationError(s.str());
   }
@@ -364,14 +387,16 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
   passes::StressPassResult result;
   {
     PassTimer timer(timings_.stress_update);
-    result = passes::update_stress_and_positions<mode, contact>(scene_, bins_, settings_, step);
+    result = passes::update_stress_and_positions<mode, contact>(scene_, bins_, settings_, step,
+                                                                signal_speed_);
   }
   if constexpr (contact) {
     passes::move_rigid_bodies(scene_, step);
   }
+  double moved_crossing_time = 0.0;
   if (scene_.moving_mesh) {
     PassTimer timer(timings_.binning);
-    move_mesh();
+    moved_crossing_time = move_mesh();
   }
   time_ += dt;
   last_dt_ = dt;
@@ -394,10 +419,10 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
   }
   if (scene_.moving_mesh) {
     // move_mesh has relocated and rebinned; the step follows from the moved cells.
-    set_stable_time_step(passes::min_crossing_time(scene_, settings_), dt);
+    set_stable_time_step(result.step_crossing_time, moved_crossing_time, dt);
     return;
   }
-  set_stable_time_step(result.min_crossing_time, dt);
+  set_stable_time_step(result.step_crossing_time, result.min_crossing_time, dt);
   if (result.block_changed) {
     PassTimer timer(timings_.binning);
     rebin();

@@ -7,6 +7,7 @@
 #include "solver/solver_settings.hpp"
 
 #include <stdexcept>
+#include <vector>
 
 namespace mpile {
 
@@ -85,12 +86,13 @@ private:
   void prepare();
   void locate_all_particles();
   /// Moves the y-lines with the mesh's rigid body, relocates the particles in the moved cells and
-  /// recomputes the stable step from the new cell sizes.
-  void move_mesh();
+  /// returns their crossing time in the moved cells (for the next step).
+  double move_mesh();
   void rebin();
-  /// Sets the next step from the particles' crossing time and stops the run if the step just
-  /// taken was longer than the material allows now (Courant number above 1) or the step collapsed.
-  void set_stable_time_step(double crossing_time, double dt_taken);
+  /// Sets the next step from the particles' crossing time in their cells now and stops the run if
+  /// the step just taken was longer than the material allows now in the cells the step was
+  /// computed in (Courant number above 1) or the step collapsed.
+  void set_stable_time_step(double step_crossing_time, double crossing_time, double dt_taken);
   void sort_particles_by_cell();
   void report_settings();
 
@@ -104,6 +106,8 @@ private:
   double mass_floor_ = 0.0;
   double min_dt_ = 0.0;
   EnergyLedger energy_;
+  /// Each particle's c_p + |v_p| from the last stress update, kept only with a moving mesh.
+  std::vector<double> signal_speed_;
   double last_dt_ = 0.0;
   long steps_ = 0;
 };

@@ -88,7 +88,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         }
       }
       if constexpr (contact) {
-        if (fields->is_soil(p.body[i])) {
+        if (!gaps.empty() && fields->is_soil(p.body[i])) {
           // Half the particle's size (a square domain of its area in the r-y plane), widened by
           // 1 % so that a particle whose domain ends on the outline counts as touching it.
           const double area = has_theta(mode) ? omega / p.r[i] : omega;

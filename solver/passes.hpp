@@ -11,6 +11,7 @@
 #include "solver/solver_settings.hpp"
 
 #include <cstdint>
+#include <span>
 
 namespace mpile::passes {
 
@@ -58,6 +59,7 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
 
 struct StressPassResult {
   double min_crossing_time = 0.0;       // min over particles of h_cell / (c_p + |v_p|)
+  double step_crossing_time = 0.0;      // the same in the cells the step was computed in
   bool block_changed = false;           // a particle moved into another scatter block
   std::int64_t particle_outside = -1;   // lowest index of a particle that left the grid, or -1
   double gravity_work = 0.0;            // sum of m g . du over the particles
@@ -66,10 +68,12 @@ struct StressPassResult {
                                         // velocity, or -1
 };
 
+/// With signal_speed (one entry per particle), also keeps each particle's c_p + |v_p| there, for a
+/// step limit after the cells have moved (a moving mesh); empty, it is not kept.
 template <GeometryMode mode, bool contact = false>
-StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& bins,
-                                             const SolverSettings& settings,
-                                             const StepParameters& step);
+StressPassResult
+update_stress_and_positions(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                            const StepParameters& step, std::span<double> signal_speed = {});
 
 /// min over particles of h_cell / (c_p + |v_p|) from the materials' current stiffness.
 double min_crossing_time(const Scene& scene, const SolverSettings& settings);

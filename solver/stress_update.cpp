@@ -50,9 +50,9 @@ double stress_power(const Stress& s, const StrainIncrement& de) {
 } // namespace
 
 template <GeometryMode mode, bool contact>
-StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& bins,
-                                             const SolverSettings& settings,
-                                             const StepParameters& step) {
+StressPassResult
+update_stress_and_positions(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                            const StepParameters& step, std::span<double> signal_speed) {
   Grid& grid = scene.grid;
   Particles& p = scene.particles;
   const double dt = step.dt;
@@ -73,6 +73,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
   // One result per block, reduced serially afterwards: no shared writes, and a fixed order.
   struct BlockResult {
     double min_time = std::numeric_limits<double>::infinity();
+    double step_time = std::numeric_limits<double>::infinity();
     bool changed = false;
     std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
     double gravity_work = 0.0;
@@ -204,6 +205,7 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       if (carries_gravity) {
         out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
       }
+      const double step_cell_size = grid.cell_min_size(p.cell_r[i], p.cell_y[i]);
       p.r[i] += p.du_r[i];
       p.y[i] += p.du_y[i];
       const int cr = grid.r_axis().locate(p.r[i]);
@@ -221,18 +223,24 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
       if constexpr (has_theta(mode)) {
         speed += p.v_theta[i] * p.v_theta[i];
       }
-      out.min_time =
-          std::min(out.min_time, grid.cell_min_size(cr, cy) / (wave_speed + std::sqrt(speed)));
+      const double particle_speed = wave_speed + std::sqrt(speed);
+      if (!signal_speed.empty()) {
+        signal_speed[i] = particle_speed;
+      }
+      out.min_time = std::min(out.min_time, grid.cell_min_size(cr, cy) / particle_speed);
+      out.step_time = std::min(out.step_time, step_cell_size / particle_speed);
     }
   });
 
   StressPassResult result;
   result.min_crossing_time = std::numeric_limits<double>::infinity();
+  result.step_crossing_time = std::numeric_limits<double>::infinity();
   std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
   std::int64_t first_nonfinite = std::numeric_limits<std::int64_t>::max();
   for (const std::int32_t block : bins.non_empty_blocks()) {
     const BlockResult& out = block_results[static_cast<std::size_t>(block)];
     result.min_crossing_time = std::min(result.min_crossing_time, out.min_time);
+    result.step_crossing_time = std::min(result.step_crossing_time, out.step_time);
     result.block_changed = result.block_changed || out.changed;
     first_outside = std::min(first_outside, out.first_outside);
     result.gravity_work += out.gravity_work;
@@ -247,12 +255,12 @@ StressPassResult update_stress_and_positions(Scene& scene, const ParticleBins& b
 }
 
 template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric, false>(
-    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
 template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric, true>(
-    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
 template StressPassResult update_stress_and_positions<GeometryMode::plane_strain, false>(
-    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
 template StressPassResult update_stress_and_positions<GeometryMode::plane_strain, true>(
-    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
 
 } // namespace mpile::passes

@@ -71,6 +71,48 @@ TEST(Guards, CourantNumberJustBelowOneRunsAndOneItselfStops) {
   EXPECT_NE(stop_message(limit).find("the Courant number reached 1.0"), std::string::npos);
 }
 
+TEST(Guards, ParticlesEnteringSmallerCellsShortenTheNextStepWithoutStoppingTheRun) {
+  // A block translating at 2 m/s from cells of 0.2 m into cells of 0.05 m: a particle's crossing
+  // time drops fourfold as it crosses, so the step it crossed in has a Courant number of 3.2 in
+  // its new cell. That step was computed in the old cell, where it had 0.8: the run goes on and
+  // the next step follows the small cells. Uniform translation is exact in MPM, so the block
+  // keeps its speed to rounding.
+  const std::string text = R"(title = "block into fine cells"
+geometry = "plane_strain"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 5 }]
+y = [{ start = 0.0, end = 1.0, cells = 5 }, { start = 1.0, end = 2.0, cells = 20 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 10e6
+poisson_ratio = 0.3
+density = 2000.0
+[[bodies]]
+name = "block"
+material = "soil"
+region = { r = [0.2, 0.8], y = [0.2, 0.6] }
+velocity = [0.0, 2.0, 0.0]
+[solver]
+courant_number = 0.8
+[[phases]]
+name = "glide"
+duration = 0.3
+[output]
+history_interval = 0.0
+)";
+  CaseRun run(text);
+  const double c_p = std::sqrt(10e6 * 0.7 / (1.3 * 0.4) / 2000.0);
+  const double first_dt = run.solver->stable_time_step();
+  EXPECT_NEAR(first_dt, 0.8 * 0.2 / (c_p + 2.0), 1e-9 * first_dt);
+  EXPECT_EQ(stop_message(run), "");
+  // The leading particles are in the 0.05 m cells now (front at 0.6 + 2 x 0.3 = 1.2 m).
+  EXPECT_NEAR(run.solver->stable_time_step(), 0.8 * 0.05 / (c_p + 2.0), 1e-6 * first_dt);
+  const Particles& p = run.scene->particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    ASSERT_NEAR(p.v_y[i], 2.0, 1e-9);
+  }
+}
+
 TEST(Guards, TimeStepBelowTheFloorStops) {
   CaseRun run(
       replaced(column, "courant_number = 0.8", "courant_number = 0.8\nmin_time_step = 1.0"));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 namespace mpile {
 namespace {
@@ -40,6 +41,42 @@ TEST(PrincipalStress, RepeatedValuesOfAK0StateAndTorsionShear) {
   EXPECT_NEAR(t.values[0], 25e3, 1e-9);
   EXPECT_NEAR(t.values[1], 0.0, 1e-9);
   EXPECT_NEAR(t.values[2], -25e3, 1e-9);
+}
+
+TEST(PrincipalStress, ValuesAloneAgreeWithTheDecompositionWithinTheirUncertainty) {
+  // Random tensors with and without theta shears, and near-repeated values (a K0 state with a
+  // tiny torsion shear), where the cubic's closed form is least accurate. The reference is the
+  // iterative decomposition (backward stable: errors of order 1e-16 of the largest value).
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> value(-1e5, 1e5);
+  std::vector<Stress> cases;
+  for (int k = 0; k < 1000; ++k) {
+    Stress s;
+    for (double& c : s) {
+      c = value(random);
+    }
+    cases.push_back(s);
+    s[RT] = s[YT] = 0.0;
+    cases.push_back(s);
+  }
+  for (const double tiny : {1e-3, 1e-1, 1e1}) {
+    cases.push_back({-50e3, -100e3, -50e3, 0.0, tiny, 0.0});
+    cases.push_back({-50e3, -100e3, -50e3, tiny, 0.0, tiny});
+    cases.push_back({-70e3, -70e3, -70e3, 0.0, 0.0, tiny});
+  }
+  for (const Stress& s : cases) {
+    const PrincipalValues fast = principal_compression_values(s);
+    const PrincipalStress reference = principal_compression(s);
+    const bool block = s[RT] == 0.0 && s[YT] == 0.0;
+    EXPECT_EQ(fast.uncertainty == 0.0, block);
+    // Rounding of values up to 2e5 Pa: a few 1e-11 Pa; 1e-9 leaves room for either method.
+    const double allowed = fast.uncertainty + 1e-9;
+    EXPECT_GE(fast.values[0], fast.values[1]);
+    EXPECT_GE(fast.values[1], fast.values[2]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      ASSERT_NEAR(fast.values[k], reference.values[k], allowed) << "value " << k;
+    }
+  }
 }
 
 TEST(PrincipalStress, EngineeringShearStrainConvertsBothWays) {

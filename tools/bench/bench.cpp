@@ -80,6 +80,15 @@ BenchScene quasi_static(std::unique_ptr<Scene> scene) {
   return {std::move(scene), settings};
 }
 
+/// The elastic column with the contact code path switched on and nothing for it to do: a contact
+/// structure without particles. What this costs over elastic-1e5 is what the contact machinery
+/// charges a scene whose soil never touches a structure.
+BenchScene contact_path_idle(std::size_t count) {
+  auto scene = soil_column(GeometryMode::axisymmetric, count, Soil::elastic);
+  scene->add_contact_structure(scene->add_body("idle structure")).friction = 0.4;
+  return quasi_static(std::move(scene));
+}
+
 /// The quick GDP monopile case in its installation phase (K0 stresses, drives started): the
 /// monopile step with contact, the rigid pile and the moving mesh.
 BenchScene gdp_quick() {
@@ -113,6 +122,8 @@ std::map<std::string, SceneSpec> scenes() {
           return quasi_static(soil_column(GeometryMode::axisymmetric, count, Soil::hardening_soil));
         }};
   }
+  all["elastic-contact-idle-1e5"] = {"elastic-contact-idle-1e5",
+                                     [] { return contact_path_idle(100000); }};
   all["gdp-quick"] = {"gdp-quick", gdp_quick};
   return all;
 }
