@@ -20,10 +20,6 @@ int Grid::add_structure_field() {
   return field_count() - 1;
 }
 
-double Grid::cell_min_size(int cr, int cy) const {
-  return std::min(r_axis_.cell_size(cr), y_axis_.cell_size(cy));
-}
-
 void Grid::set_y_nodes(std::vector<double> y_nodes) {
   y_axis_.set_nodes(std::move(y_nodes));
   update_cell_sizes();

@@ -57,7 +57,10 @@ public:
   /// 1 / cell size per cell column and row, read by every particle pass.
   double inverse_cell_size_r(int cr) const { return inverse_size_r_[static_cast<std::size_t>(cr)]; }
   double inverse_cell_size_y(int cy) const { return inverse_size_y_[static_cast<std::size_t>(cy)]; }
-  double cell_min_size(int cr, int cy) const;
+  double cell_min_size(int cr, int cy) const {
+    const double dr = r_axis_.cell_size(cr), dy = y_axis_.cell_size(cy);
+    return dr < dy ? dr : dy;
+  }
 
   /// Moves the y-lines (the moving mesh); cell sizes and the lookup follow.
   void set_y_nodes(std::vector<double> y_nodes);
