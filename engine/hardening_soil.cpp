@@ -21,11 +21,11 @@ double mean(const Principal& s) {
   return (s[0] + s[1] + s[2]) / 3.0;
 }
 
-/// Root of a function that decreases on [low, high], with f(low) > 0 >= f(high): the Illinois
-/// variant of regula falsi, which keeps the bracket and converges superlinearly.
-template <class F> double decreasing_root(F f, double low, double high, double tolerance) {
+/// Root of a function that decreases on [low, high], with f(low) > 0 >= f(high) = f_high: the
+/// Illinois variant of regula falsi, which keeps the bracket and converges superlinearly.
+template <class F>
+double decreasing_root(F f, double low, double high, double f_high, double tolerance) {
   double f_low = f(low);
-  double f_high = f(high);
   if (f_low <= 0.0) {
     return low;
   }
@@ -53,6 +53,19 @@ template <class F> double decreasing_root(F f, double low, double high, double t
     }
   }
   return 0.5 * (low + high);
+}
+
+/// Root of a function that decreases from f(0) > 0: the bracket's upper end grows from high by a
+/// factor until f is no longer positive there (at most max_growth times), and its value there is
+/// passed on rather than evaluated again (each evaluation may be a whole inner return).
+template <class F>
+double root_from_zero(F f, double high, double factor, int max_growth, double tolerance) {
+  double f_high = f(high);
+  for (int k = 0; k < max_growth && f_high > 0.0; ++k) {
+    high *= factor;
+    f_high = f(high);
+  }
+  return decreasing_root(f, 0.0, high, f_high, tolerance);
 }
 
 /// Elastic constants of one (sub)step, frozen at its start.
@@ -349,14 +362,10 @@ public:
     // Without the cap the deviator vanishes at this multiplier; the cap only lowers it further, so
     // the residual is <= 0 there.
     const Principal& t = trial_;
-    double high = corner == 1   ? (t[0] - 0.5 * (t[1] + t[2])) / (G * (1.5 - s / 2.0))
-                  : corner == 2 ? (0.5 * (t[0] + t[1]) - t[2]) / (G * (1.5 + s / 2.0))
-                                : (t[0] - t[2]) / (2.0 * G);
-    high = std::max(high, 1e-300);
-    for (int k = 0; k < 60 && residual(high) > 0.0; ++k) {
-      high *= 2.0;
-    }
-    return make(decreasing_root(residual, 0.0, high, tolerance_));
+    const double high = corner == 1   ? (t[0] - 0.5 * (t[1] + t[2])) / (G * (1.5 - s / 2.0))
+                        : corner == 2 ? (0.5 * (t[0] + t[1]) - t[2]) / (G * (1.5 + s / 2.0))
+                                      : (t[0] - t[2]) / (2.0 * G);
+    return make(root_from_zero(residual, std::max(high, 1e-300), 2.0, 60, tolerance_));
   }
 
   /// Shear (plane or corner) and cap together: for each cap multiplier the shear multiplier is the
@@ -364,11 +373,7 @@ public:
   ReturnState combined_return(int corner) const {
     auto along = [&](double lambda_c) { return shear_return(corner, lambda_c, corner); };
     auto residual = [&](double lambda_c) { return cap_residual(along(lambda_c)); };
-    double high = 1e-9;
-    for (int k = 0; k < 200 && residual(high) > 0.0; ++k) {
-      high *= 4.0;
-    }
-    return along(decreasing_root(residual, 0.0, high, tolerance_));
+    return along(root_from_zero(residual, 1e-9, 4.0, 200, tolerance_));
   }
 
   /// The cap alone, with the cap direction of a corner if given.
@@ -376,11 +381,7 @@ public:
     const Principal n = cap_direction(corner);
     auto make = [&](double lambda_c) { return state_after({0.0, 0.0, 0.0, lambda_c}, n); };
     auto residual = [&](double lambda_c) { return cap_residual(make(lambda_c)); };
-    double high = 1e-9;
-    for (int k = 0; k < 200 && residual(high) > 0.0; ++k) {
-      high *= 4.0;
-    }
-    return make(decreasing_root(residual, 0.0, high, tolerance_));
+    return make(root_from_zero(residual, 1e-9, 4.0, 200, tolerance_));
   }
 
 private:
