@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 namespace mpile {
@@ -24,8 +25,8 @@ double mean(const Principal& s) {
 /// Root of a function that decreases on [low, high], with f(low) > 0 >= f(high) = f_high: the
 /// Illinois variant of regula falsi, which keeps the bracket and converges superlinearly.
 template <class F>
-double decreasing_root(F f, double low, double high, double f_high, double tolerance) {
-  double f_low = f(low);
+double decreasing_root(F f, double low, double f_low, double high, double f_high,
+                       double tolerance) {
   if (f_low <= 0.0) {
     return low;
   }
@@ -55,17 +56,18 @@ double decreasing_root(F f, double low, double high, double f_high, double toler
   return 0.5 * (low + high);
 }
 
-/// Root of a function that decreases from f(0) > 0: the bracket's upper end grows from high by a
-/// factor until f is no longer positive there (at most max_growth times), and its value there is
-/// passed on rather than evaluated again (each evaluation may be a whole inner return).
+/// Root of a function that decreases from f(0) = f_zero > 0: the bracket's upper end grows from
+/// high by a factor until f is no longer positive there (at most max_growth times), and its value
+/// there is passed on rather than evaluated again (each evaluation may be a whole inner return).
 template <class F>
-double root_from_zero(F f, double high, double factor, int max_growth, double tolerance) {
+double root_from_zero(F f, double f_zero, double high, double factor, int max_growth,
+                      double tolerance) {
   double f_high = f(high);
   for (int k = 0; k < max_growth && f_high > 0.0; ++k) {
     high *= factor;
     f_high = f(high);
   }
-  return decreasing_root(f, 0.0, high, f_high, tolerance);
+  return decreasing_root(f, 0.0, f_zero, high, f_high, tolerance);
 }
 
 /// Elastic constants of one (sub)step, frozen at its start.
@@ -365,15 +367,19 @@ public:
     const double high = corner == 1   ? (t[0] - 0.5 * (t[1] + t[2])) / (G * (1.5 - s / 2.0))
                         : corner == 2 ? (0.5 * (t[0] + t[1]) - t[2]) / (G * (1.5 + s / 2.0))
                                       : (t[0] - t[2]) / (2.0 * G);
-    return make(root_from_zero(residual, std::max(high, 1e-300), 2.0, 60, tolerance_));
+    return make(
+        root_from_zero(residual, residual(0.0), std::max(high, 1e-300), 2.0, 60, tolerance_));
   }
 
   /// Shear (plane or corner) and cap together: for each cap multiplier the shear multiplier is the
   /// scalar shear root, and the cap multiplier is the root of the cap residual along that curve.
-  ReturnState combined_return(int corner) const {
+  /// shear_alone, if given, is this corner's shear return without the cap (the curve's start, for
+  /// the cap multiplier is zero there and the cap direction then does not enter).
+  ReturnState combined_return(int corner, const ReturnState* shear_alone = nullptr) const {
     auto along = [&](double lambda_c) { return shear_return(corner, lambda_c, corner); };
     auto residual = [&](double lambda_c) { return cap_residual(along(lambda_c)); };
-    return along(root_from_zero(residual, 1e-9, 4.0, 200, tolerance_));
+    const double at_zero = shear_alone != nullptr ? cap_residual(*shear_alone) : residual(0.0);
+    return along(root_from_zero(residual, at_zero, 1e-9, 4.0, 200, tolerance_));
   }
 
   /// The cap alone, with the cap direction of a corner if given.
@@ -381,7 +387,7 @@ public:
     const Principal n = cap_direction(corner);
     auto make = [&](double lambda_c) { return state_after({0.0, 0.0, 0.0, lambda_c}, n); };
     auto residual = [&](double lambda_c) { return cap_residual(make(lambda_c)); };
-    return make(root_from_zero(residual, 1e-9, 4.0, 200, tolerance_));
+    return make(root_from_zero(residual, residual(0.0), 1e-9, 4.0, 200, tolerance_));
   }
 
 private:
@@ -518,14 +524,27 @@ double HardeningSoil::update_point(Stress& stress, double* state,
           }
         }
       };
+      // The shear returns are kept: each starts the curve its corner's shear plus cap return
+      // follows.
+      std::array<std::optional<ReturnState>, 3> shear_alone;
       if (shear_trial > tolerance) {
-        attempt([&](int corner) { return returner.shear_return(corner); }, true);
+        attempt(
+            [&](int corner) {
+              return *(shear_alone[static_cast<std::size_t>(corner)] =
+                           returner.shear_return(corner));
+            },
+            true);
       }
       if (!found && cap_trial > tolerance) {
         attempt([&](int corner) { return returner.cap_return(corner); }, false);
       }
       if (!found) {
-        attempt([&](int corner) { return returner.combined_return(corner); }, false);
+        attempt(
+            [&](int corner) {
+              const auto& start = shear_alone[static_cast<std::size_t>(corner)];
+              return returner.combined_return(corner, start ? &*start : nullptr);
+            },
+            false);
       }
       if (!found) {
         // Near a triaxial corner the cap's own direction can break the principal order while the
