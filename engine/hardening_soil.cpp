@@ -70,6 +70,16 @@ double root_from_zero(F f, double f_zero, double high, double factor, int max_gr
   return decreasing_root(f, 0.0, f_zero, high, f_high, tolerance);
 }
 
+/// How far outside a surface a stress may lie and count as on it: 1e-10 of the larger of p_ref and
+/// the largest principal stress.
+double surface_tolerance(const Principal& s, double p_ref) {
+  double largest = p_ref;
+  for (const double value : s) {
+    largest = std::max(largest, std::abs(value));
+  }
+  return 1e-10 * largest;
+}
+
 /// Elastic constants of one (sub)step, frozen at its start.
 struct Elasticity {
   double bulk, shear, lambda;
@@ -269,11 +279,7 @@ public:
                       double cap_pressure)
       : model_(model), elastic_(elastic), sin_psi_(sin_psi_mobilised), delta_(delta), alpha_(alpha),
         cap_modulus_(cap_modulus_now), trial_(trial), gamma_n_(gamma), cap_n_(cap_pressure) {
-    double largest = parameters.p_ref;
-    for (const double t : trial) {
-      largest = std::max(largest, std::abs(t));
-    }
-    tolerance_ = 1e-10 * largest;
+    tolerance_ = surface_tolerance(trial, parameters.p_ref);
   }
 
   double tolerance() const { return tolerance_; }
@@ -474,12 +480,8 @@ double HardeningSoil::update_point(Stress& stress, double* state,
     // (1 + delta) / alpha for the cap). The stress then carries no rounding of a recomposition.
     const PrincipalValues trial_values = principal_compression_values(trial_stress);
     const Principal& t = trial_values.values;
-    double largest = P.p_ref;
-    for (const double value : t) {
-      largest = std::max(largest, std::abs(value));
-    }
-    const double margin =
-        1e-10 * largest - 10.0 * trial_values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
+    const double margin = surface_tolerance(t, P.p_ref) -
+                          10.0 * trial_values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
     if (t[0] - t[2] - yield_deviator(gamma_n, t[2]) <= margin && cap_surface(t, cap_n) <= margin) {
       state[P_P] = cap_n;
       stress = trial_stress;

@@ -11,7 +11,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 
 #if defined(__SANITIZE_THREAD__)
 extern "C" void __tsan_acquire(void* address);
@@ -72,6 +74,12 @@ template <class Body> void parallel_for(std::size_t n, Body&& body) {
       body(i);
     }
   });
+}
+
+/// The lower of two indices found by parts of a reduction, -1 standing for none found: the join of
+/// a "first offender" search, whatever the order of the joins.
+inline std::int64_t lowest_found(std::int64_t a, std::int64_t b) {
+  return a < 0 ? b : (b < 0 ? a : std::min(a, b));
 }
 
 /// Reduction of body(begin, end, partial) over chunks of [0, n), joined with combine(a, b). With

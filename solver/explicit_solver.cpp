@@ -172,7 +172,7 @@ double ExplicitSolver::move_mesh() {
   // The same loop takes the crossing time of the moved cells from the signal speeds the stress
   // pass kept (before rebinning, which may reorder the particles).
   struct Relocation {
-    long first_outside = -1;
+    std::int64_t first_outside = -1;
     double crossing_time = std::numeric_limits<double>::infinity();
   };
   Particles& p = scene_.particles;
@@ -184,9 +184,7 @@ double ExplicitSolver::move_mesh() {
           const int cy = y_axis.locate(p.y[i]);
           p.cell_y[i] = cy;
           if (cy < 0) {
-            if (r.first_outside < 0) {
-              r.first_outside = static_cast<long>(i);
-            }
+            r.first_outside = lowest_found(r.first_outside, static_cast<std::int64_t>(i));
             continue;
           }
           r.crossing_time = std::min(r.crossing_time,
@@ -195,9 +193,7 @@ double ExplicitSolver::move_mesh() {
         return r;
       },
       [](const Relocation& a, const Relocation& b) {
-        return Relocation{a.first_outside < 0   ? b.first_outside
-                          : b.first_outside < 0 ? a.first_outside
-                                                : std::min(a.first_outside, b.first_outside),
+        return Relocation{lowest_found(a.first_outside, b.first_outside),
                           std::min(a.crossing_time, b.crossing_time)};
       });
   if (relocation.first_outside >= 0) {

@@ -25,9 +25,7 @@ namespace {
 
 GridUpdateResult combine(GridUpdateResult a, const GridUpdateResult& b) {
   a.damping_dissipation += b.damping_dissipation;
-  if (a.node_nonfinite < 0 || (b.node_nonfinite >= 0 && b.node_nonfinite < a.node_nonfinite)) {
-    a.node_nonfinite = b.node_nonfinite; // the lowest index, whatever the order of the joins
-  }
+  a.node_nonfinite = lowest_found(a.node_nonfinite, b.node_nonfinite);
   return a;
 }
 
