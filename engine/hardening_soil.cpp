@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -158,21 +160,53 @@ double HardeningSoil::failure_deviator(double sigma_3) const {
 }
 
 double HardeningSoil::yield_deviator(double gamma_p, double sigma_3) const {
+  return yield_deviator_slopes(gamma_p, sigma_3).value;
+}
+
+YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_3) const {
   const double qf = failure_deviator(sigma_3);
-  if (gamma_p <= 0.0 || qf <= 0.0) {
-    return 0.0;
+  if (qf <= 0.0) {
+    return {};
   }
   // q_y inverts f-bar(q) = gamma without the 1/(qa - q) singularity (hardening_soil.md 1.3).
-  // E50 and Eur share the stress factor, so the power law is evaluated once (it dominates the
-  // cost of the return, which calls this function at every root iteration).
-  const double qa = qf / parameters_.failure_ratio;
-  const double factor = std::pow(stress_ratio(sigma_3), parameters_.power);
+  // E50 and Eur share the stress factor, so the power law is evaluated once: it dominates the cost
+  // of the return, which calls this function at every iteration. The slopes are exact derivatives
+  // of the same closed form and cost no further power law.
+  const double qf_slope = 2.0 * sin_phi_ / (1.0 - sin_phi_);
+  const double c_cos = parameters_.cohesion * cos_phi_;
+  const double raw_ratio = (c_cos + sigma_3 * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
+  const double ratio = std::max(raw_ratio, parameters_.stiffness_floor);
+  const double ratio_slope = raw_ratio > parameters_.stiffness_floor
+                                 ? sin_phi_ / (c_cos + parameters_.p_ref * sin_phi_)
+                                 : 0.0;
+  const double factor = std::pow(ratio, parameters_.power);
   const double initial = 2.0 * parameters_.e50_ref * factor / (2.0 - parameters_.failure_ratio);
   const double A = 2.0 / initial;
   const double B = 2.0 / (parameters_.eur_ref * factor);
+  const double qa = qf / parameters_.failure_ratio;
+  if (gamma_p <= 0.0) {
+    // q_y = gamma / (A - B) near gamma = 0: its slope there starts a Newton iteration from zero.
+    return {0.0, 1.0 / (A - B), 0.0};
+  }
   const double b = (A - B) * qa + gamma_p;
-  const double q_y = 2.0 * gamma_p * qa / (b + std::sqrt(b * b + 4.0 * B * gamma_p * qa));
-  return std::min(q_y, qf);
+  const double root = std::sqrt(b * b + 4.0 * B * gamma_p * qa);
+  const double denominator = b + root;
+  const double q_y = 2.0 * gamma_p * qa / denominator;
+  if (q_y >= qf) {
+    return {qf, 0.0, qf_slope};
+  }
+  // d/d sigma_3 through qa and the stiffness factor (A and B scale with 1 / factor).
+  const double factor_slope = parameters_.power * ratio_slope / ratio; // (d factor / factor)
+  const double qa_slope = qf_slope / parameters_.failure_ratio;
+  const double b_by_sigma = -(A - B) * factor_slope * qa + (A - B) * qa_slope;
+  const double bq_by_sigma = -B * factor_slope * qa + B * qa_slope; // d(B qa)
+  const double root_by_sigma = (b * b_by_sigma + 2.0 * gamma_p * bq_by_sigma) / root;
+  const double root_by_gamma = (b + 2.0 * B * qa) / root;
+  YieldDeviator y;
+  y.value = q_y;
+  y.by_gamma = (2.0 * qa - q_y * (1.0 + root_by_gamma)) / denominator;
+  y.by_sigma = (2.0 * gamma_p * qa_slope - q_y * (b_by_sigma + root_by_sigma)) / denominator;
+  return y;
 }
 
 double HardeningSoil::hardening_function(double q, double sigma_3) const {
@@ -295,36 +329,106 @@ public:
     return model_.cap_surface(r.stress, r.cap_pressure);
   }
 
-  /// The stress, hardening and cap pressure after plastic multipliers (S13, S12, S23, cap) from the
-  /// trial state; the cap's flow direction n is (1, delta - 1, -delta) or a corner average.
-  ReturnState state_after(const std::array<double, 4>& multiplier, const Principal& n) const {
+  /// The shear multipliers (S13, S12, S23) that a sum `total` takes on a plane (corner 0) or is
+  /// split into at a corner (1: triaxial compression, sigma_2 = sigma_3; 2: triaxial extension,
+  /// sigma_1 = sigma_2), and their derivatives with respect to the sum.
+  struct ShearSplit {
+    std::array<double, 3> multiplier{};
+    std::array<double, 3> slope{};
+  };
+
+  ShearSplit split(int corner, double total) const {
+    ShearSplit out;
+    if (corner == 0) {
+      out.multiplier[S13] = total;
+      out.slope[S13] = 1.0;
+      return out;
+    }
     const double s = sin_psi_;
-    const double shear_sum = multiplier[S13] + multiplier[S12] + multiplier[S23];
+    const double K = elastic_.bulk, G = elastic_.shear;
+    const double lame = K - 2.0 * G / 3.0;
+    const Principal& t = trial_;
+    // The split makes the corner's two stresses end equal (exact without the cap, and with the
+    // corner's symmetric cap direction); unclamped, half of an increment of the sum goes to each
+    // plane.
+    const int other = corner == 1 ? S12 : S23;
+    double wanted = 0.0;
+    if (corner == 1) {
+      const double g2 = G * (1.0 + s);
+      const double level = (t[1] + t[2] + total * (g2 + 2.0 * lame * s)) / 2.0;
+      wanted = (level - t[1] - total * lame * s) / g2;
+    } else {
+      const double g1 = G * (1.0 - s);
+      const double level = (t[0] + t[1] - total * (g1 - 2.0 * lame * s)) / 2.0;
+      wanted = (t[1] + total * lame * s - level) / g1;
+    }
+    const auto o = static_cast<std::size_t>(other);
+    out.multiplier[o] = std::clamp(wanted, 0.0, total);
+    out.slope[o] = wanted < 0.0 ? 0.0 : wanted > total ? 1.0 : 0.5;
+    out.multiplier[S13] = total - out.multiplier[o];
+    out.slope[S13] = 1.0 - out.slope[o];
+    return out;
+  }
+
+  /// A state after multipliers with its derivatives with respect to the shear sum and the cap
+  /// multiplier: the Jacobian of Newton's method, exact (the map is rational in the multipliers).
+  struct Linearised {
+    ReturnState state;
+    Principal stress_by_shear{}, stress_by_cap{};
+    double cap_pressure_by_shear = 0.0, cap_pressure_by_cap = 0.0;
+  };
+
+  /// The stress, hardening and cap pressure after shear multipliers (S13, S12, S23) and a cap
+  /// multiplier from the trial state; the cap's flow direction n is (1, delta - 1, -delta) or a
+  /// corner average.
+  Linearised linearised(const ShearSplit& shear, double lambda_c, const Principal& n) const {
+    const double s = sin_psi_;
+    const std::array<double, 3>& m = shear.multiplier;
+    const double shear_sum = m[S13] + m[S12] + m[S23];
     // Flow of each shear plane, with trace -sin psi each.
     const Principal g13{(1.0 - s) / 2.0, 0.0, -(1.0 + s) / 2.0};
     const Principal g12{(1.0 - s) / 2.0, -(1.0 + s) / 2.0, 0.0};
     const Principal g23{0.0, (1.0 - s) / 2.0, -(1.0 + s) / 2.0};
     const double K = elastic_.bulk, G = elastic_.shear;
-    const double lambda_c = multiplier[CAP];
     const double p_trial = mean(trial_);
-    const double p = (p_trial + K * s * shear_sum) / (1.0 + 2.0 * K * lambda_c);
-    Principal a{};
-    for (int i = 0; i < 3; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      const double shear_flow = multiplier[S13] * g13[k] + multiplier[S12] * g12[k] +
-                                multiplier[S23] * g23[k] + s * shear_sum / 3.0;
+    const double volumetric = 1.0 + 2.0 * K * lambda_c;
+    const double p = (p_trial + K * s * shear_sum) / volumetric;
+    const double p_by_shear = K * s / volumetric; // the slopes of a split sum to one
+    const double p_by_cap = -2.0 * K * p / volumetric;
+    Principal a{}, a_by_shear{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double shear_flow =
+          m[S13] * g13[k] + m[S12] * g12[k] + m[S23] * g23[k] + s * shear_sum / 3.0;
+      const double flow_slope = shear.slope[S13] * g13[k] + shear.slope[S12] * g12[k] +
+                                shear.slope[S23] * g23[k] + s / 3.0;
       a[k] = trial_[k] - p_trial - 2.0 * G * shear_flow;
+      a_by_shear[k] = -2.0 * G * flow_slope;
     }
     const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const double q_cap = (n[0] * a[0] + n[1] * a[1] + n[2] * a[2]) /
-                         (1.0 + 4.0 * G * lambda_c * n2 / (alpha_ * alpha_));
-    ReturnState r;
+    const double cap_stiffness = 4.0 * G * n2 / (alpha_ * alpha_);
+    const double deviatoric = 1.0 + 4.0 * G * lambda_c * n2 / (alpha_ * alpha_);
+    const double q_cap = (n[0] * a[0] + n[1] * a[1] + n[2] * a[2]) / deviatoric;
+    const double q_cap_by_shear =
+        (n[0] * a_by_shear[0] + n[1] * a_by_shear[1] + n[2] * a_by_shear[2]) / deviatoric;
+    const double q_cap_by_cap = -cap_stiffness * q_cap / deviatoric;
+    const double flow = 4.0 * G / (alpha_ * alpha_);
+    Linearised l;
     for (std::size_t k = 0; k < 3; ++k) {
-      r.stress[k] = p + a[k] - 2.0 * G * lambda_c * 2.0 * q_cap / (alpha_ * alpha_) * n[k];
+      l.state.stress[k] = p + a[k] - 2.0 * G * lambda_c * 2.0 * q_cap / (alpha_ * alpha_) * n[k];
+      l.stress_by_shear[k] = p_by_shear + a_by_shear[k] - flow * lambda_c * q_cap_by_shear * n[k];
+      l.stress_by_cap[k] = p_by_cap - flow * (q_cap + lambda_c * q_cap_by_cap) * n[k];
     }
-    r.gamma = gamma_n_ + shear_sum;
-    r.cap_pressure = cap_n_ + cap_modulus_ * 2.0 * p * lambda_c;
-    return r;
+    l.state.gamma = gamma_n_ + shear_sum;
+    l.state.cap_pressure = cap_n_ + cap_modulus_ * 2.0 * p * lambda_c;
+    l.cap_pressure_by_shear = cap_modulus_ * 2.0 * lambda_c * p_by_shear;
+    l.cap_pressure_by_cap = cap_modulus_ * 2.0 * (p + lambda_c * p_by_cap);
+    return l;
+  }
+
+  ReturnState state_after(const std::array<double, 4>& multiplier, const Principal& n) const {
+    ShearSplit shear;
+    shear.multiplier = {multiplier[S13], multiplier[S12], multiplier[S23]};
+    return linearised(shear, multiplier[CAP], n).state;
   }
 
   Principal cap_direction(int corner) const {
@@ -337,59 +441,129 @@ public:
     return {1.0, delta_ - 1.0, -delta_};
   }
 
-  /// Scalar return on one shear plane or a corner (both planes, equal stresses), psi explicit,
-  /// with a given cap multiplier lambda_c acting at the same time (0: shear alone).
-  ReturnState shear_return(int corner, double lambda_c = 0.0, int cap_corner = 0) const {
-    const double s = sin_psi_;
-    const double K = elastic_.bulk, G = elastic_.shear;
-    const double lame = K - 2.0 * G / 3.0;
-    const Principal n = cap_direction(cap_corner);
-    auto make = [&](double total) {
-      std::array<double, 4> m{0.0, 0.0, 0.0, lambda_c};
-      const Principal& t = trial_;
-      if (corner == 0) {
-        m[S13] = total;
-      } else if (corner == 1) {
-        // sigma_2 = sigma_3: split the sum so that both end equal (exact without the cap, and
-        // with the corner's symmetric cap direction).
-        const double g2 = G * (1.0 + s);
-        const double level = (t[1] + t[2] + total * (g2 + 2.0 * lame * s)) / 2.0;
-        m[S12] = std::clamp((level - t[1] - total * lame * s) / g2, 0.0, total);
-        m[S13] = total - m[S12];
-      } else {
-        const double g1 = G * (1.0 - s);
-        const double level = (t[0] + t[1] - total * (g1 - 2.0 * lame * s)) / 2.0;
-        m[S23] = std::clamp((t[1] + total * lame * s - level) / g1, 0.0, total);
-        m[S13] = total - m[S23];
-      }
-      return state_after(m, n);
-    };
-    // At a corner the two planes have equal stresses, so the (1, 3) plane speaks for both; with
-    // the split clamped (one multiplier zero) it is the plane itself.
-    auto residual = [&](double total) { return shear_residual(make(total)); };
-    // Without the cap the deviator vanishes at this multiplier; the cap only lowers it further, so
-    // the residual is <= 0 there.
+  /// The largest shear sum a plane or corner can take: without the cap the deviator vanishes
+  /// there, and the cap only lowers it further, so the shear residual is <= 0 there.
+  double shear_limit(int corner) const {
+    const double s = sin_psi_, G = elastic_.shear;
     const Principal& t = trial_;
     const double high = corner == 1   ? (t[0] - 0.5 * (t[1] + t[2])) / (G * (1.5 - s / 2.0))
                         : corner == 2 ? (0.5 * (t[0] + t[1]) - t[2]) / (G * (1.5 + s / 2.0))
                                       : (t[0] - t[2]) / (2.0 * G);
-    return make(
-        root_from_zero(residual, residual(0.0), std::max(high, 1e-300), 2.0, 60, tolerance_));
+    return std::max(high, 1e-300);
   }
 
-  /// Shear (plane or corner) and cap together: for each cap multiplier the shear multiplier is the
-  /// scalar shear root, and the cap multiplier is the root of the cap residual along that curve.
-  /// shear_alone, if given, is this corner's shear return without the cap (the curve's start, for
-  /// the cap multiplier is zero there and the cap direction then does not enter).
-  ReturnState combined_return(int corner, const ReturnState* shear_alone = nullptr) const {
-    auto along = [&](double lambda_c) { return shear_return(corner, lambda_c, corner); };
+  /// Newton's method on the residuals of the mechanisms (the shear plane or corner, the cap, or
+  /// both) in their multipliers (the shear sum of the corner, the cap multiplier), from zero, with
+  /// the complementarity of each: a multiplier stays non-negative, and one at zero whose surface is
+  /// not violated there drops out of the system (as the bracketed returns find a root only where
+  /// the residual at zero is positive). Each iteration costs one power law (the yield deviator
+  /// with its slopes); the shear residual is convex in the shear sum, so from zero the iterates
+  /// approach its root from below. Returns nothing if it does not converge within the iterations
+  /// allowed; the bracketed returns then take over.
+  std::optional<ReturnState> newton_return(int corner, bool shear, bool cap, int cap_corner) const {
+    const Principal n = cap_direction(cap_corner);
+    const double limit = shear_limit(corner);
+    double total = 0.0, lambda_c = 0.0;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      const Linearised l = linearised(split(corner, total), lambda_c, n);
+      const Principal& st = l.state.stress;
+      // Rows of the residuals and their derivatives (j: d/d shear sum, d/d cap multiplier).
+      double r1 = 0.0, j11 = 1.0, j12 = 0.0;
+      if (shear) {
+        const YieldDeviator y = model_.yield_deviator_slopes(l.state.gamma, st[2]);
+        r1 = st[0] - st[2] - y.value;
+        j11 = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
+              y.by_sigma * l.stress_by_shear[2];
+        j12 = l.stress_by_cap[0] - l.stress_by_cap[2] - y.by_sigma * l.stress_by_cap[2];
+      }
+      double r2 = 0.0, j21 = 0.0, j22 = 1.0;
+      if (cap) {
+        const double q = model_.cap_deviator(st);
+        const double p = mean(st);
+        const double norm = std::sqrt(q * q / (alpha_ * alpha_) + p * p);
+        r2 = norm - l.state.cap_pressure;
+        auto slope = [&](const Principal& ds, double d_cap_pressure) {
+          const double dq = model_.cap_deviator(ds);
+          const double dp = mean(ds);
+          return (norm > 0.0 ? (q * dq / (alpha_ * alpha_) + p * dp) / norm : 0.0) - d_cap_pressure;
+        };
+        j21 = slope(l.stress_by_shear, l.cap_pressure_by_shear);
+        j22 = slope(l.stress_by_cap, l.cap_pressure_by_cap);
+      }
+      // A mechanism at zero multiplier that its surface does not call for is inactive: its
+      // variable stays zero and its row is the identity.
+      const bool shear_active = shear && !(total == 0.0 && r1 <= tolerance_);
+      const bool cap_active = cap && !(lambda_c == 0.0 && r2 <= tolerance_);
+      if (!shear_active) {
+        r1 = 0.0, j11 = 1.0, j12 = 0.0, j21 = 0.0;
+      }
+      if (!cap_active) {
+        r2 = 0.0, j22 = 1.0, j21 = 0.0, j12 = 0.0;
+      }
+      const bool converged = std::abs(r1) <= tolerance_ && std::abs(r2) <= tolerance_;
+      const double determinant = j11 * j22 - j12 * j21;
+      if (!(std::abs(determinant) > 0.0) || !std::isfinite(determinant)) {
+        return converged ? std::optional<ReturnState>(l.state) : std::nullopt;
+      }
+      const double next_total = total - (r1 * j22 - r2 * j12) / determinant;
+      const double next_cap = lambda_c - (j11 * r2 - j21 * r1) / determinant;
+      if (!std::isfinite(next_total) || !std::isfinite(next_cap)) {
+        return std::nullopt;
+      }
+      if (converged) {
+        // One more step costs no power law: the state is a rational function of the multipliers
+        // alone, so the result satisfies the surfaces to rounding rather than to the tolerance,
+        // and is a smooth function of the strain (mixed-control drivers differentiate it).
+        if (next_total >= 0.0 && next_cap >= 0.0) {
+          return linearised(split(corner, next_total), next_cap, n).state;
+        }
+        return l.state;
+      }
+      total = std::max(next_total, 0.0);
+      if (total > limit) {
+        total = 0.5 * (total + limit);
+      }
+      lambda_c = std::max(next_cap, 0.0);
+    }
+    return std::nullopt;
+  }
+
+  /// Scalar return on one shear plane or a corner (both planes, equal stresses), psi explicit,
+  /// with a given cap multiplier lambda_c acting at the same time (0: shear alone): a bracketed
+  /// root, slower than Newton's method but sure to converge.
+  ReturnState bracketed_shear_return(int corner, double lambda_c = 0.0, int cap_corner = 0) const {
+    const Principal n = cap_direction(cap_corner);
+    auto make = [&](double total) { return linearised(split(corner, total), lambda_c, n).state; };
+    // At a corner the two planes have equal stresses, so the (1, 3) plane speaks for both; with
+    // the split clamped (one multiplier zero) it is the plane itself.
+    auto residual = [&](double total) { return shear_residual(make(total)); };
+    return make(root_from_zero(residual, residual(0.0), shear_limit(corner), 2.0, 60, tolerance_));
+  }
+
+  ReturnState shear_return(int corner) const {
+    if (auto r = newton_return(corner, true, false, 0)) {
+      return *r;
+    }
+    return bracketed_shear_return(corner);
+  }
+
+  /// Shear (plane or corner) and cap together. Newton's method on both multipliers; if it fails,
+  /// for each cap multiplier the shear multiplier is the scalar shear root, and the cap
+  /// multiplier is the root of the cap residual along that curve.
+  ReturnState combined_return(int corner) const {
+    if (auto r = newton_return(corner, true, true, corner)) {
+      return *r;
+    }
+    auto along = [&](double lambda_c) { return bracketed_shear_return(corner, lambda_c, corner); };
     auto residual = [&](double lambda_c) { return cap_residual(along(lambda_c)); };
-    const double at_zero = shear_alone != nullptr ? cap_residual(*shear_alone) : residual(0.0);
-    return along(root_from_zero(residual, at_zero, 1e-9, 4.0, 200, tolerance_));
+    return along(root_from_zero(residual, residual(0.0), 1e-9, 4.0, 200, tolerance_));
   }
 
   /// The cap alone, with the cap direction of a corner if given.
   ReturnState cap_return(int corner) const {
+    if (auto r = newton_return(0, false, true, corner)) {
+      return *r;
+    }
     const Principal n = cap_direction(corner);
     auto make = [&](double lambda_c) { return state_after({0.0, 0.0, 0.0, lambda_c}, n); };
     auto residual = [&](double lambda_c) { return cap_residual(make(lambda_c)); };
@@ -526,27 +700,14 @@ double HardeningSoil::update_point(Stress& stress, double* state,
           }
         }
       };
-      // The shear returns are kept: each starts the curve its corner's shear plus cap return
-      // follows.
-      std::array<std::optional<ReturnState>, 3> shear_alone;
       if (shear_trial > tolerance) {
-        attempt(
-            [&](int corner) {
-              return *(shear_alone[static_cast<std::size_t>(corner)] =
-                           returner.shear_return(corner));
-            },
-            true);
+        attempt([&](int corner) { return returner.shear_return(corner); }, true);
       }
       if (!found && cap_trial > tolerance) {
         attempt([&](int corner) { return returner.cap_return(corner); }, false);
       }
       if (!found) {
-        attempt(
-            [&](int corner) {
-              const auto& start = shear_alone[static_cast<std::size_t>(corner)];
-              return returner.combined_return(corner, start ? &*start : nullptr);
-            },
-            false);
+        attempt([&](int corner) { return returner.combined_return(corner); }, false);
       }
       if (!found) {
         // Near a triaxial corner the cap's own direction can break the principal order while the

@@ -15,6 +15,13 @@
 
 namespace mpile {
 
+/// The yield deviator min(q_y, qf) and its partial derivatives, for Newton's method in the return.
+struct YieldDeviator {
+  double value = 0.0;
+  double by_gamma = 0.0; // d/d gamma_p
+  double by_sigma = 0.0; // d/d sigma_3
+};
+
 struct HardeningSoilParameters {
   double e50_ref = 0.0;          // Pa, triaxial secant stiffness at p_ref
   double eoed_ref = 0.0;         // Pa, oedometer tangent stiffness at sigma_1 = p_ref
@@ -55,11 +62,12 @@ public:
   // Model functions, public for the element tests (compression positive, Pa).
   double alpha() const { return alpha_; }
   double cap_modulus() const { return cap_modulus_; }
-  double unloading_modulus(double sigma_3) const;                    // Eur(sigma_3)
-  double secant_modulus(double sigma_3) const;                       // E50(sigma_3)
-  double oedometer_modulus(double sigma_1) const;                    // Eoed(sigma_1)
-  double failure_deviator(double sigma_3) const;                     // qf
-  double yield_deviator(double gamma_p, double sigma_3) const;       // min(q_y, qf)
+  double unloading_modulus(double sigma_3) const;              // Eur(sigma_3)
+  double secant_modulus(double sigma_3) const;                 // E50(sigma_3)
+  double oedometer_modulus(double sigma_1) const;              // Eoed(sigma_1)
+  double failure_deviator(double sigma_3) const;               // qf
+  double yield_deviator(double gamma_p, double sigma_3) const; // min(q_y, qf)
+  YieldDeviator yield_deviator_slopes(double gamma_p, double sigma_3) const;
   double hardening_function(double q, double sigma_3) const;         // f-bar
   double cap_deviator(const std::array<double, 3>& principal) const; // q-tilde
   double cap_surface(const std::array<double, 3>& principal, double p_p) const;

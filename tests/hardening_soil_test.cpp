@@ -216,6 +216,40 @@ TEST(HardeningSoil, OedometerGivesK0ncEoedAndTheReferenceState) {
   EXPECT_NEAR((sigma_3 - point.lateral()) / (sigma_1 - point.axial()), 0.25, 1e-3);
 }
 
+TEST(HardeningSoil, YieldDeviatorSlopesAreItsDerivatives) {
+  // The return's Newton iteration takes its Jacobian from these slopes. Central differences with a
+  // step of 1e-6 of the variable have a truncation error of about 1e-12 and a rounding error of
+  // about 1e-10 relative, so 1e-6 relative separates a right slope from a wrong term by far.
+  const HardeningSoil model(seed_parameters());
+  for (const double sigma_3 : {0.5 * kPa, 5 * kPa, 50 * kPa, 100 * kPa, 800 * kPa}) {
+    for (const double gamma : {1e-6, 1e-4, 1e-3, 2e-2}) {
+      const YieldDeviator y = model.yield_deviator_slopes(gamma, sigma_3);
+      EXPECT_EQ(y.value, model.yield_deviator(gamma, sigma_3));
+      const double dg = 1e-6 * gamma, ds = 1e-6 * sigma_3;
+      const double by_gamma =
+          (model.yield_deviator(gamma + dg, sigma_3) - model.yield_deviator(gamma - dg, sigma_3)) /
+          (2.0 * dg);
+      const double by_sigma =
+          (model.yield_deviator(gamma, sigma_3 + ds) - model.yield_deviator(gamma, sigma_3 - ds)) /
+          (2.0 * ds);
+      const double at_failure = y.value == model.failure_deviator(sigma_3) ? 1.0 : 0.0;
+      EXPECT_NEAR(y.by_gamma, by_gamma, 1e-6 * std::abs(by_gamma) + 1e-9 * at_failure)
+          << "sigma_3 = " << sigma_3 << ", gamma = " << gamma;
+      EXPECT_NEAR(y.by_sigma, by_sigma, 1e-6 * std::abs(by_sigma))
+          << "sigma_3 = " << sigma_3 << ", gamma = " << gamma;
+    }
+  }
+  // Below the stiffness floor the factor is constant: only qa carries the stress.
+  HardeningSoilParameters floored = seed_parameters();
+  floored.stiffness_floor = 0.2;
+  const HardeningSoil low(floored);
+  const double sigma_3 = 5 * kPa, gamma = 1e-4, ds = 1e-6 * sigma_3;
+  const double by_sigma =
+      (low.yield_deviator(gamma, sigma_3 + ds) - low.yield_deviator(gamma, sigma_3 - ds)) /
+      (2.0 * ds);
+  EXPECT_NEAR(low.yield_deviator_slopes(gamma, sigma_3).by_sigma, by_sigma, 1e-6 * by_sigma);
+}
+
 TEST(HardeningSoil, IsotropicCompressionTangentOnTheCap) {
   const HardeningSoil model(seed_parameters());
   const double p = 100 * kPa;

@@ -4,6 +4,11 @@
 // line: scene, threads, particles, steps, wall seconds, particle-steps per second, bytes per
 // particle (peak resident set over particles) and each pass's share of the step. Every scene runs
 // in a child process of its own, so that the peak resident set is that scene's alone.
+//
+// With --against OTHER, it compares this build with another build of the benchmark side by side:
+// for each scene and thread count it runs the two alternately (A, B, A, B, ...), so that both see
+// the same machine, and prints the best throughput of each and their ratio. On a shared machine a
+// speed-up is a ratio measured in one run, not two absolute figures from two days.
 #include "cases/verification/verification_case.hpp"
 #include "engine/hardening_soil.hpp"
 #include "engine/linear_elastic.hpp"
@@ -17,14 +22,23 @@
 #include <tbb/global_control.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -168,6 +182,92 @@ void run_scene(const SceneSpec& spec, int threads, int warmup, int steps) {
   std::fflush(stdout);
 }
 
+/// Runs one scene on one thread count in another benchmark binary (or this one) and returns its
+/// particle-steps per second, read from the line it prints; throws with the binary's output if it
+/// fails or prints no such line.
+double run_binary(const std::string& binary, const std::string& scene, int threads, int warmup,
+                  int steps) {
+  std::vector<std::string> args{binary,
+                                "--scenes",
+                                scene,
+                                "--threads",
+                                std::to_string(threads),
+                                "--steps",
+                                std::to_string(steps),
+                                "--warmup",
+                                std::to_string(warmup)};
+  int pipe_ends[2];
+  if (pipe(pipe_ends) != 0) {
+    throw std::runtime_error("cannot create a pipe");
+  }
+  const pid_t child = fork();
+  if (child == 0) {
+    dup2(pipe_ends[1], STDOUT_FILENO);
+    close(pipe_ends[0]);
+    close(pipe_ends[1]);
+    std::vector<char*> argv;
+    for (std::string& a : args) {
+      argv.push_back(a.data());
+    }
+    argv.push_back(nullptr);
+    execv(binary.c_str(), argv.data());
+    std::fprintf(stderr, "mpile-bench: cannot run %s: %s\n", binary.c_str(), std::strerror(errno));
+    std::_Exit(127);
+  }
+  close(pipe_ends[1]);
+  std::string output;
+  std::array<char, 4096> buffer{};
+  for (ssize_t n; (n = read(pipe_ends[0], buffer.data(), buffer.size())) > 0;) {
+    output.append(buffer.data(), static_cast<std::size_t>(n));
+  }
+  close(pipe_ends[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  // The result line: scene, threads, particles, steps, wall seconds, particle-steps per second.
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::string name;
+    int t = 0;
+    double particles = 0.0, wall = 0.0, rate = 0.0;
+    int n_steps = 0;
+    if (fields >> name >> t >> particles >> n_steps >> wall >> rate && name == scene &&
+        t == threads && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+      return rate;
+    }
+  }
+  throw std::runtime_error(binary + " gave no result for " + scene + " on " +
+                           std::to_string(threads) + " threads; it printed:\n" + output);
+}
+
+/// The side-by-side comparison: rounds of A then B per scene and thread count.
+int compare(const std::string& self, const std::string& other,
+            const std::vector<std::string>& chosen, const std::vector<int>& threads, int warmup,
+            int steps, int rounds) {
+  std::printf("A = %s\nB = %s\n", self.c_str(), other.c_str());
+  std::printf("%-20s %3s %6s %12s %12s %8s %8s %8s\n", "scene", "thr", "rounds", "A p-steps/s",
+              "B p-steps/s", "A/B best", "A/B min", "A/B max");
+  std::fflush(stdout);
+  for (const std::string& scene : chosen) {
+    for (const int t : threads) {
+      double best_a = 0.0, best_b = 0.0;
+      double lowest_ratio = std::numeric_limits<double>::infinity(), highest_ratio = 0.0;
+      for (int round = 0; round < rounds; ++round) {
+        const double a = run_binary(self, scene, t, warmup, steps);
+        const double b = run_binary(other, scene, t, warmup, steps);
+        best_a = std::max(best_a, a);
+        best_b = std::max(best_b, b);
+        lowest_ratio = std::min(lowest_ratio, a / b);
+        highest_ratio = std::max(highest_ratio, a / b);
+      }
+      std::printf("%-20s %3d %6d %12.3e %12.3e %8.3f %8.3f %8.3f\n", scene.c_str(), t, rounds,
+                  best_a, best_b, best_a / best_b, lowest_ratio, highest_ratio);
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -181,6 +281,14 @@ int main(int argc, char** argv) {
   app.add_option("--warmup", warmup, "untimed steps first")->capture_default_str();
   bool list = false;
   app.add_flag("--list", list, "list the scenes");
+  std::string against;
+  int rounds = 3;
+  app.add_option("--against", against,
+                 "another build's mpile-bench: run both alternately and print the ratios")
+      ->check(CLI::ExistingFile);
+  app.add_option("--rounds", rounds, "with --against: runs of each build per scene and threads")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   const auto all = scenes();
   if (list) {
@@ -188,6 +296,21 @@ int main(int argc, char** argv) {
       std::cout << name << '\n';
     }
     return 0;
+  }
+  for (const std::string& name : chosen) {
+    if (all.find(name) == all.end()) {
+      std::cerr << "mpile-bench: unknown scene " << name << " (see --list)\n";
+      return 2;
+    }
+  }
+  if (!against.empty()) {
+    try {
+      return compare(std::filesystem::canonical("/proc/self/exe").string(), against, chosen,
+                     threads, warmup, steps, rounds);
+    } catch (const std::exception& e) {
+      std::cerr << "mpile-bench: " << e.what() << '\n';
+      return 1;
+    }
   }
   std::printf("%-20s %3s %9s %6s %8s %12s %8s   %s\n", "scene", "thr", "particles", "steps",
               "wall_s", "p-steps/s", "B/part", "time share of each pass");
