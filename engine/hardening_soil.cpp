@@ -278,7 +278,7 @@ void HardeningSoil::initialise_state(const Stress& stress, double* state) const 
 }
 
 double HardeningSoil::constrained_modulus(const Stress& stress, const double*) const {
-  const PrincipalStress principal = principal_compression(stress);
+  const PrincipalValues principal = principal_compression_values(stress);
   const double e = unloading_modulus(principal.values[2]);
   const double nu = parameters_.poisson_ur;
   return e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
@@ -287,7 +287,7 @@ double HardeningSoil::constrained_modulus(const Stress& stress, const double*) c
 double HardeningSoil::elastic_energy_density(const Stress& stress, const double*) const {
   // Recoverable energy at the current unloading stiffness (the hypoelastic law has no exact
   // potential; this is the energy an unloading at fixed moduli would return).
-  const double e = unloading_modulus(principal_compression(stress).values[2]);
+  const double e = unloading_modulus(principal_compression_values(stress).values[2]);
   const double nu = parameters_.poisson_ur;
   return isotropic_elastic_energy_density(stress, e / (3.0 * (1.0 - 2.0 * nu)),
                                           e / (2.0 * (1.0 + nu)));

@@ -27,7 +27,53 @@ std::array<double, 6> from_matrix(const Eigen::Matrix3d& m, bool engineering_she
           f * 0.5 * (m(0, 2) + m(2, 0))};
 }
 
+namespace {
+
+/// The decomposition of an r-y block and the out-of-plane stress (no theta shears, as everywhere
+/// outside torsion): the block's pair in closed form, its directions from the eigenvector
+/// equation's better-conditioned row, so without iterations or trigonometry.
+PrincipalStress block_compression(const Stress& stress) {
+  const double a11 = -stress[RR], a22 = -stress[YY], a12 = -stress[RY];
+  const double centre = 0.5 * (a11 + a22);
+  const double half_difference = 0.5 * (a11 - a22);
+  const double radius = std::sqrt(half_difference * half_difference + a12 * a12);
+  // The major direction: (lambda_1 - a22, a12) if a11 >= a22, else (a12, lambda_1 - a11); the
+  // chosen first entry is at least the radius, so the vector never cancels.
+  double c = 1.0, s = 0.0;
+  if (radius > 0.0) {
+    const double x = half_difference >= 0.0 ? half_difference + radius : a12;
+    const double y = half_difference >= 0.0 ? a12 : radius - half_difference;
+    const double length = std::hypot(x, y);
+    c = x / length;
+    s = y / length;
+  }
+  struct Pair {
+    double value;
+    Eigen::Vector3d direction;
+  };
+  std::array<Pair, 3> pairs{Pair{centre + radius, Eigen::Vector3d(c, s, 0.0)},
+                            Pair{centre - radius, Eigen::Vector3d(-s, c, 0.0)},
+                            Pair{-stress[TT], Eigen::Vector3d(0.0, 0.0, 1.0)}};
+  if (pairs[2].value > pairs[1].value) {
+    std::swap(pairs[1], pairs[2]);
+    if (pairs[1].value > pairs[0].value) {
+      std::swap(pairs[0], pairs[1]);
+    }
+  }
+  PrincipalStress p;
+  for (int k = 0; k < 3; ++k) {
+    p.values[static_cast<std::size_t>(k)] = pairs[static_cast<std::size_t>(k)].value;
+    p.directions.col(k) = pairs[static_cast<std::size_t>(k)].direction;
+  }
+  return p;
+}
+
+} // namespace
+
 PrincipalStress principal_compression(const Stress& stress) {
+  if (stress[RT] == 0.0 && stress[YT] == 0.0) {
+    return block_compression(stress);
+  }
   // Eigenvalues of the compression-positive tensor, ascending from Eigen; reversed so that
   // values[0] is the major (most compressive) stress.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(-to_matrix(stress));
