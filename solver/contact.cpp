@@ -5,6 +5,7 @@
 // sums use a deterministic reduction, so results do not depend on the thread count.
 #include "solver/contact_passes.hpp"
 
+#include "engine/coulomb_slip.hpp"
 #include "engine/parallel.hpp"
 
 #include <cmath>
@@ -203,21 +204,16 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
                                            relative[1] - normal_velocity * n[1], relative[2]};
     // Coulomb friction on the normal impulse plus adhesion over the node's area, as impulses per
-    // beta: the tangential impulse that would stick (each component's velocity times its
-    // inertia, which for theta is J / r^2, not m) is scaled down to that limit, so the soil's slip
-    // keeps its direction and a sliding node carries exactly mu N + c_a A.
-    const double normal_impulse = s.mass * (-normal_velocity);
-    double stick_impulse2 = 0.0;
-    for (int d = 0; d < at.count; ++d) {
-      const double impulse = inertia(s, d, at) * tangential[static_cast<std::size_t>(d)];
-      stick_impulse2 += impulse * impulse;
-    }
-    const double stick_impulse = std::sqrt(stick_impulse2);
-    const double limit = pair.friction * normal_impulse + adhesion_impulse * area;
-    const double keep = stick_impulse > limit ? 1.0 - limit / stick_impulse : 0.0;
+    // beta. The theta slip has its own inertia (J / r^2, not m): a sliding node's friction
+    // impulse has the magnitude of the limit and opposes the slip left after it (coulomb_slip).
+    const double limit = pair.friction * s.mass * (-normal_velocity) + adhesion_impulse * area;
+    const double theta_mass = at.count == 3 ? inertia(s, 2, at) : s.mass;
+    const SlipKept keep = coulomb_slip(std::hypot(tangential[0], tangential[1]),
+                                       std::abs(tangential[2]), s.mass, theta_mass, limit);
+    const std::array<double, 3> kept{keep.plane, keep.plane, keep.theta};
     std::array<double, 3> change{-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
     for (std::size_t d = 0; d < 3; ++d) {
-      change[d] -= (1.0 - keep) * tangential[d];
+      change[d] -= (1.0 - kept[d]) * tangential[d];
     }
     // The energy the correction takes is the work of its impulse m_s dv at the mean relative
     // velocity over the step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, times kappa = 1 where the
@@ -251,7 +247,7 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
       const auto u = static_cast<std::size_t>(d);
       pair.node_force[i][u] = -beta_per_dt * inertia(s, d, at) * change[u];
     }
-    pair.state[i] = keep == 0.0 ? contact_stick : contact_slide;
+    pair.state[i] = keep.plane == 0.0 && keep.theta == 0.0 ? contact_stick : contact_slide;
     pair.contact_normal[i] = n;
   });
 
