@@ -1,8 +1,7 @@
 // Boundary conditions on the grid. Reads node mass, rotational inertia and velocity; writes the
 // velocity (and, after the momentum balance, the velocity increment and each constraint's
-// reaction). Constraint node
-// sets are small (faces and lines), so this runs serially, which also fixes the summation order of
-// the reactions.
+// reaction). Constraint node sets are small (faces and lines), so this runs serially, which also
+// fixes the summation order of the reactions.
 #include "solver/passes.hpp"
 
 namespace mpile::passes {
