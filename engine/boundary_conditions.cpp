@@ -51,7 +51,10 @@ NodeConstraint face_constraint(const Grid& grid, GeometryMode mode, GridFace fac
   c.name = face_names[static_cast<int>(face)];
   c.nodes = nodes_on_face(grid, face);
   const std::uint8_t normal = (face == GridFace::r_min || face == GridFace::r_max) ? DOF_R : DOF_Y;
-  const std::uint8_t all = has_theta(mode) ? DOF_R | DOF_Y | DOF_THETA : DOF_R | DOF_Y;
+  // On the axis v_theta = r omega is zero by construction; holding theta there would hold the
+  // angular velocity and stop the cells beside the axis from turning rigidly.
+  const bool axis = face == GridFace::r_min && grid.r_axis().start() == 0.0;
+  const std::uint8_t all = has_theta(mode) && !axis ? DOF_R | DOF_Y | DOF_THETA : DOF_R | DOF_Y;
   switch (condition) {
   case FaceCondition::free:
     c.dofs = 0;
@@ -70,7 +73,7 @@ NodeConstraint axis_constraint(const Grid& grid) {
   NodeConstraint c;
   c.name = "axis";
   c.nodes = nodes_on_face(grid, GridFace::r_min);
-  c.dofs = DOF_R | DOF_THETA;
+  c.dofs = DOF_R; // u_theta = r omega is zero there by construction
   return c;
 }
 
@@ -84,12 +87,18 @@ NodalLoad line_load(const Grid& grid, GeometryMode mode, const std::vector<int>&
   load.weight.assign(nodes.size(), 0.0);
   const bool axisymmetric = mode == GeometryMode::axisymmetric;
   // Consistent load of each segment between consecutive nodes: for a linear N, the integral of
-  // N_a r over the segment is L (2 r_a + r_b) / 6 (L / 2 without the r weight).
+  // N_a r over the segment is L (2 r_a + r_b) / 6 (L / 2 without the r weight). A theta load
+  // does work on v_theta = r omega: its torque weight is the integral of N_a r^2, with
+  // d = r_b - r_a that is L (r_a^2 / 2 + r_a d / 3 + d^2 / 12).
   for (std::size_t k = 1; k < nodes.size(); ++k) {
     const double ra = grid.node_r(nodes[k - 1]);
     const double rb = grid.node_r(nodes[k]);
     const double length = std::hypot(rb - ra, grid.node_y(nodes[k]) - grid.node_y(nodes[k - 1]));
-    if (axisymmetric) {
+    if (axisymmetric && component == 2) {
+      const double d = rb - ra;
+      load.weight[k - 1] += length * (ra * ra / 2.0 + ra * d / 3.0 + d * d / 12.0);
+      load.weight[k] += length * (rb * rb / 2.0 - rb * d / 3.0 + d * d / 12.0);
+    } else if (axisymmetric) {
       load.weight[k - 1] += length * (2.0 * ra + rb) / 6.0;
       load.weight[k] += length * (ra + 2.0 * rb) / 6.0;
     } else {

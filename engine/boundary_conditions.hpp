@@ -35,7 +35,9 @@ struct NodeConstraint {
 
 /// A distributed load on a set of grid nodes: nodal force = weight_i * traction(t) along one
 /// component. The weights are the consistent nodal shares of the loaded face (times r in
-/// axisymmetric mode), so a uniform traction gives the exact resultant.
+/// axisymmetric mode), so a uniform traction gives the exact resultant. A theta load in
+/// axisymmetric mode acts on the nodes' angular velocity: its weights are those of the torque,
+/// the integral of N_i r^2 over the face, so a uniform traction gives the exact torque.
 struct NodalLoad {
   std::string name;
   std::vector<int> nodes;
@@ -53,11 +55,15 @@ std::vector<int> nodes_on_r_line(const Grid& grid, int ir, double y_from, double
 std::vector<int> nodes_on_y_line(const Grid& grid, int iy, double r_from, double r_to);
 std::vector<int> nodes_on_face(const Grid& grid, GridFace face);
 
-/// fixed: every DOF of the mode at rest; roller: the normal DOF at rest; free: no constraint.
+/// fixed: every DOF of the mode at rest; roller: the normal DOF at rest; free: no constraint. A
+/// face on the axis (r_min at r = 0, axisymmetric) holds no theta DOF, as axis_constraint.
 NodeConstraint face_constraint(const Grid& grid, GeometryMode mode, GridFace face,
                                FaceCondition condition);
 
-/// u_r = u_theta = 0 on the axis (the r = 0 nodes) in axisymmetric mode.
+/// u_r = u_theta = 0 on the axis (the r = 0 nodes) in axisymmetric mode. Only u_r is held: the
+/// theta unknown of a node is its angular velocity omega, and u_theta = r omega is zero on the
+/// axis whatever omega is (holding omega = 0 there would stop the cells beside the axis from
+/// turning rigidly).
 NodeConstraint axis_constraint(const Grid& grid);
 
 /// A normal traction (tension positive, Pa) on a straight run of nodes along a grid line, with

@@ -13,12 +13,17 @@ namespace mpile {
 ///   during particle-to-grid:  momentum = sum N m v,   force = f_ext - f_int
 ///   after the grid update:    momentum = velocity v^{n+1},  force = velocity increment v^{n+1} -
 ///   v^n
-/// Component order is (r, y, theta); plane strain leaves the theta slot untouched.
+/// Component order is (r, y, theta); plane strain leaves the theta slot untouched. In axisymmetric
+/// mode the theta slot is angular (docs/design.md, "Angular momentum on the grid"): the node's
+/// unknown is its angular velocity omega, with v_theta = r omega everywhere in a cell, so
+///   during particle-to-grid:  momentum[2] = sum N m r v_theta (angular momentum),
+///                             force[2] = torque, inertia = sum N m r^2
+///   after the grid update:    momentum[2] = omega^{n+1}, force[2] = omega^{n+1} - omega^n.
 struct alignas(64) GridNode {
   double mass = 0.0;
   double momentum[3] = {0.0, 0.0, 0.0};
   double force[3] = {0.0, 0.0, 0.0};
-  double unused = 0.0;
+  double inertia = 0.0; // rotational inertia about the axis (kg m^2 per radian); 0 in plane strain
 };
 static_assert(sizeof(GridNode) == 64);
 

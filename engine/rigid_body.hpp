@@ -46,10 +46,12 @@ struct RigidBody {
   // Work done on the body by its drives and by gravity since the start (J [/rad]).
   double external_work = 0.0;
 
-  /// The velocity (v_r, v_y, v_theta) of the body's material at (r, y) for DOF velocities u.
-  std::array<double, 3> velocity_at(const std::array<double, 3>& u, double r, double y) const {
+  /// The nodal unknowns of the body's field at (r, y) for DOF velocities u: in axisymmetric mode
+  /// (v_r, v_y, omega), the theta unknown of a node being its angular velocity (v_theta = omega r);
+  /// in plane strain (v_x, v_y, unused).
+  std::array<double, 3> node_motion(const std::array<double, 3>& u, double r, double y) const {
     if (mode == GeometryMode::axisymmetric) {
-      return {0.0, u[RIGID_Y], u[RIGID_ROTATION] * r};
+      return {0.0, u[RIGID_Y], u[RIGID_ROTATION]};
     }
     return {u[RIGID_X] - u[RIGID_ROTATION] * (y - centre[1]),
             u[RIGID_Y] + u[RIGID_ROTATION] * (r - centre[0]), 0.0};

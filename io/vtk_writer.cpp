@@ -151,8 +151,10 @@ void write_grid_vtr(const Scene& scene, const std::string& path) {
   for (vtkIdType k = 0; k < n; ++k) {
     const GridNode& node = g.nodes[static_cast<std::size_t>(k)];
     mass->SetValue(k, node.mass);
+    // The theta unknown of a node is its angular velocity: v_theta = omega r.
     velocity->SetTuple3(k, node.momentum[0], node.momentum[1],
-                        has_theta(scene.mode) ? node.momentum[2] : 0.0);
+                        has_theta(scene.mode) ? node.momentum[2] * g.node_r(static_cast<int>(k))
+                                              : 0.0);
   }
   grid->GetPointData()->AddArray(mass);
   grid->GetPointData()->AddArray(velocity);

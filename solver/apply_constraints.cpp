@@ -1,7 +1,7 @@
-// Boundary conditions on the grid. Reads node mass and velocity; writes the velocity (and, after
-// the momentum balance, the velocity increment and each constraint's reaction). Constraint node
-// sets are small (faces and lines), so this runs serially, which also fixes the summation order of
-// the reactions.
+// Boundary conditions on the grid. Reads node mass, rotational inertia and velocity; writes the
+// velocity (and, after the momentum balance, the velocity increment and each constraint's
+// reaction). Constraint node sets are small (faces and lines), so this runs serially, which also
+// fixes the summation order of the reactions.
 #include "solver/passes.hpp"
 
 namespace mpile::passes {
@@ -10,6 +10,7 @@ namespace {
 
 void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_increment) {
   Grid& grid = scene.grid;
+  const bool angular = has_theta(scene.mode);
   const double t_mid = step.time + 0.5 * step.dt;
   for (std::size_t i = 0; i < grid.nodes.size(); ++i) {
     GridNode& node = grid.nodes[i];
@@ -18,8 +19,15 @@ void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_
     }
     const double r = grid.node_r(static_cast<int>(i));
     const double y = grid.node_y(static_cast<int>(i));
-    const auto v = scene.velocity_field(r, y, t_mid);
-    const auto v_before = scene.velocity_field(r, y, t_mid - step.dt);
+    auto v = scene.velocity_field(r, y, t_mid);
+    auto v_before = scene.velocity_field(r, y, t_mid - step.dt);
+    if (angular) {
+      // The theta DOF is the angular velocity v_theta / r. On the axis, where that quotient has
+      // no value, the node takes the one of the next node line (exact for a rigid spin).
+      const double r_theta = r > 0.0 ? r : grid.r_axis().node(1);
+      v[2] = scene.velocity_field(r_theta, y, t_mid)[2] / r_theta;
+      v_before[2] = scene.velocity_field(r_theta, y, t_mid - step.dt)[2] / r_theta;
+    }
     for (std::size_t d = 0; d < 3; ++d) {
       if (record_increment) {
         node.force[d] = v[d] - v_before[d];
@@ -34,6 +42,7 @@ void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_
 double apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
                          bool record_reactions, ConstraintFields fields) {
   Grid& grid = scene.grid;
+  const bool angular = has_theta(scene.mode);
   double work = 0.0;
   const double inertia_per_dt = settings.mass_scaling / step.dt;
   // The fields this call constrains: the soil's, the deformable structures', or both.
@@ -86,16 +95,28 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
           if ((c.dofs & (1u << d)) == 0) {
             continue;
           }
-          const double scale = (d == 2 && c.theta_is_rotation) ? r : 1.0;
+          // In axisymmetric mode the theta DOF is the node's angular velocity: a rotation is
+          // prescribed as it is, a velocity v_theta as v_theta / r. A velocity held at a node on
+          // the axis (the corner of a face across it) holds omega = 0 there: v_theta = 0 along
+          // the face needs omega = 0 at both ends of its first cell. (The axis line itself holds
+          // no theta: axis_constraint.)
+          const bool angular_dof = angular && d == 2;
+          const double scale =
+              angular_dof && !c.theta_is_rotation ? (r > 0.0 ? 1.0 / r : 0.0) : 1.0;
           const double target = prescribed[d] * scale;
           const double change = target - node.momentum[d];
           if (record_reactions) {
             node.force[d] = prescribed_change[d] * scale;
-            const double reaction = node.mass * change * inertia_per_dt;
-            c.reaction[static_cast<std::size_t>(d)] += reaction;
+            // A force, or for the angular DOF a torque; its work is the same product.
+            const double reaction =
+                (angular_dof ? node.inertia : node.mass) * change * inertia_per_dt;
             work += reaction * target * step.dt;
-            if (d == 2) {
-              c.torque += r * reaction;
+            if (angular_dof) {
+              c.torque += reaction;
+              // The torque as a theta force at the node (on the axis a torque has none).
+              c.reaction[2] += r > 0.0 ? reaction / r : 0.0;
+            } else {
+              c.reaction[static_cast<std::size_t>(d)] += reaction;
             }
           }
           node.momentum[d] = target;
@@ -115,6 +136,7 @@ double nodal_load_work(const Scene& scene, const StepParameters& step) {
     const double traction = load.traction.mean(step.time, step.time + step.dt);
     for (std::size_t k = 0; k < load.nodes.size(); ++k) {
       const GridNode& node = scene.grid.nodes[static_cast<std::size_t>(load.nodes[k])];
+      // A force times a velocity, or a theta load's torque times the angular velocity.
       work += load.weight[k] * traction * node.momentum[load.component] * step.dt;
     }
   }

@@ -5,6 +5,7 @@
 // sums use a deterministic reduction, so results do not depend on the thread count.
 #include "solver/contact_passes.hpp"
 
+#include "engine/coulomb_slip.hpp"
 #include "engine/parallel.hpp"
 
 #include <cmath>
@@ -29,8 +30,8 @@ double node_spacing(const GradedAxis& axis, int i) {
   return 0.5 * (axis.cell_size(i - 1) + axis.cell_size(i));
 }
 
-/// Sets a rigid body's field to the rigid motion of DOF velocities u; the FLIP increment is the
-/// change from the velocities u_before.
+/// Sets a rigid body's field to the rigid motion of DOF velocities u (its spin as every node's
+/// angular velocity); the FLIP increment is the change from the velocities u_before.
 void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double, 3>& u,
                      const std::array<double, 3>& u_before, double mass_floor,
                      bool record_increment) {
@@ -42,9 +43,9 @@ void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double,
     }
     const double r = grid.node_r(static_cast<int>(i));
     const double y = grid.node_y(static_cast<int>(i));
-    const auto v = body.velocity_at(u, r, y);
+    const auto v = body.node_motion(u, r, y);
     if (record_increment) {
-      const auto v_before = body.velocity_at(u_before, r, y);
+      const auto v_before = body.node_motion(u_before, r, y);
       for (std::size_t d = 0; d < 3; ++d) {
         node.force[d] = v[d] - v_before[d];
       }
@@ -77,31 +78,55 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
   const double beta = settings.mass_scaling;
   const double adhesion_impulse = pair.adhesion * step.dt / beta;
 
+  // Contact works on velocities: the theta one of a node is v_theta = r omega (its unknown is the
+  // angular velocity, docs/design.md), and the inertia that goes with it is J / r^2, the mass
+  // that carries the node's angular momentum J omega at its radius. On the axis v_theta is zero
+  // in every field, so there is no theta slip to correct.
+  struct NodeDofs {
+    int count;    // DOFs contact corrects at the node
+    double r;     // v_theta = r omega
+    double lever; // 1 / r, from a v_theta change to an omega change
+  };
+  auto dofs_at = [&](std::size_t i) {
+    const double r = grid.node_r(static_cast<int>(i));
+    return dofs == 3 && r > 0.0 ? NodeDofs{3, r, 1.0 / r} : NodeDofs{2, r, 0.0};
+  };
+  auto velocity = [](const GridNode& node, int d, const NodeDofs& at) {
+    return d == 2 ? at.r * node.momentum[2] : node.momentum[d];
+  };
+  auto inertia = [](const GridNode& node, int d, const NodeDofs& at) {
+    return d == 2 ? node.inertia * at.lever * at.lever : node.mass;
+  };
   // The soil's velocity relative to what it is measured against at node i: the rigid motion or a
-  // constrained structure DOF (which moves as prescribed), otherwise the centre of mass.
-  auto relative_velocity = [&](std::size_t i, const GridNode& s, const GridNode& k) {
+  // constrained structure DOF (which moves as prescribed), otherwise the centre of mass (for
+  // theta that of the angular momenta).
+  auto relative_velocity = [&](std::size_t i, const NodeDofs& at, const GridNode& s,
+                               const GridNode& k) {
     std::array<double, 3> relative{0.0, 0.0, 0.0};
-    for (int d = 0; d < dofs; ++d) {
+    for (int d = 0; d < at.count; ++d) {
+      const double v_s = velocity(s, d, at);
+      const double v_k = velocity(k, d, at);
+      const double m_s = inertia(s, d, at);
+      const double m_k = inertia(k, d, at);
       const double reference =
-          rigid || (held[i] & (1u << d)) != 0
-              ? k.momentum[d]
-              : (s.mass * s.momentum[d] + k.mass * k.momentum[d]) / (s.mass + k.mass);
-      relative[static_cast<std::size_t>(d)] = s.momentum[d] - reference;
+          rigid || (held[i] & (1u << d)) != 0 ? v_k : (m_s * v_s + m_k * v_k) / (m_s + m_k);
+      relative[static_cast<std::size_t>(d)] = v_s - reference;
     }
     return relative;
   };
   // Applies a velocity change to the soil and the opposite impulse to a deformable structure's
   // free DOFs; after the momentum balance it is also part of the FLIP increment.
-  auto apply = [&](std::size_t i, GridNode& s, GridNode& k, const std::array<double, 3>& change,
-                   bool increment) {
-    for (int d = 0; d < dofs; ++d) {
-      const double dv = change[static_cast<std::size_t>(d)];
+  auto apply = [&](std::size_t i, const NodeDofs& at, GridNode& s, GridNode& k,
+                   const std::array<double, 3>& change, bool increment) {
+    for (int d = 0; d < at.count; ++d) {
+      const double to_unknown = d == 2 ? at.lever : 1.0;
+      const double dv = change[static_cast<std::size_t>(d)] * to_unknown;
       s.momentum[d] += dv;
       if (increment) {
         s.force[d] += dv;
       }
       if (!rigid && (held[i] & (1u << d)) == 0) {
-        const double dk = s.mass / k.mass * dv;
+        const double dk = inertia(s, d, at) / inertia(k, d, at) * dv;
         k.momentum[d] -= dk;
         if (increment) {
           k.force[d] -= dk;
@@ -118,14 +143,15 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
       }
       GridNode& s = soil[i];
       GridNode& k = structure[i];
-      const auto relative = relative_velocity(i, s, k);
+      const NodeDofs at = dofs_at(i);
+      const auto relative = relative_velocity(i, at, s, k);
       std::array<double, 3> change{-relative[0], -relative[1], -relative[2]};
       if (pair.state[i] == contact_slide) {
         const auto& n = pair.contact_normal[i];
         const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
         change = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
       }
-      apply(i, s, k, change, false);
+      apply(i, at, s, k, change, false);
     });
     return 0.0;
   }
@@ -169,21 +195,25 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
         area *= grid.node_r(static_cast<int>(i));
       }
     }
-    const auto relative = relative_velocity(i, s, k);
+    const NodeDofs at = dofs_at(i);
+    const auto relative = relative_velocity(i, at, s, k);
     const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
     if (normal_velocity > 0.0) {
       return; // separating: no tension, and no tangential force either
     }
     const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
                                            relative[1] - normal_velocity * n[1], relative[2]};
-    const double slip = std::sqrt(tangential[0] * tangential[0] + tangential[1] * tangential[1] +
-                                  tangential[2] * tangential[2]);
-    // Coulomb friction on the normal impulse plus adhesion over the node's area, as velocities.
-    const double limit = pair.friction * (-normal_velocity) + adhesion_impulse * area / s.mass;
-    const double keep = slip > limit ? 1.0 - limit / slip : 0.0;
+    // Coulomb friction on the normal impulse plus adhesion over the node's area, as impulses per
+    // beta. The theta slip has its own inertia (J / r^2, not m): a sliding node's friction
+    // impulse has the magnitude of the limit and opposes the slip left after it (coulomb_slip).
+    const double limit = pair.friction * s.mass * (-normal_velocity) + adhesion_impulse * area;
+    const double theta_mass = at.count == 3 ? inertia(s, 2, at) : s.mass;
+    const SlipKept keep = coulomb_slip(std::hypot(tangential[0], tangential[1]),
+                                       std::abs(tangential[2]), s.mass, theta_mass, limit);
+    const std::array<double, 3> kept{keep.plane, keep.plane, keep.theta};
     std::array<double, 3> change{-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
     for (std::size_t d = 0; d < 3; ++d) {
-      change[d] -= (1.0 - keep) * tangential[d];
+      change[d] -= (1.0 - kept[d]) * tangential[d];
     }
     // The energy the correction takes is the work of its impulse m_s dv at the mean relative
     // velocity over the step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, times kappa = 1 where the
@@ -200,20 +230,24 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
       }
       return start;
     };
-    const auto relative_start = relative_velocity(i, start_of_step(s), start_of_step(k));
+    const auto relative_start = relative_velocity(i, at, start_of_step(s), start_of_step(k));
     double lost = 0.0;
-    for (int d = 0; d < dofs; ++d) {
+    for (int d = 0; d < at.count; ++d) {
       const auto u = static_cast<std::size_t>(d);
-      const double kappa = rigid || (held[i] & (1u << d)) != 0 ? 1.0 : 1.0 + s.mass / k.mass;
+      const double m_s = inertia(s, d, at);
+      const double kappa =
+          rigid || (held[i] & (1u << d)) != 0 ? 1.0 : 1.0 + m_s / inertia(k, d, at);
       const double mean = 0.5 * (relative_start[u] + relative[u] + change[u]);
-      lost -= kappa * mean * change[u];
+      lost -= kappa * m_s * mean * change[u];
     }
-    pair.node_dissipation[i] = beta * s.mass * lost;
-    apply(i, s, k, change, true);
-    const double impulse_to_force = beta * s.mass / step.dt;
-    pair.node_force[i] = {-impulse_to_force * change[0], -impulse_to_force * change[1],
-                          -impulse_to_force * change[2]};
-    pair.state[i] = keep == 0.0 ? contact_stick : contact_slide;
+    pair.node_dissipation[i] = beta * lost;
+    apply(i, at, s, k, change, true);
+    const double beta_per_dt = beta / step.dt;
+    for (int d = 0; d < at.count; ++d) {
+      const auto u = static_cast<std::size_t>(d);
+      pair.node_force[i][u] = -beta_per_dt * inertia(s, d, at) * change[u];
+    }
+    pair.state[i] = keep.plane == 0.0 && keep.theta == 0.0 ? contact_stick : contact_slide;
     pair.contact_normal[i] = n;
   });
 

@@ -277,7 +277,10 @@ double ExplicitSolver::unbalanced_force_ratio() {
           // A node a structure also occupies is held by the contact force, as a support holds.
           const bool touches_structure = grid.structure_occupies(i, mass_floor_);
           for (int d = 0; d < dofs; ++d) {
-            const double f2 = node.force[d] * node.force[d];
+            // The theta row is a torque: as a force it acts at the node's radius of gyration
+            // sqrt(J / m) (so that f^2 / m = torque^2 / J), which is > 0 on the axis too.
+            const double to_force2 = d == 2 ? node.mass / node.inertia : 1.0;
+            const double f2 = node.force[d] * node.force[d] * to_force2;
             const bool held = touches_structure || (grid.constrained[i] & (1u << d)) != 0;
             (held ? s.held : s.free) += f2;
           }
@@ -290,10 +293,13 @@ double ExplicitSolver::unbalanced_force_ratio() {
       true);
   for (const NodalLoad& load : scene_.boundaries.loads) {
     const double traction = load.traction.value(time_);
-    for (const double w : load.weight) {
-      // The load is part of f_ext already; count it among the forces that hold the state too.
-      const double f = w * traction;
-      sums.held += f * f;
+    for (std::size_t k = 0; k < load.nodes.size(); ++k) {
+      // The load is part of f_ext already; count it among the forces that hold the state too
+      // (a theta load's torque as a force at the radius of gyration, as above).
+      const GridNode& node = grid.nodes[static_cast<std::size_t>(load.nodes[k])];
+      const double f = load.weight[k] * traction;
+      const bool torque = load.component == 2 && node.inertia > 0.0;
+      sums.held += f * f * (torque ? node.mass / node.inertia : 1.0);
     }
   }
   return sums.held > 0.0 ? std::sqrt(sums.free / sums.held) : 0.0;

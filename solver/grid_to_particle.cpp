@@ -1,6 +1,8 @@
 // Grid-to-particle. Reads node velocity v^{n+1} and velocity increment; writes particle velocity
 // (FLIP/PIC blend), the position increment du (applied after the stress update, so that every pass
-// of the step uses the shape functions at x^n) and the circumferential displacement.
+// of the step uses the shape functions at x^n) and the circumferential displacement. The theta DOF
+// is the node's angular velocity: a particle moves at v_theta = r_p sum N omega, so the angular
+// momentum sum m r v_theta the nodes held is handed back exactly (sum_p m r_p^2 N = the inertia).
 #include "engine/shape_functions.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
@@ -42,8 +44,9 @@ void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettin
       p.du_r[i] = dt * velocity[0];
       p.du_y[i] = dt * velocity[1];
       if constexpr (has_theta(mode)) {
-        p.v_theta[i] = flip * (p.v_theta[i] + increment[2]) + pic * velocity[2];
-        p.u_theta[i] += dt * velocity[2];
+        const double r = p.r[i];
+        p.v_theta[i] = flip * (p.v_theta[i] + r * increment[2]) + pic * r * velocity[2];
+        p.u_theta[i] += dt * r * velocity[2];
       }
     }
   });

@@ -1,7 +1,8 @@
-// Grid update: the nodal momentum balance M a = f_ext - f_int (+ local damping). Reads node mass,
-// momentum, force and the constrained-DOF mask; writes node velocity v^{n+1} (in the momentum
-// slot) and the velocity increment v^{n+1} - v^n (in the force slot). Returns the energy the
-// damping took and the first node whose velocity is not finite.
+// Grid update: the nodal momentum balance M a = f_ext - f_int (+ local damping), and in
+// axisymmetric mode the angular one J d(omega)/dt = torque for the theta DOF. Reads node mass,
+// rotational inertia, momentum, force and the constrained-DOF mask; writes node velocity v^{n+1}
+// (in the momentum slot) and the velocity increment v^{n+1} - v^n (in the force slot). Returns the
+// energy the damping took and the first node whose velocity is not finite.
 #include "solver/passes.hpp"
 
 #include "engine/parallel.hpp"
@@ -12,7 +13,8 @@ namespace mpile::passes {
 
 void apply_nodal_loads(Scene& scene, const StepParameters& step) {
   for (const NodalLoad& load : scene.boundaries.loads) {
-    // The mean traction over the step gives the exact impulse whatever dt is.
+    // The mean traction over the step gives the exact impulse whatever dt is. A theta load's
+    // weights give node torques (NodalLoad), the theta DOF being angular.
     const double traction = load.traction.mean(step.time, step.time + step.dt);
     for (std::size_t k = 0; k < load.nodes.size(); ++k) {
       scene.grid.nodes[static_cast<std::size_t>(load.nodes[k])].force[load.component] +=
@@ -45,6 +47,10 @@ update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uin
         continue;
       }
       const double inverse_mass = 1.0 / node.mass;
+      // The theta DOF is the angular velocity: its inertia is the rotational one, which is > 0
+      // wherever the mass is (every particle has r > 0).
+      const double inverse_inertia[3] = {inverse_mass, inverse_mass,
+                                         dofs == 3 ? 1.0 / node.inertia : 0.0};
       const std::uint8_t constrained = mask[i];
       // A node the field shares with a contact partner is held there by the contact force, which
       // acts after this update: its unbalanced force is mostly that support, not out-of-balance,
@@ -53,18 +59,19 @@ update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uin
       const bool shared = alpha > 0.0 && partner_occupies(i);
       double finite_check = 0.0;
       for (int d = 0; d < dofs; ++d) {
-        const double velocity = node.momentum[d] * inverse_mass;
+        const double velocity = node.momentum[d] * inverse_inertia[d];
         double force = node.force[d];
         // Local damping opposes the motion with a fraction of the unbalanced force; constrained
         // DOFs are left alone so that their reactions stay free of it.
         if (alpha > 0.0 && !shared && (constrained & (1u << d)) == 0 && velocity != 0.0) {
           const double damping = alpha * std::abs(force) * std::copysign(1.0, velocity);
           force -= damping;
-          // The damping force's work over the step at the mean velocity, v + dv / 2.
+          // The damping force's work over the step at the mean velocity, v + dv / 2 (a torque's
+          // at the mean angular velocity).
           result.damping_dissipation +=
-              damping * (velocity + 0.5 * dt_over_beta * force * inverse_mass) * step.dt;
+              damping * (velocity + 0.5 * dt_over_beta * force * inverse_inertia[d]) * step.dt;
         }
-        const double increment = dt_over_beta * force * inverse_mass;
+        const double increment = dt_over_beta * force * inverse_inertia[d];
         node.momentum[d] = velocity + increment;
         node.force[d] = increment;
         finite_check += node.momentum[d];

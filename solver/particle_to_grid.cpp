@@ -1,6 +1,8 @@
 // Particle-to-grid. Reads particle position, cell, mass, volume, velocity and stress; writes node
-// mass, momentum and force (f_ext - f_int, physics.md section 2) with a colored scatter. With
-// contact, each particle writes to its body's field (and to its mass gradient where one is kept).
+// mass, momentum and force (f_ext - f_int, physics.md section 2) with a colored scatter, and in
+// axisymmetric mode the angular momentum, rotational inertia and torque of the theta DOF (the
+// node's angular velocity, docs/design.md). With contact, each particle writes to its body's field
+// (and to its mass gradient where one is kept).
 #include "engine/shape_functions.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
@@ -55,14 +57,14 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
       }
       const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
       const double m = p.mass[i];
-      const double omega = p.volume[i];
+      const double weight = p.volume[i]; // integration weight (A r per radian in axisymmetry)
       const Stress& s = p.stress[i];
       const double m_v_r = m * p.v_r[i];
       const double m_v_y = m * p.v_y[i];
       // Stresses times the integration weight, so that each node needs only multiply-adds.
-      const double w_rr = omega * s[RR];
-      const double w_yy = omega * s[YY];
-      const double w_ry = omega * s[RY];
+      const double w_rr = weight * s[RR];
+      const double w_yy = weight * s[YY];
+      const double w_ry = weight * s[RY];
       for (int k = 0; k < 4; ++k) {
         GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         const double n = w.N[k];
@@ -73,25 +75,32 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         node.force[1] += n * m * g_y - (w.dN_dy[k] * w_yy + w.dN_dr[k] * w_ry);
       }
       if constexpr (has_theta(mode)) {
-        // Hoop stress in the r row, and the theta row with its -N/r term (seed eq. 8).
-        const double inverse_r = 1.0 / p.r[i];
-        const double w_hoop = omega * s[TT] * inverse_r;
-        const double w_yt = omega * s[YT];
-        const double w_rt = omega * s[RT];
-        const double m_v_t = m * p.v_theta[i];
+        // Hoop stress in the r row. The theta DOF is the node's angular velocity (v_theta =
+        // r sum N omega), so a rigid spin is exact: the node takes angular momentum m r v_theta
+        // and rotational inertia m r^2, and its torque row is the virtual work of tau_ytheta and
+        // tau_rtheta on gamma_ytheta = r d(omega)/dy and gamma_rtheta = r d(omega)/dr (seed eq. 8's
+        // dv/dr - v/r with v = r omega: its -v/r term cancels the rigid part exactly).
+        const double r = p.r[i];
+        const double w_hoop = weight * s[TT] * (1.0 / r);
+        const double w_yt = weight * r * s[YT];
+        const double w_rt = weight * r * s[RT];
+        const double m_r = m * r;
+        const double angular_momentum = m_r * p.v_theta[i];
+        const double rotational_inertia = m_r * r;
         for (int k = 0; k < 4; ++k) {
           GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
           const double n = w.N[k];
           node.force[0] -= n * w_hoop;
-          node.momentum[2] += n * m_v_t;
-          node.force[2] -= w.dN_dy[k] * w_yt + (w.dN_dr[k] - n * inverse_r) * w_rt;
+          node.momentum[2] += n * angular_momentum;
+          node.inertia += n * rotational_inertia;
+          node.force[2] -= w.dN_dy[k] * w_yt + w.dN_dr[k] * w_rt;
         }
       }
       if constexpr (contact) {
         if (!gaps.empty() && fields->is_soil(p.body[i])) {
           // Half the particle's size (a square domain of its area in the r-y plane), widened by
           // 1 % so that a particle whose domain ends on the outline counts as touching it.
-          const double area = has_theta(mode) ? omega / p.r[i] : omega;
+          const double area = has_theta(mode) ? weight / p.r[i] : weight;
           const double half_size = 0.505 * std::sqrt(area);
           for (const OutlineGap& g : gaps) {
             const double gap = g.distance(p.r[i], p.y[i]) - half_size;

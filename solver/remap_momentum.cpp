@@ -1,6 +1,7 @@
 // MUSL remap. Reads particle mass and the updated particle velocity; writes node momentum by a
-// colored scatter, then node velocity = momentum / mass (the node mass of this step is unchanged).
-// Constraints are applied again by the caller.
+// colored scatter, then node velocity = momentum / mass (the node mass of this step is unchanged),
+// and in axisymmetric mode angular momentum sum N m r v_theta, then angular velocity = it over the
+// rotational inertia of this step. Constraints are applied again by the caller.
 #include "engine/shape_functions.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
@@ -22,9 +23,12 @@ template <int dofs> void clear_momentum(std::vector<GridNode>& nodes) {
 template <int dofs> void momentum_to_velocity(std::vector<GridNode>& nodes, double mass_floor) {
   parallel_for(nodes.size(), [&](std::size_t i) {
     GridNode& node = nodes[i];
-    const double inverse_mass = node.mass > mass_floor ? 1.0 / node.mass : 0.0;
-    for (int d = 0; d < dofs; ++d) {
-      node.momentum[d] *= inverse_mass;
+    const bool occupied = node.mass > mass_floor;
+    const double inverse_mass = occupied ? 1.0 / node.mass : 0.0;
+    node.momentum[0] *= inverse_mass;
+    node.momentum[1] *= inverse_mass;
+    if constexpr (dofs == 3) {
+      node.momentum[2] *= occupied ? 1.0 / node.inertia : 0.0;
     }
   });
 }
@@ -52,7 +56,7 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
       const double m = p.mass[i];
       double momentum[3] = {m * p.v_r[i], m * p.v_y[i], 0.0};
       if constexpr (has_theta(mode)) {
-        momentum[2] = m * p.v_theta[i];
+        momentum[2] = m * p.r[i] * p.v_theta[i]; // angular momentum
       }
       for (int k = 0; k < 4; ++k) {
         GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];

@@ -103,7 +103,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
       }
       const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
       double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
-      double dtr = 0.0, dty = 0.0, vt = 0.0;
+      double dwr = 0.0, dwy = 0.0; // gradient of the angular velocity
       for (int n = 0; n < 4; ++n) {
         const GridNode& node = nodes[static_cast<std::size_t>(w.node[n])];
         drr += w.dN_dr[n] * node.momentum[0];
@@ -112,16 +112,18 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
         dyy += w.dN_dy[n] * node.momentum[1];
         if constexpr (has_theta(mode)) {
           vr += w.N[n] * node.momentum[0];
-          dtr += w.dN_dr[n] * node.momentum[2];
-          dty += w.dN_dy[n] * node.momentum[2];
-          vt += w.N[n] * node.momentum[2];
+          dwr += w.dN_dr[n] * node.momentum[2];
+          dwy += w.dN_dy[n] * node.momentum[2];
         }
       }
       StrainIncrement& de = scratch.strain[k];
       if constexpr (has_theta(mode)) {
-        const double inverse_r = 1.0 / p.r[i];
-        de = {dt * drr,         dt * dyy, dt * vr * inverse_r,
-              dt * (dry + dyr), dt * dty, dt * (dtr - vt * inverse_r)};
+        // v_theta = r omega: gamma_ytheta = r d(omega)/dy and gamma_rtheta = dv_theta/dr -
+        // v_theta/r = r d(omega)/dr, zero for a rigid spin whatever the cell.
+        const double r = p.r[i];
+        const double inverse_r = 1.0 / r;
+        de = {dt * drr,         dt * dyy,     dt * vr * inverse_r,
+              dt * (dry + dyr), dt * r * dwy, dt * r * dwr};
       } else {
         de = {dt * drr, dt * dyy, 0.0, dt * (dry + dyr), 0.0, 0.0};
       }

@@ -72,8 +72,10 @@ TEST(Solver, FreeFallMatchesTheDiscreteExactSolution) {
 }
 
 TEST(Solver, RigidSpinAboutTheAxisIsStressFree) {
-  // v_theta = Omega r on every node: gamma_rtheta = dv/dr - v/r = 0 only with the -N/r term of the
-  // theta row (physics.md section 2); without it each particle would shear by Omega dt per step.
+  // Omega on every node (the velocity field sets each node's angular velocity v_theta / r):
+  // gamma_rtheta = dv/dr - v/r = r d(omega)/dr = 0 (physics.md section 2); without the -v/r term
+  // each particle would shear by Omega dt per step. A free spin, through the transfer, is in
+  // tests/rigid_spin_test.cpp.
   Scene scene = elastic_block(GeometryMode::axisymmetric);
   constexpr double spin = 2.0; // rad/s
   scene.velocity_field = [](double r, double, double) {

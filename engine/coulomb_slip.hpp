@@ -1,0 +1,23 @@
+#pragma once
+
+namespace mpile {
+
+/// The fraction of each tangential relative velocity a contact node keeps after its Coulomb
+/// correction (physics.md section 5): 0 where it sticks.
+struct SlipKept {
+  double plane = 0.0; // of the r-y tangential slip
+  double theta = 0.0; // of the theta slip
+};
+
+/// Coulomb friction at a contact node whose tangential DOFs have different inertias: the r-y ones
+/// the node's mass m, the theta one J / r^2 in axisymmetric mode (the node's unknown is its angular
+/// velocity). slip_plane and slip_theta are the magnitudes of the tangential relative velocities
+/// before the correction, limit the largest tangential impulse (mu times the normal impulse plus
+/// c_a A dt). The node sticks when the impulse that stops both slips is within the limit. Otherwise
+/// it slides and the friction impulse F, of magnitude limit, opposes the slip s that is left
+/// (s = t - F / m per DOF): s_d = t_d x / (x + c_d) with c_d = limit / m_d and |s| = x the root of
+/// sum t_d^2 / (x + c_d)^2 = 1. With equal inertias x = |t| - c, the isotropic rule.
+SlipKept coulomb_slip(double slip_plane, double slip_theta, double mass, double theta_mass,
+                      double limit);
+
+} // namespace mpile
