@@ -528,6 +528,58 @@ public:
     return std::nullopt;
   }
 
+  /// The cap alone by Newton's method, on its scalar residual in the cap multiplier. Without shear
+  /// the trial's deviator a only shrinks along the cap direction n, and the isotropic part drops
+  /// out of the cap deviator, so q-tilde = q-tilde(a) - (4 G / alpha^2) lambda_c q_n(lambda_c)
+  /// q-tilde(n) and p = p_trial / (1 + 2 K lambda_c): a residual of a few operations, where the
+  /// general iteration rebuilds the whole state. The state is built once, at the end, as the
+  /// general return builds it. Same convergence test and last step as newton_return.
+  std::optional<ReturnState> cap_newton(int corner) const {
+    const Principal n = cap_direction(corner);
+    const double K = elastic_.bulk, G = elastic_.shear;
+    const double p_trial = mean(trial_);
+    const Principal a{trial_[0] - p_trial, trial_[1] - p_trial, trial_[2] - p_trial};
+    const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    const double inverse_alpha2 = 1.0 / (alpha_ * alpha_);
+    const double cap_stiffness = 4.0 * G * n2 * inverse_alpha2;
+    const double flow = 4.0 * G * inverse_alpha2;
+    const double q_a = n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
+    const double deviator_a = model_.cap_deviator(a);
+    const double deviator_n = model_.cap_deviator(n);
+    double lambda_c = 0.0;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      const double volumetric = 1.0 + 2.0 * K * lambda_c;
+      const double p = p_trial / volumetric;
+      const double p_slope = -2.0 * K * p / volumetric;
+      const double deviatoric = 1.0 + cap_stiffness * lambda_c;
+      const double q_cap = q_a / deviatoric;
+      const double q_cap_slope = -cap_stiffness * q_cap / deviatoric;
+      const double q = deviator_a - flow * lambda_c * q_cap * deviator_n;
+      const double q_slope = -flow * deviator_n * (q_cap + lambda_c * q_cap_slope);
+      const double norm = std::sqrt(q * q * inverse_alpha2 + p * p);
+      const double residual = norm - (cap_n_ + cap_modulus_ * 2.0 * p * lambda_c);
+      const double slope =
+          (norm > 0.0 ? (q * q_slope * inverse_alpha2 + p * p_slope) / norm : 0.0) -
+          cap_modulus_ * 2.0 * (p + lambda_c * p_slope);
+      // At zero the cap is inactive if not violated there (it is, or this return is not tried).
+      const bool converged =
+          std::abs(residual) <= tolerance_ || (lambda_c == 0.0 && residual <= tolerance_);
+      if (!(std::abs(slope) > 0.0) || !std::isfinite(slope)) {
+        return converged ? std::optional<ReturnState>(state_after({0.0, 0.0, 0.0, lambda_c}, n))
+                         : std::nullopt;
+      }
+      const double next = lambda_c - residual / slope;
+      if (!std::isfinite(next)) {
+        return std::nullopt;
+      }
+      if (converged) {
+        return state_after({0.0, 0.0, 0.0, next >= 0.0 && lambda_c > 0.0 ? next : lambda_c}, n);
+      }
+      lambda_c = std::max(next, 0.0);
+    }
+    return std::nullopt;
+  }
+
   /// Scalar return on one shear plane or a corner (both planes, equal stresses), psi explicit,
   /// with a given cap multiplier lambda_c acting at the same time (0: shear alone): a bracketed
   /// root, slower than Newton's method but sure to converge.
@@ -561,7 +613,7 @@ public:
 
   /// The cap alone, with the cap direction of a corner if given.
   ReturnState cap_return(int corner) const {
-    if (auto r = newton_return(0, false, true, corner)) {
+    if (auto r = cap_newton(corner)) {
       return *r;
     }
     const Principal n = cap_direction(corner);
