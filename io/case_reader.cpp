@@ -297,11 +297,17 @@ std::vector<std::pair<std::size_t, TomlTable>> read_bodies(TomlTable& top, CaseS
 }
 
 /// The key `body`, which must name a rigid body.
-std::string read_rigid_body_name(TomlTable& table, const CaseSpec& spec, const std::string& why) {
+/// The names of the bodies a file declares rigid with a [bodies.rigid] table. Their drives are
+/// read after the phases (a drive names its phase), while the phases' stop criteria and the moving
+/// mesh name them first.
+using RigidNames = std::set<std::string>;
+
+std::string read_rigid_body_name(TomlTable& table, const CaseSpec& spec,
+                                 const RigidNames& declared_rigid, const std::string& why) {
   std::string name = table.string("body");
   const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
                                  [&](const BodySpec& b) { return b.name == name; });
-  if (body == spec.bodies.end() || !body->rigid) {
+  if (body == spec.bodies.end() || !(body->rigid || declared_rigid.contains(name))) {
     table.fail("body", "no rigid body named '" + name + "'" + why);
   }
   return name;
@@ -436,13 +442,14 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
   }
 }
 
-void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes) {
+void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
+                      const RigidNames& declared_rigid) {
   std::optional<TomlTable> table = top.optional_table("moving_mesh");
   if (!table) {
     return;
   }
   MovingMeshSpec mesh;
-  mesh.body = read_rigid_body_name(*table, spec, " (the band moves with one)");
+  mesh.body = read_rigid_body_name(*table, spec, declared_rigid, " (the band moves with one)");
   if (spec.mode == GeometryMode::plane_strain) {
     table->fail("body", "the moving mesh follows a body that only translates along y and spins "
                         "about the axis: axisymmetric cases only");
@@ -591,7 +598,7 @@ void read_solver(TomlTable& top, CaseSpec& spec) {
   table->finish();
 }
 
-void read_phases(TomlTable& top, CaseSpec& spec) {
+void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigid) {
   std::set<std::string> names;
   for (TomlTable& table : top.tables("phases")) {
     PhaseSpec phase;
@@ -653,7 +660,7 @@ void read_phases(TomlTable& top, CaseSpec& spec) {
     }
     if (std::optional<TomlTable> stop = table.optional_table("stop_at")) {
       PenetrationStop s;
-      s.body = read_rigid_body_name(*stop, spec, "");
+      s.body = read_rigid_body_name(*stop, spec, declared_rigid, "");
       s.penetration = stop->positive("penetration");
       if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
           s.penetration > spec.moving_mesh->travel) {
@@ -826,12 +833,18 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     boundaries->finish();
   }
   read_solver(top, spec);
-  read_phases(top, spec);
+  RigidNames declared_rigid;
+  for (const auto& [index, table] : rigid_tables) {
+    declared_rigid.insert(spec.bodies[index].name);
+  }
+  // The moving mesh before the phases, so that a stop_at penetration is checked against its
+  // travel whichever way the geometry is given.
+  read_moving_mesh(top, spec, axes, declared_rigid);
+  read_phases(top, spec, declared_rigid);
   for (auto& [index, table] : rigid_tables) {
     read_rigid_body(table, spec.bodies[index], spec);
   }
   read_contacts(top, spec);
-  read_moving_mesh(top, spec, axes);
   read_motions_and_loads(top, spec, axes);
   read_output(top, spec);
   top.finish();

@@ -386,6 +386,31 @@ TEST(CaseReader, RejectsEachBadContactInputWithFileLineKeyAndReason) {
   expect_rejected(bad_contact_inputs());
 }
 
+TEST(CaseReader, APhaseStopsAtThePenetrationOfABodyDeclaredRigidInItsOwnTable) {
+  // The phases are read before the [bodies.rigid] tables (a drive names its phase), so a stop
+  // criterion or a moving mesh naming such a body must not depend on that order.
+  const std::string stopping = contact_edited(
+      "name = \"drive\"\nduration = 0.1",
+      "name = \"drive\"\nduration = 0.1\nstop_at = { body = \"pile\", penetration = 0.02 }");
+  const CaseSpec spec = read_case_text(stopping, "case.toml");
+  ASSERT_TRUE(spec.phases[1].stop_at.has_value());
+  EXPECT_EQ(spec.phases[1].stop_at->body, "pile");
+  EXPECT_DOUBLE_EQ(spec.phases[1].stop_at->penetration, 0.02);
+  // With a moving band that travels less than the stop asks, the stop is refused where it is
+  // written, as for a [monopile] case.
+  const std::string banded =
+      stopping + "\n[moving_mesh]\nbody = \"pile\"\nband = [0.3, 0.7]\ntravel = 0.01\n";
+  expect_rejected(
+      {{"stop beyond the band's travel", banded,
+        "phases[1].stop_at.penetration: is beyond the travel of the moving band", "stop_at = {"}});
+  // A body that is not rigid is still refused.
+  expect_rejected({{"stop at a soil body",
+                    contact_edited("name = \"drive\"\nduration = 0.1",
+                                   "name = \"drive\"\nduration = 0.1\n"
+                                   "stop_at = { body = \"soil\", penetration = 0.02 }"),
+                    "phases[1].stop_at.body: no rigid body named 'soil'", "stop_at = {"}});
+}
+
 TEST(CaseReader, TheValidCaseReads) {
   const CaseSpec spec = read_case_text(valid_case, "case.toml");
   EXPECT_EQ(spec.title, "reader test");
