@@ -643,11 +643,14 @@ private:
 /// deviator less its shear residual. Results are those of the full search, at a fraction of the
 /// cost: on the quick GDP scene most plastic points end on both surfaces.
 bool shear_alone_can_hold(const Principal& trial, double shear_residual, double cap_pressure,
-                          double sin_psi, double alpha, double tolerance) {
+                          double sin_psi, double alpha, double delta, double tolerance) {
   if (sin_psi != 0.0) {
     return true;
   }
-  const double least_deviator = std::max(trial[0] - trial[2] - shear_residual - tolerance, 0.0);
+  // An accepted result may lie outside its shear surface by the tolerance and out of order by it
+  // (sigma_2 below sigma_3, which lowers q-tilde by (delta - 1) times that): the bound keeps both.
+  const double least_deviator =
+      std::max(trial[0] - trial[2] - shear_residual - (1.0 + delta) * tolerance, 0.0);
   const double p = mean(trial);
   return std::sqrt(least_deviator * least_deviator / (alpha * alpha) + p * p) - cap_pressure <=
          tolerance;
@@ -770,8 +773,8 @@ double HardeningSoil::update_point(Stress& stress, double* state,
           }
         }
       };
-      if (shear_trial > tolerance &&
-          shear_alone_can_hold(trial.values, shear_trial, cap_n, sin_psi, alpha_, tolerance)) {
+      if (shear_trial > tolerance && shear_alone_can_hold(trial.values, shear_trial, cap_n, sin_psi,
+                                                          alpha_, delta_, tolerance)) {
         attempt([&](int corner) { return returner.shear_return(corner); }, true);
       }
       if (!found && cap_trial > tolerance) {
