@@ -1,27 +1,50 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <iosfwd>
 #include <string>
 
 namespace mpile {
 
-/// The run's progress for the user: on a terminal, one line rewritten in place (simulated time,
-/// phase, steps per second, ETA); otherwise a log line every few seconds.
+/// What a phase runs towards, in its own terms: the simulated time to its end, or a rigid body's
+/// penetration for a phase that stops at one (which also ends, at the latest, at its end time).
+struct PhaseGoal {
+  std::string quantity = "t"; // "t" or "penetration"
+  double value = 0.0;         // now
+  double target = 0.0;        // where the phase ends
+  std::string unit = "s";
+  double time = 0.0;     // simulated time now
+  double end_time = 0.0; // the phase's end time, the latest it can end
+};
+
+/// The run's progress for the user: on a terminal, one line rewritten in place (the phase's goal
+/// and how far it is, steps per second, ETA); otherwise a log line every few seconds. The ETA is
+/// the phase's: the remaining distance to its goal over the rate at which the goal's quantity has
+/// moved since the phase began, and no later than its end time at the rate simulated time moves.
 class ProgressReporter {
 public:
-  ProgressReporter(std::ostream& stream, bool terminal, double end_time);
-  void update(const std::string& phase, double time, long steps);
+  /// seconds: the wall clock (steady, in seconds); a test passes its own.
+  ProgressReporter(std::ostream& stream, bool terminal,
+                   std::function<double()> seconds = steady_seconds);
+  void update(const std::string& phase, long steps, const PhaseGoal& goal);
   void finish();
 
+  /// The ETA of a phase in seconds of wall time, from the goal's values at the phase's start and
+  /// now and the wall time between them; infinity while nothing has moved.
+  static double eta(const PhaseGoal& start, const PhaseGoal& now, double elapsed);
+
 private:
+  static double steady_seconds();
+
   std::ostream& stream_;
   bool terminal_;
-  double end_time_;
-  std::chrono::steady_clock::time_point start_;
-  std::chrono::steady_clock::time_point last_;
-  long first_steps_ = -1;
-  double first_time_ = 0.0;
+  std::function<double()> seconds_;
+  double last_ = 0.0;
+  std::string phase_;
+  PhaseGoal phase_start_;
+  double phase_start_seconds_ = 0.0;
+  long phase_start_steps_ = 0;
   bool shown_ = false;
 };
 

@@ -247,7 +247,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       residual_warned = true;
       log.warn(s.str() + " (see /energy in history.h5)");
     };
-    ProgressReporter reporter(err, isatty(fileno(stderr)) != 0, spec.end_time());
+    ProgressReporter reporter(err, isatty(fileno(stderr)) != 0);
     StopOnSignals signals;
     long steps_this_run = 0;
     long recorded_step = -1;
@@ -314,10 +314,13 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
               }
             }
           }
+          // Progress in the phase's own terms: its stop depth, else its end time.
+          PhaseGoal goal{"t", t, phase_end, "s", t, phase_end};
           if (phase.stop_at) {
             const PenetrationStop& stop = *phase.stop_at;
             const RigidBody& pile = rigid_body_named(*scene, stop.body);
             const double depth = penetration_of(pile);
+            goal = {"penetration", depth, stop.penetration, "m", t, phase_end};
             const double speed = std::abs(pile.velocity[RIGID_Y]);
             if (depth >= stop.penetration && (!stop.at_rest || speed < rest_speed)) {
               std::ostringstream why;
@@ -327,7 +330,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
               break;
             }
           }
-          reporter.update(phase.name, t, solver->step_count());
+          reporter.update(phase.name, solver->step_count(), goal);
           ++steps_this_run;
           if (stop_requested != 0 ||
               (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps)) {
