@@ -224,15 +224,16 @@ double run_binary(const std::string& binary, const std::string& scene, int threa
   int status = 0;
   waitpid(child, &status, 0);
   // The result line: scene, threads, particles, steps, wall seconds, particle-steps per second.
+  const bool succeeded = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   std::istringstream lines(output);
-  for (std::string line; std::getline(lines, line);) {
+  for (std::string line; succeeded && std::getline(lines, line);) {
     std::istringstream fields(line);
     std::string name;
     int t = 0;
     double particles = 0.0, wall = 0.0, rate = 0.0;
     int n_steps = 0;
     if (fields >> name >> t >> particles >> n_steps >> wall >> rate && name == scene &&
-        t == threads && WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+        t == threads) {
       return rate;
     }
   }
@@ -316,16 +317,12 @@ int main(int argc, char** argv) {
               "wall_s", "p-steps/s", "B/part", "time share of each pass");
   std::fflush(stdout);
   for (const std::string& name : chosen) {
-    const auto found = all.find(name);
-    if (found == all.end()) {
-      std::cerr << "mpile-bench: unknown scene " << name << " (see --list)\n";
-      return 2;
-    }
+    const SceneSpec& spec = all.at(name); // checked above
     for (const int t : threads) {
       // A child process per run: the peak resident set is this run's, and oneTBB starts fresh.
       const pid_t child = fork();
       if (child == 0) {
-        run_scene(found->second, t, warmup, steps);
+        run_scene(spec, t, warmup, steps);
         std::_Exit(0);
       }
       int status = 0;
