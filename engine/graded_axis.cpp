@@ -60,6 +60,17 @@ void GradedAxis::build_lookup() {
   for (int c = 1; c < cell_count(); ++c) {
     min_cell_size_ = std::min(min_cell_size_, cell_size(c));
   }
+  domain_reach_.resize(static_cast<std::size_t>(cell_count()));
+  for (int c = 0; c < cell_count(); ++c) {
+    double smallest = cell_size(c);
+    if (c > 0) {
+      smallest = std::min(smallest, cell_size(c - 1));
+    }
+    if (c + 1 < cell_count()) {
+      smallest = std::min(smallest, cell_size(c + 1));
+    }
+    domain_reach_[static_cast<std::size_t>(c)] = 0.5 * smallest;
+  }
   // Buckets of at most the smallest cell size: a bucket then spans at most two cells, so locate()
   // needs at most one correction step (the loop there also absorbs rounding at bucket edges).
   const double length = end() - start();

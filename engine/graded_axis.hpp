@@ -30,6 +30,9 @@ public:
   double start() const { return nodes_.front(); }
   double end() const { return nodes_.back(); }
   double min_cell_size() const { return min_cell_size_; }
+  /// Half the smallest of cell c and its neighbours: the largest half-size a GIMP domain centred
+  /// in cell c may have and still span at most two cells.
+  double domain_reach(int c) const { return domain_reach_[static_cast<std::size_t>(c)]; }
   std::span<const double> nodes() const { return nodes_; }
 
   /// Index c of the cell with node(c) <= x < node(c + 1), or -1 when x lies outside [start, end).
@@ -59,6 +62,7 @@ private:
 
   std::vector<double> nodes_;
   std::vector<int> first_cell_of_bucket_;
+  std::vector<double> domain_reach_;
   double inverse_bucket_size_ = 0.0;
   double min_cell_size_ = 0.0;
 };

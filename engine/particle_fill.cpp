@@ -26,7 +26,8 @@ std::size_t fill_rectangle(Scene& scene, const Rectangle& region, int per_direct
             continue;
           }
           const double weight = axisymmetric ? area * r : area;
-          scene.particles.add(r, y, density * weight, weight, material, body);
+          scene.particles.add(r, y, density * weight, weight, 0.5 * hr / per_direction,
+                              0.5 * hy / per_direction, material, body);
           scene.particles.cell_r.back() = cr;
           scene.particles.cell_y.back() = cy;
         }

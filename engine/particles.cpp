@@ -5,7 +5,8 @@
 namespace mpile {
 
 void Particles::add(double r_pos, double y_pos, double particle_mass, double particle_volume,
-                    std::uint16_t material_index, std::uint16_t body_index) {
+                    double half_r_size, double half_y_size, std::uint16_t material_index,
+                    std::uint16_t body_index) {
   r.push_back(r_pos);
   y.push_back(y_pos);
   r0.push_back(r_pos);
@@ -18,6 +19,8 @@ void Particles::add(double r_pos, double y_pos, double particle_mass, double par
   }
   mass.push_back(particle_mass);
   volume.push_back(particle_volume);
+  half_r.push_back(half_r_size);
+  half_y.push_back(half_y_size);
   stress.push_back(Stress{});
   state.resize(state.size() + static_cast<std::size_t>(state_stride), 0.0);
   material.push_back(material_index);
@@ -48,8 +51,8 @@ void permute_array(std::vector<T>& values, std::span<const std::int32_t> order, 
 } // namespace
 
 void Particles::permute(std::span<const std::int32_t> order) {
-  for (auto* field :
-       {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &du_r, &du_y}) {
+  for (auto* field : {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &half_r,
+                      &half_y, &du_r, &du_y}) {
     permute_array(*field, order, 1);
   }
   permute_array(stress, order, 1);
@@ -62,8 +65,8 @@ void Particles::permute(std::span<const std::int32_t> order) {
 
 std::size_t Particles::bytes() const {
   std::size_t total = 0;
-  for (const auto* field :
-       {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &du_r, &du_y, &state}) {
+  for (const auto* field : {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume,
+                            &half_r, &half_y, &du_r, &du_y, &state}) {
     total += field->capacity() * sizeof(double);
   }
   total += stress.capacity() * sizeof(Stress);

@@ -22,6 +22,9 @@ struct Particles {
   // Mass and integration weight.
   std::vector<double> mass;   // kg (per radian in axisymmetric mode)
   std::vector<double> volume; // Omega (m^3, per radian in axisymmetric mode)
+  // Half the size of the particle's domain along r and y (m): the sub-cell it was seeded in. GIMP
+  // averages the shape functions over it; uGIMP keeps it as seeded.
+  std::vector<double> half_r, half_y;
   // Constitutive state.
   std::vector<Stress> stress; // Cauchy, tension positive (Pa)
   std::vector<double> state;  // material state variables, state_stride per particle
@@ -38,9 +41,11 @@ struct Particles {
   std::size_t size() const { return r.size(); }
   GeometryMode mode = GeometryMode::axisymmetric;
 
-  /// Appends one particle at rest with zero stress; cell indices are set by the caller (binning).
+  /// Appends one particle at rest with zero stress, with a domain of half-sizes (half_r_size,
+  /// half_y_size); cell indices are set by the caller (binning).
   void add(double r_pos, double y_pos, double particle_mass, double particle_volume,
-           std::uint16_t material_index, std::uint16_t body_index);
+           double half_r_size, double half_y_size, std::uint16_t material_index,
+           std::uint16_t body_index);
 
   /// Reorders every per-particle array so that new index k holds old particle order[k].
   void permute(std::span<const std::int32_t> order);

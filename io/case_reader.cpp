@@ -547,7 +547,7 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
 }
 
-void read_solver(TomlTable& top, CaseSpec& spec) {
+void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   SolverSettings& s = spec.solver;
   std::optional<TomlTable> table = top.optional_table("solver");
   if (!table) {
@@ -573,6 +573,18 @@ void read_solver(TomlTable& top, CaseSpec& spec) {
     s.gravity = {g[0], g[1]};
   }
   s.block_cells = static_cast<int>(table->integer_or("block_cells", s.block_cells));
+  if (table->has("shape_functions")) {
+    const std::string shape = table->string("shape_functions");
+    if (shape != "linear" && shape != "gimp") {
+      table->fail("shape_functions", "must be \"linear\" or \"gimp\", got \"" + shape + "\"");
+    }
+    s.shape_functions = shape == "gimp" ? ShapeFunctions::gimp : ShapeFunctions::linear;
+    if (s.shape_functions == ShapeFunctions::gimp &&
+        (axes.r.cell_count() < 2 || axes.y.cell_count() < 2)) {
+      table->fail("shape_functions", "GIMP needs at least 2 cells along r and along y (a "
+                                     "particle's domain may reach into the next cell)");
+    }
+  }
   if (table->has("min_time_step")) {
     s.min_time_step = table->positive("min_time_step");
   }
@@ -832,7 +844,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     }
     boundaries->finish();
   }
-  read_solver(top, spec);
+  read_solver(top, spec, axes);
   RigidNames declared_rigid;
   for (const auto& [index, table] : rigid_tables) {
     declared_rigid.insert(spec.bodies[index].name);
@@ -840,6 +852,17 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
   // The moving mesh before the phases, so that a stop_at penetration is checked against its
   // travel whichever way the geometry is given.
   read_moving_mesh(top, spec, axes, declared_rigid);
+  const bool shape_given = top.has("solver") && top.table("solver").has("shape_functions");
+  if (spec.moving_mesh && !shape_given) {
+    // Lines moving under soil at rest make every particle cross cells; with bilinear weights
+    // each crossing jolts the nodal forces and shakes the soil (docs/design.md, "Shape
+    // functions"), so a moving mesh takes GIMP unless the case says otherwise.
+    spec.solver.shape_functions = ShapeFunctions::gimp;
+    if (spec.solver.block_cells < 3) {
+      top.table("solver").fail("block_cells", "must be at least 3 with GIMP shape functions, "
+                                              "the default with a moving mesh");
+    }
+  }
   read_phases(top, spec, declared_rigid);
   for (auto& [index, table] : rigid_tables) {
     read_rigid_body(table, spec.bodies[index], spec);

@@ -9,7 +9,7 @@ namespace mpile {
 
 namespace {
 
-constexpr const char* format_version = "mpile checkpoint 3";
+constexpr const char* format_version = "mpile checkpoint 4";
 
 /// A rigid body's state as one row: velocity, displacement, centre, contact, driving, work.
 std::vector<double> rigid_state(const RigidBody& b) {
@@ -38,10 +38,10 @@ void restore_rigid_state(RigidBody& b, const std::vector<double>& row) {
 // Every per-particle double array, by name; the order is the file's layout.
 template <class P> auto double_fields(P& p) {
   return std::vector<std::pair<const char*, decltype(&p.r)>>{
-      {"r", &p.r},       {"y", &p.y},           {"r0", &p.r0},           {"y0", &p.y0},
-      {"v_r", &p.v_r},   {"v_y", &p.v_y},       {"v_theta", &p.v_theta}, {"u_theta", &p.u_theta},
-      {"mass", &p.mass}, {"volume", &p.volume}, {"state", &p.state},     {"du_r", &p.du_r},
-      {"du_y", &p.du_y}};
+      {"r", &p.r},         {"y", &p.y},           {"r0", &p.r0},           {"y0", &p.y0},
+      {"v_r", &p.v_r},     {"v_y", &p.v_y},       {"v_theta", &p.v_theta}, {"u_theta", &p.u_theta},
+      {"mass", &p.mass},   {"volume", &p.volume}, {"half_r", &p.half_r},   {"half_y", &p.half_y},
+      {"state", &p.state}, {"du_r", &p.du_r},     {"du_y", &p.du_y}};
 }
 
 } // namespace

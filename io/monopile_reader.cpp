@@ -70,6 +70,8 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   // The pile head is above the ground: its top edge is not a contact surface.
   contact.surfaces = {"tip", "external_shaft", "", "internal_shaft"};
   std::optional<TomlTable> drive = table.optional_table("drive");
+  // A fixed grid instead, for comparison: the tip then leaves its grid line as it penetrates.
+  const bool moving = table.boolean_or("moving_mesh", true);
 
   MonopileGeometry g;
   try {
@@ -113,7 +115,9 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   // Seed section 3: lateral boundary fixed in its normal direction; the base fixed.
   spec.faces = {FaceCondition::free, FaceCondition::roller, FaceCondition::fixed,
                 FaceCondition::free};
-  spec.moving_mesh = MovingMeshSpec{"pile", g.band_bottom, g.band_top, p.travel};
+  if (moving) {
+    spec.moving_mesh = MovingMeshSpec{"pile", g.band_bottom, g.band_top, p.travel};
+  }
   return drive;
 }
 

@@ -248,14 +248,7 @@ void ExplicitSolver::sort_particles_by_cell() {
 }
 
 double ExplicitSolver::unbalanced_force_ratio() {
-  const bool contact = scene_.has_contact();
-  if (scene_.mode == GeometryMode::axisymmetric) {
-    contact ? passes::particle_to_grid<GeometryMode::axisymmetric, true>(scene_, bins_, settings_)
-            : passes::particle_to_grid<GeometryMode::axisymmetric, false>(scene_, bins_, settings_);
-  } else {
-    contact ? passes::particle_to_grid<GeometryMode::plane_strain, true>(scene_, bins_, settings_)
-            : passes::particle_to_grid<GeometryMode::plane_strain, false>(scene_, bins_, settings_);
-  }
+  particle_to_grid();
   // Node forces are f_ext - f_int (gravity included); loads are added here as in a step.
   passes::apply_nodal_loads(scene_, passes::StepParameters{time_, 0.0, mass_floor_});
   const Grid& grid = scene_.grid;
@@ -315,11 +308,33 @@ void ExplicitSolver::step(double max_dt) {
   }
   const bool contact = scene_.has_contact();
   if (scene_.mode == GeometryMode::axisymmetric) {
-    contact ? step_in_mode<GeometryMode::axisymmetric, true>(dt)
-            : step_in_mode<GeometryMode::axisymmetric, false>(dt);
+    contact ? step_with_contact<GeometryMode::axisymmetric, true>(dt)
+            : step_with_contact<GeometryMode::axisymmetric, false>(dt);
   } else {
-    contact ? step_in_mode<GeometryMode::plane_strain, true>(dt)
-            : step_in_mode<GeometryMode::plane_strain, false>(dt);
+    contact ? step_with_contact<GeometryMode::plane_strain, true>(dt)
+            : step_with_contact<GeometryMode::plane_strain, false>(dt);
+  }
+}
+
+template <GeometryMode mode, bool contact> void ExplicitSolver::step_with_contact(double dt) {
+  settings_.shape_functions == ShapeFunctions::gimp
+      ? step_in_mode<mode, contact, ShapeFunctions::gimp>(dt)
+      : step_in_mode<mode, contact, ShapeFunctions::linear>(dt);
+}
+
+void ExplicitSolver::particle_to_grid() {
+  const auto map = [this]<GeometryMode mode, bool contact>() {
+    settings_.shape_functions == ShapeFunctions::gimp
+        ? passes::particle_to_grid<mode, contact, ShapeFunctions::gimp>(scene_, bins_, settings_)
+        : passes::particle_to_grid<mode, contact, ShapeFunctions::linear>(scene_, bins_, settings_);
+  };
+  const bool contact = scene_.has_contact();
+  if (scene_.mode == GeometryMode::axisymmetric) {
+    contact ? map.template operator()<GeometryMode::axisymmetric, true>()
+            : map.template operator()<GeometryMode::axisymmetric, false>();
+  } else {
+    contact ? map.template operator()<GeometryMode::plane_strain, true>()
+            : map.template operator()<GeometryMode::plane_strain, false>();
   }
 }
 
@@ -332,11 +347,12 @@ void ExplicitSolver::advance_to(double end_time) {
   }
 }
 
-template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(double dt) {
+template <GeometryMode mode, bool contact, ShapeFunctions shape>
+void ExplicitSolver::step_in_mode(double dt) {
   const passes::StepParameters step{time_, dt, mass_floor_};
   {
     PassTimer timer(timings_.particle_to_grid);
-    passes::particle_to_grid<mode, contact>(scene_, bins_, settings_);
+    passes::particle_to_grid<mode, contact, shape>(scene_, bins_, settings_);
   }
   {
     PassTimer timer(timings_.grid_update);
@@ -373,11 +389,11 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
   }
   {
     PassTimer timer(timings_.grid_to_particle);
-    passes::grid_to_particle<mode, contact>(scene_, bins_, settings_, step);
+    passes::grid_to_particle<mode, contact, shape>(scene_, bins_, settings_, step);
   }
   if (settings_.musl) {
     PassTimer timer(timings_.momentum_remap);
-    passes::remap_momentum<mode, contact>(scene_, bins_, step);
+    passes::remap_momentum<mode, contact, shape>(scene_, bins_, step);
     if constexpr (contact) {
       passes::apply_constraints(scene_, settings_, step, false,
                                 passes::ConstraintFields::structures);
@@ -389,8 +405,8 @@ template <GeometryMode mode, bool contact> void ExplicitSolver::step_in_mode(dou
   passes::StressPassResult result;
   {
     PassTimer timer(timings_.stress_update);
-    result = passes::update_stress_and_positions<mode, contact>(scene_, bins_, settings_, step,
-                                                                signal_speed_);
+    result = passes::update_stress_and_positions<mode, contact, shape>(scene_, bins_, settings_,
+                                                                       step, signal_speed_);
   }
   if constexpr (contact) {
     passes::move_rigid_bodies(scene_, step);

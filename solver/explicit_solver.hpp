@@ -82,7 +82,10 @@ public:
   double unbalanced_force_ratio();
 
 private:
-  template <GeometryMode mode, bool contact> void step_in_mode(double dt);
+  template <GeometryMode mode, bool contact, ShapeFunctions shape> void step_in_mode(double dt);
+  template <GeometryMode mode, bool contact> void step_with_contact(double dt);
+  /// Particle-to-grid alone (for the equilibrium check), in the scene's mode and shape functions.
+  void particle_to_grid();
   void prepare();
   void locate_all_particles();
   /// Moves the y-lines with the mesh's rigid body, relocates the particles in the moved cells and

@@ -11,7 +11,7 @@
 
 namespace mpile::passes {
 
-template <GeometryMode mode, bool contact>
+template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                       const StepParameters& step) {
   Grid& grid = scene.grid;
@@ -28,11 +28,11 @@ void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettin
       if constexpr (contact) {
         nodes = fields->nodes(p.body[i]);
       }
-      const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
+      const auto w = particle_weights<shape>(grid, p, i);
       double velocity[3] = {0.0, 0.0, 0.0};
       double increment[3] = {0.0, 0.0, 0.0};
       constexpr int dofs = has_theta(mode) ? 3 : 2;
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < w.size; ++k) {
         const GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         for (int d = 0; d < dofs; ++d) {
           velocity[d] += w.N[k] * node.momentum[d];
@@ -52,17 +52,21 @@ void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettin
   });
 }
 
-template void grid_to_particle<GeometryMode::axisymmetric, false>(Scene&, const ParticleBins&,
-                                                                  const SolverSettings&,
-                                                                  const StepParameters&);
-template void grid_to_particle<GeometryMode::axisymmetric, true>(Scene&, const ParticleBins&,
-                                                                 const SolverSettings&,
-                                                                 const StepParameters&);
-template void grid_to_particle<GeometryMode::plane_strain, false>(Scene&, const ParticleBins&,
-                                                                  const SolverSettings&,
-                                                                  const StepParameters&);
-template void grid_to_particle<GeometryMode::plane_strain, true>(Scene&, const ParticleBins&,
-                                                                 const SolverSettings&,
-                                                                 const StepParameters&);
+template void grid_to_particle<GeometryMode::axisymmetric, false, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template void grid_to_particle<GeometryMode::axisymmetric, false, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template void grid_to_particle<GeometryMode::axisymmetric, true, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template void grid_to_particle<GeometryMode::axisymmetric, true, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template void grid_to_particle<GeometryMode::plane_strain, false, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template void grid_to_particle<GeometryMode::plane_strain, false, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template void grid_to_particle<GeometryMode::plane_strain, true, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+template void grid_to_particle<GeometryMode::plane_strain, true, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
 
 } // namespace mpile::passes

@@ -15,7 +15,7 @@
 
 namespace mpile::passes {
 
-template <GeometryMode mode, bool contact>
+template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings) {
   Grid& grid = scene.grid;
   const Particles& p = scene.particles;
@@ -55,7 +55,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
       if constexpr (contact) {
         nodes = fields->nodes(p.body[i]);
       }
-      const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
+      const auto w = particle_weights<shape>(grid, p, i);
       const double m = p.mass[i];
       const double weight = p.volume[i]; // integration weight (A r per radian in axisymmetry)
       const Stress& s = p.stress[i];
@@ -65,7 +65,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
       const double w_rr = weight * s[RR];
       const double w_yy = weight * s[YY];
       const double w_ry = weight * s[RY];
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < w.size; ++k) {
         GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         const double n = w.N[k];
         node.mass += n * m;
@@ -87,7 +87,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         const double m_r = m * r;
         const double angular_momentum = m_r * p.v_theta[i];
         const double rotational_inertia = m_r * r;
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < w.size; ++k) {
           GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
           const double n = w.N[k];
           node.force[0] -= n * w_hoop;
@@ -104,14 +104,14 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
           const double half_size = 0.505 * std::sqrt(area);
           for (const OutlineGap& g : gaps) {
             const double gap = g.distance(p.r[i], p.y[i]) - half_size;
-            for (int k = 0; k < 4; ++k) {
+            for (int k = 0; k < w.size; ++k) {
               double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
               node_gap = std::min(node_gap, gap);
             }
           }
         }
         if (std::array<double, 2>* gradient = fields->mass_gradient(p.body[i])) {
-          for (int k = 0; k < 4; ++k) {
+          for (int k = 0; k < w.size; ++k) {
             auto& g = gradient[static_cast<std::size_t>(w.node[k])];
             g[0] += m * w.dN_dr[k];
             g[1] += m * w.dN_dy[k];
@@ -122,13 +122,21 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
   });
 }
 
-template void particle_to_grid<GeometryMode::axisymmetric, false>(Scene&, const ParticleBins&,
-                                                                  const SolverSettings&);
-template void particle_to_grid<GeometryMode::plane_strain, false>(Scene&, const ParticleBins&,
-                                                                  const SolverSettings&);
-template void particle_to_grid<GeometryMode::axisymmetric, true>(Scene&, const ParticleBins&,
-                                                                 const SolverSettings&);
-template void particle_to_grid<GeometryMode::plane_strain, true>(Scene&, const ParticleBins&,
-                                                                 const SolverSettings&);
+template void particle_to_grid<GeometryMode::axisymmetric, false, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&);
+template void particle_to_grid<GeometryMode::axisymmetric, false, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&);
+template void particle_to_grid<GeometryMode::axisymmetric, true, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&);
+template void particle_to_grid<GeometryMode::axisymmetric, true, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&);
+template void particle_to_grid<GeometryMode::plane_strain, false, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&);
+template void particle_to_grid<GeometryMode::plane_strain, false, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&);
+template void particle_to_grid<GeometryMode::plane_strain, true, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&);
+template void particle_to_grid<GeometryMode::plane_strain, true, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&);
 
 } // namespace mpile::passes

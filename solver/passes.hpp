@@ -8,6 +8,7 @@
 #include "engine/geometry_mode.hpp"
 #include "engine/particle_bins.hpp"
 #include "engine/scene.hpp"
+#include "engine/shape_functions.hpp"
 #include "solver/solver_settings.hpp"
 
 #include <cstdint>
@@ -22,7 +23,7 @@ struct StepParameters {
   double mass_floor = 0.0;
 };
 
-template <GeometryMode mode, bool contact = false>
+template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings);
 
 void apply_nodal_loads(Scene& scene, const StepParameters& step);
@@ -50,11 +51,11 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
 /// Work of the nodal loads over the step, from the updated nodal velocities.
 double nodal_load_work(const Scene& scene, const StepParameters& step);
 
-template <GeometryMode mode, bool contact = false>
+template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                       const StepParameters& step);
 
-template <GeometryMode mode, bool contact = false>
+template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step);
 
 struct StressPassResult {
@@ -70,7 +71,7 @@ struct StressPassResult {
 
 /// With signal_speed (one entry per particle), also keeps each particle's c_p + |v_p| there, for a
 /// step limit after the cells have moved (a moving mesh); empty, it is not kept.
-template <GeometryMode mode, bool contact = false>
+template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 StressPassResult
 update_stress_and_positions(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                             const StepParameters& step, std::span<double> signal_speed = {});

@@ -35,7 +35,7 @@ template <int dofs> void momentum_to_velocity(std::vector<GridNode>& nodes, doub
 
 } // namespace
 
-template <GeometryMode mode, bool contact>
+template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
@@ -52,13 +52,13 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
       if constexpr (contact) {
         nodes = fields->nodes(p.body[i]);
       }
-      const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
+      const auto w = particle_weights<shape>(grid, p, i);
       const double m = p.mass[i];
       double momentum[3] = {m * p.v_r[i], m * p.v_y[i], 0.0};
       if constexpr (has_theta(mode)) {
         momentum[2] = m * p.r[i] * p.v_theta[i]; // angular momentum
       }
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < w.size; ++k) {
         GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         for (int d = 0; d < dofs; ++d) {
           node.momentum[d] += w.N[k] * momentum[d];
@@ -71,13 +71,25 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
   }
 }
 
-template void remap_momentum<GeometryMode::axisymmetric, false>(Scene&, const ParticleBins&,
-                                                                const StepParameters&);
-template void remap_momentum<GeometryMode::axisymmetric, true>(Scene&, const ParticleBins&,
-                                                               const StepParameters&);
-template void remap_momentum<GeometryMode::plane_strain, false>(Scene&, const ParticleBins&,
-                                                                const StepParameters&);
-template void remap_momentum<GeometryMode::plane_strain, true>(Scene&, const ParticleBins&,
-                                                               const StepParameters&);
+template void remap_momentum<GeometryMode::axisymmetric, false, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const StepParameters&);
+template void
+remap_momentum<GeometryMode::axisymmetric, false, ShapeFunctions::gimp>(Scene&, const ParticleBins&,
+                                                                        const StepParameters&);
+template void remap_momentum<GeometryMode::axisymmetric, true, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const StepParameters&);
+template void
+remap_momentum<GeometryMode::axisymmetric, true, ShapeFunctions::gimp>(Scene&, const ParticleBins&,
+                                                                       const StepParameters&);
+template void remap_momentum<GeometryMode::plane_strain, false, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const StepParameters&);
+template void
+remap_momentum<GeometryMode::plane_strain, false, ShapeFunctions::gimp>(Scene&, const ParticleBins&,
+                                                                        const StepParameters&);
+template void remap_momentum<GeometryMode::plane_strain, true, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const StepParameters&);
+template void
+remap_momentum<GeometryMode::plane_strain, true, ShapeFunctions::gimp>(Scene&, const ParticleBins&,
+                                                                       const StepParameters&);
 
 } // namespace mpile::passes

@@ -35,6 +35,11 @@ void SolverSettings::validate() const {
               std::to_string(energy_residual_limit));
   require(block_cells >= 1 && block_cells <= 16,
           "block_cells must lie in [1, 16], got " + std::to_string(block_cells));
+  // Two blocks of one colour are a block apart; a GIMP particle writes to nodes one cell outside
+  // its block, so a block of 2 cells would let two blocks of one colour share a node.
+  require(shape_functions == ShapeFunctions::linear || block_cells >= 3,
+          "block_cells must be at least 3 with GIMP shape functions, got " +
+              std::to_string(block_cells));
 }
 
 } // namespace mpile

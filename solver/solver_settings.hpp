@@ -1,5 +1,7 @@
 #pragma once
 
+#include "engine/shape_functions.hpp"
+
 #include <array>
 #include <limits>
 
@@ -34,8 +36,11 @@ struct SolverSettings {
   /// An energy residual that stays above this fraction for 100 steps stops the run as unstable:
   /// energy the physics cannot account for exceeds half the energy in play (an energy blow-up).
   double energy_residual_limit = 0.5;
-  /// Cells per side of a scatter block (colored scatter).
+  /// Cells per side of a scatter block (colored scatter); at least 3 with GIMP, whose particles
+  /// reach one cell beyond their own.
   int block_cells = 8;
+  /// How particles reach the grid: bilinear at their centre, or GIMP over their domain.
+  ShapeFunctions shape_functions = ShapeFunctions::linear;
 
   /// Throws std::invalid_argument naming the setting that is out of range.
   void validate() const;

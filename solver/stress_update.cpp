@@ -49,7 +49,7 @@ double stress_power(const Stress& s, const StrainIncrement& de) {
 
 } // namespace
 
-template <GeometryMode mode, bool contact>
+template <GeometryMode mode, bool contact, ShapeFunctions shape>
 StressPassResult
 update_stress_and_positions(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                             const StepParameters& step, std::span<double> signal_speed) {
@@ -101,10 +101,10 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
       if constexpr (contact) {
         nodes = fields->nodes(p.body[i]);
       }
-      const CellWeights w = bilinear_weights(grid, p.cell_r[i], p.cell_y[i], p.r[i], p.y[i]);
+      const auto w = particle_weights<shape>(grid, p, i);
       double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
       double dwr = 0.0, dwy = 0.0; // gradient of the angular velocity
-      for (int n = 0; n < 4; ++n) {
+      for (int n = 0; n < w.size; ++n) {
         const GridNode& node = nodes[static_cast<std::size_t>(w.node[n])];
         drr += w.dN_dr[n] * node.momentum[0];
         dry += w.dN_dy[n] * node.momentum[0];
@@ -256,13 +256,29 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   return result;
 }
 
-template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric, false>(
+template StressPassResult
+update_stress_and_positions<GeometryMode::axisymmetric, false, ShapeFunctions::linear>(
     Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
-template StressPassResult update_stress_and_positions<GeometryMode::axisymmetric, true>(
+template StressPassResult
+update_stress_and_positions<GeometryMode::axisymmetric, false, ShapeFunctions::gimp>(
     Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
-template StressPassResult update_stress_and_positions<GeometryMode::plane_strain, false>(
+template StressPassResult
+update_stress_and_positions<GeometryMode::axisymmetric, true, ShapeFunctions::linear>(
     Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
-template StressPassResult update_stress_and_positions<GeometryMode::plane_strain, true>(
+template StressPassResult
+update_stress_and_positions<GeometryMode::axisymmetric, true, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
+template StressPassResult
+update_stress_and_positions<GeometryMode::plane_strain, false, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
+template StressPassResult
+update_stress_and_positions<GeometryMode::plane_strain, false, ShapeFunctions::gimp>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
+template StressPassResult
+update_stress_and_positions<GeometryMode::plane_strain, true, ShapeFunctions::linear>(
+    Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
+template StressPassResult
+update_stress_and_positions<GeometryMode::plane_strain, true, ShapeFunctions::gimp>(
     Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&, std::span<double>);
 
 } // namespace mpile::passes

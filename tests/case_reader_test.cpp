@@ -116,6 +116,21 @@ std::vector<BadInput> bad_inputs() {
        "grid.r: starts at r = -0.5 < 0", ""},
       {"unknown material type", edited("type = \"linear_elastic\"", "type = \"elastic\""),
        "materials.soil.type: unknown material type 'elastic'", "type = \"elastic\""},
+      {"unknown shape functions",
+       edited("courant_number = 0.5", "courant_number = 0.5\nshape_functions = \"cubic\""),
+       "solver.shape_functions: must be \"linear\" or \"gimp\", got \"cubic\"",
+       "shape_functions ="},
+      {"GIMP with blocks of 2 cells",
+       edited("courant_number = 0.5",
+              "courant_number = 0.5\nshape_functions = \"gimp\"\nblock_cells = 2"),
+       "solver.block_cells: block_cells must be at least 3 with GIMP shape functions",
+       "block_cells = 2"},
+      {"GIMP on a grid one cell high",
+       edited_text(edited("y = [{ start = 0.0, end = 1.0, cells = 8 }]\n",
+                          "y = [{ start = 0.0, end = 1.0, cells = 1 }]\n"),
+                   "courant_number = 0.5", "courant_number = 0.5\nshape_functions = \"gimp\""),
+       "solver.shape_functions: GIMP needs at least 2 cells along r and along y",
+       "shape_functions ="},
       {"negative Young's modulus", edited("young_modulus = 1e7", "young_modulus = -1e7"),
        "materials.soil.young_modulus: linear_elastic: young_modulus must be positive",
        "young_modulus = -1e7"},
@@ -364,6 +379,13 @@ TEST(CaseReader, TheMonopileCaseBuildsTheSeedGeometry) {
   ASSERT_EQ(spec.phases[0].k0.size(), 3u);            // K0 on the three soil bodies
   ASSERT_TRUE(spec.moving_mesh.has_value());
   EXPECT_DOUBLE_EQ(spec.phases[1].stop_at->penetration, 0.1);
+  // A moving mesh takes GIMP unless the case says otherwise (docs/design.md, "Shape functions").
+  EXPECT_EQ(spec.solver.shape_functions, ShapeFunctions::gimp);
+  // On a fixed grid, for comparison: no moving mesh, and bilinear weights by default.
+  const CaseSpec fixed = read_case_text(
+      monopile_edited("travel = 0.2", "travel = 0.2\nmoving_mesh = false"), "case.toml");
+  EXPECT_FALSE(fixed.moving_mesh.has_value());
+  EXPECT_EQ(fixed.solver.shape_functions, ShapeFunctions::linear);
 }
 
 TEST(CaseReader, RejectsEachBadMonopileInputWithFileLineKeyAndReason) {

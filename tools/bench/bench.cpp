@@ -139,6 +139,18 @@ std::map<std::string, SceneSpec> scenes() {
   all["elastic-contact-idle-1e5"] = {"elastic-contact-idle-1e5",
                                      [] { return contact_path_idle(100000); }};
   all["gdp-quick"] = {"gdp-quick", gdp_quick};
+  // The same two scenes with GIMP shape functions (docs/design.md, "Shape functions").
+  all["elastic-gimp-1e5"] = {"elastic-gimp-1e5", [] {
+                               BenchScene b = quasi_static(
+                                   soil_column(GeometryMode::axisymmetric, 100000, Soil::elastic));
+                               b.settings.shape_functions = ShapeFunctions::gimp;
+                               return b;
+                             }};
+  all["gdp-quick-gimp"] = {"gdp-quick-gimp", [] {
+                             BenchScene b = gdp_quick();
+                             b.settings.shape_functions = ShapeFunctions::gimp;
+                             return b;
+                           }};
   return all;
 }
 
