@@ -104,9 +104,10 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
                                    static_cast<double>(progress.history_rows),
                                    progress.next_history_time, progress.next_snapshot_time,
                                    static_cast<double>(progress.next_listed_snapshot),
-                                   progress.next_checkpoint_time},
+                                   progress.next_checkpoint_time, progress.peak_residual,
+                                   progress.peak_residual_time},
                "phase, history rows, next history time, next snapshot time, next listed "
-               "snapshot, next checkpoint time");
+               "snapshot, next checkpoint time, peak energy residual, its time");
     file.write("/run/phase_starts", progress.phase_starts, "s");
     std::vector<double> snapshot_times;
     std::string snapshot_files;
@@ -196,6 +197,8 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
   progress.next_snapshot_time = c.at(3);
   progress.next_listed_snapshot = static_cast<std::size_t>(c.at(4));
   progress.next_checkpoint_time = c.at(5);
+  progress.peak_residual = c.at(6);
+  progress.peak_residual_time = c.at(7);
   progress.phase_starts = file.read_doubles("/run/phase_starts");
   const auto times = file.read_doubles("/run/snapshot_times");
   const std::string files = file.string_attribute("/run/snapshot_times", "files");

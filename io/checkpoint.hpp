@@ -20,6 +20,9 @@ struct RunProgress {
   std::size_t next_listed_snapshot = 0;
   double next_checkpoint_time = 0.0;
   std::vector<std::pair<double, std::string>> snapshots;
+  // The largest relative energy residual of a history row past the run's start-up, and when.
+  double peak_residual = 0.0;
+  double peak_residual_time = 0.0;
 };
 
 struct Checkpoint {

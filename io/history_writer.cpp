@@ -179,12 +179,16 @@ void HistoryWriter::flush_if_due() {
   last_flush_ = now;
 }
 
-void HistoryWriter::close(double wall_seconds, const std::string& status) {
+void HistoryWriter::close(double wall_seconds, const std::string& status,
+                          const ResidualSummary& residual) {
   for (const std::string& name : order_) {
     series_.at(name).flush();
   }
   file_->set_attribute("/", "wall_time", wall_seconds);
   file_->set_attribute("/", "status", status);
+  file_->set_attribute("/", "energy_residual_final", residual.final);
+  file_->set_attribute("/", "energy_residual_peak", residual.peak);
+  file_->set_attribute("/", "energy_residual_peak_time", residual.peak_time);
   file_->flush();
 }
 

@@ -25,8 +25,14 @@ public:
   EnergyBalance record(const ExplicitSolver& solver, std::size_t phase);
   std::size_t rows() const { return rows_; }
   void flush_if_due();
-  /// Writes the closing attributes: wall time and status ("complete", "interrupted", ...).
-  void close(double wall_seconds, const std::string& status);
+  /// Writes the closing attributes: wall time, status ("complete", "interrupted", ...) and the
+  /// energy residual the run ended with and its peak past the start-up (with its time).
+  struct ResidualSummary {
+    double final = 0.0;
+    double peak = 0.0;
+    double peak_time = 0.0;
+  };
+  void close(double wall_seconds, const std::string& status, const ResidualSummary& residual);
 
 private:
   Hdf5Series& series(const std::string& name, const std::string& unit);

@@ -215,8 +215,20 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     constexpr long blow_up_steps = 100;
     bool residual_warned = false;
     long over_limit_since = -1;
+    double final_residual = 0.0;
+    auto residual_summary = [&] {
+      return HistoryWriter::ResidualSummary{final_residual, progress.peak_residual,
+                                            progress.peak_residual_time};
+    };
     auto check_energy_residual = [&](const EnergyBalance& energy) {
       const SolverSettings& settings = solver->settings();
+      final_residual = energy.relative_residual;
+      // The peak leaves out the start-up (see above), which would otherwise dominate it.
+      if (solver->step_count() >= blow_up_steps &&
+          !(energy.relative_residual <= progress.peak_residual)) {
+        progress.peak_residual = energy.relative_residual;
+        progress.peak_residual_time = solver->time();
+      }
       const bool over_limit = !(energy.relative_residual <= settings.energy_residual_limit);
       if (!over_limit) {
         over_limit_since = -1;
@@ -336,7 +348,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
               (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps)) {
             reporter.finish();
             save_state();
-            history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s");
+            history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
+                          residual_summary());
             err << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint "
                 << checkpoint_path << " (continue with --restart " << checkpoint_path << ")\n";
             return exit_interrupted;
@@ -345,7 +358,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         reporter.finish();
         // The state a phase ends in (a target penetration, equilibrium) is always in the history.
         if (recorded_step != solver->step_count()) {
-          history.record(*solver, progress.phase);
+          final_residual = history.record(*solver, progress.phase).relative_residual;
           recorded_step = solver->step_count();
         }
         log.info("phase " + phase.name + " ended at t = " + format_time(solver->time()) + " s " +
@@ -365,7 +378,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     } catch (const SimulationError& e) {
       reporter.finish();
       save_state();
-      history.close(seconds_since(wall_start), std::string("failed: ") + e.what());
+      history.close(seconds_since(wall_start), std::string("failed: ") + e.what(),
+                    residual_summary());
       err << "mpile: " << e.what() << " (outputs so far are in " << directory << ")\n";
       return exit_failure;
     }
@@ -375,10 +389,23 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
     save_state();
     const double wall = seconds_since(wall_start);
-    history.close(wall, "complete");
-    out << "mpile: " << spec.title << " done: t = " << format_time(t) << " s in "
-        << solver->step_count() << " steps, " << std::fixed << std::setprecision(1) << wall
-        << " s wall; outputs in " << directory << "\n";
+    // A run that completes with energy unaccounted for says so where it is read first: the
+    // history's status and the last line of the log.
+    const double warning = solver->settings().energy_residual_warning;
+    const bool doubtful = progress.peak_residual > warning || final_residual > warning;
+    std::ostringstream residual;
+    residual << std::setprecision(3) << "energy residual " << 100.0 * final_residual
+             << " % at the end, peak " << 100.0 * progress.peak_residual
+             << " % at t = " << format_time(progress.peak_residual_time) << " s";
+    if (doubtful) {
+      residual << " (energy_residual_warning " << 100.0 * warning << " %)";
+    }
+    history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
+                  residual_summary());
+    out << "mpile: " << spec.title << (doubtful ? " done, but with a doubtful" : " done")
+        << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
+        << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
+        << "; outputs in " << directory << "\n";
   } catch (const std::runtime_error& e) {
     err << "mpile: " << e.what() << '\n';
     return exit_failure;

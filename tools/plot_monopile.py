@@ -93,8 +93,7 @@ def load(spec, body, surfaces, real_blow_interval=None):
         forces = {surface: {component: history[f"/reactions/{body}/{surface}/{component}"][rows] / 1e3
                             for component in COMPONENTS} for surface in surfaces}
         label = label or text(history.attrs.get("title", directory))
-        if text(history.attrs.get("status", "")) != "complete":
-            label += " (incomplete)"
+
     time = time - start
     interval = blow_interval(case)
     if real_blow_interval and interval:
