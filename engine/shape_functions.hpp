@@ -64,6 +64,20 @@ struct AxisWeights {
   double dS[3];
 };
 
+/// The weights of a domain of half-size l that a grid line splits into `left` (in the cell before
+/// the line, of inverse size inverse_left) and `right` (in the cell after it): the means of the
+/// three hats over the domain, and their slopes (N(x + l) - N(x - l)) / 2l.
+inline void straddle(double left, double right, double inverse_left, double inverse_right, double l,
+                     AxisWeights& w) {
+  const double inverse_length = 0.5 / l;
+  w.S[0] = 0.5 * left * left * inverse_left * inverse_length;
+  w.S[2] = 0.5 * right * right * inverse_right * inverse_length;
+  w.S[1] = 1.0 - w.S[0] - w.S[2];
+  w.dS[0] = -left * inverse_left * inverse_length;
+  w.dS[2] = right * inverse_right * inverse_length;
+  w.dS[1] = -(w.dS[0] + w.dS[2]);
+}
+
 /// The hat functions of one axis averaged over [x - half, x + half], for a point x in cell c of an
 /// axis of at least 2 cells. The half-size is first limited to half of the cells the domain can
 /// reach and to the grid's extent, so the domain spans at most two cells and never leaves the
@@ -78,31 +92,15 @@ inline AxisWeights gimp_axis_weights(const GradedAxis& axis, int c, double x, do
   const double inverse_h = 1.0 / h;
   AxisWeights w;
   if (x - l < lower) {
-    // Nodes c - 1, c, c + 1: [x - l, lower] in cell c - 1 (size h_left), [lower, x + l] in c.
-    const double inverse_left = 1.0 / (lower - axis.node(c - 1));
-    const double inverse_length = 0.5 / l;
-    const double left = lower - (x - l);
-    const double right = 2.0 * l - left;
+    // Nodes c - 1, c, c + 1: [x - l, lower] in cell c - 1, [lower, x + l] in cell c.
     w.first = c - 1;
-    w.S[0] = 0.5 * left * left * inverse_left * inverse_length;
-    w.S[2] = 0.5 * right * right * inverse_h * inverse_length;
-    w.S[1] = 1.0 - w.S[0] - w.S[2];
-    w.dS[0] = -left * inverse_left * inverse_length;
-    w.dS[2] = right * inverse_h * inverse_length;
-    w.dS[1] = -(w.dS[0] + w.dS[2]);
+    const double left = lower - (x - l);
+    straddle(left, 2.0 * l - left, 1.0 / (lower - axis.node(c - 1)), inverse_h, l, w);
   } else if (x + l > upper) {
-    // Nodes c, c + 1, c + 2: [x - l, upper] in cell c, [upper, x + l] in c + 1 (size h_right).
-    const double inverse_right = 1.0 / (axis.node(c + 2) - upper);
-    const double inverse_length = 0.5 / l;
-    const double right = x + l - upper;
-    const double left = 2.0 * l - right;
+    // Nodes c, c + 1, c + 2: [x - l, upper] in cell c, [upper, x + l] in cell c + 1.
     w.first = c;
-    w.S[0] = 0.5 * left * left * inverse_h * inverse_length;
-    w.S[2] = 0.5 * right * right * inverse_right * inverse_length;
-    w.S[1] = 1.0 - w.S[0] - w.S[2];
-    w.dS[0] = -left * inverse_h * inverse_length;
-    w.dS[2] = right * inverse_right * inverse_length;
-    w.dS[1] = -(w.dS[0] + w.dS[2]);
+    const double right = x + l - upper;
+    straddle(2.0 * l - right, right, inverse_h, 1.0 / (axis.node(c + 2) - upper), l, w);
   } else {
     // Inside the cell: nodes c, c + 1 as for linear, and a third node (inside the axis) with
     // weight 0.
