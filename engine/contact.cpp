@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace mpile {
 
@@ -13,6 +14,35 @@ StructureOutline StructureOutline::rectangle(double r0, double r1, double y0, do
   StructureOutline outline;
   outline.vertices = {{r0, y0}, {r1, y0}, {r1, y1}, {r0, y1}};
   outline.edge_surface = {bottom, right, top, left};
+  return outline;
+}
+
+StructureOutline region_outline(const Region& region, GeometryMode mode,
+                                const std::vector<int>& surface) {
+  StructureOutline outline;
+  if (region.shape() != Region::Shape::circle) {
+    outline.vertices = region.vertices();
+    outline.edge_surface = surface;
+    return outline;
+  }
+  const Point c = region.centre();
+  const double radius = region.radius();
+  const bool sphere = mode == GeometryMode::axisymmetric && c[0] == 0.0;
+  // From the bottom, counter-clockwise: all the way round, or for a sphere up the right half to
+  // the top.
+  const int edges = sphere ? circle_outline_edges / 2 : circle_outline_edges;
+  const double step = 2.0 * std::numbers::pi / circle_outline_edges;
+  for (int k = 0; k < (sphere ? edges + 1 : edges); ++k) {
+    const double angle = -0.5 * std::numbers::pi + k * step;
+    outline.vertices.push_back({c[0] + radius * std::cos(angle), c[1] + radius * std::sin(angle)});
+    outline.edge_surface.push_back(surface.at(0));
+  }
+  if (sphere) {
+    // The bottom and the top on the axis exactly; the closing edge runs down the axis.
+    outline.vertices.front()[0] = 0.0;
+    outline.vertices.back()[0] = 0.0;
+    outline.edge_surface.back() = -1;
+  }
   return outline;
 }
 

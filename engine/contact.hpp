@@ -2,6 +2,7 @@
 
 #include "engine/geometry_mode.hpp"
 #include "engine/grid.hpp"
+#include "engine/region.hpp"
 
 #include <algorithm>
 #include <array>
@@ -30,6 +31,22 @@ struct StructureOutline {
   /// Rotates about (r, y) by angle (rad, counter-clockwise).
   void rotate(double angle, double r, double y);
 };
+
+/// Edges of the regular polygon that stands for a circle's outline: convex, as OutlineDistance
+/// needs, and short of the circle's length by 4e-4 (1 - sin(x) / x, x = pi / 64) and of a sphere's
+/// area by 1.2e-3, so that contact areas and an adhesion's resultant are that close.
+constexpr int circle_outline_edges = 64;
+
+/// The outline of a structure's region: a rectangle's or polygon's vertices (counter-clockwise,
+/// edge k from vertex k to the next) with surface[k] for edge k; for a circle, the regular polygon
+/// of circle_outline_edges inscribed in it, every edge on surface[0], with a vertex at the bottom.
+/// In axisymmetric mode a circle centred on the axis (a sphere) is outlined by the half at r >= 0,
+/// closed along the axis by an edge that is no contact surface.
+StructureOutline region_outline(const Region& region, GeometryMode mode,
+                                const std::vector<int>& surface);
+
+/// The most surfaces one contact structure may have (the per-step sums are fixed-size).
+constexpr std::size_t max_contact_surfaces = 8;
 
 /// Signed distance from an outline, positive outside: the largest distance from an edge's line
 /// (exact along the edges of a convex outline, an underestimate beyond its corners). The edge lines

@@ -4,37 +4,71 @@
 
 namespace mpile {
 
-std::size_t fill_rectangle(Scene& scene, const Rectangle& region, int per_direction,
-                           std::uint16_t material, std::uint16_t body) {
+namespace {
+
+/// Calls seed(cr, cy, r, y, hr, hy) for every sub-cell centre in the region and the band, cell
+/// by cell along r, then y.
+template <typename Seed>
+void for_each_seed(const GradedAxis& r_axis, const GradedAxis& y_axis, const Region& region,
+                   int per_direction, SeedBand band, Seed&& seed) {
   if (per_direction < 1) {
     throw std::invalid_argument("particles per cell direction must be at least 1");
   }
-  const Grid& grid = scene.grid;
-  const double density = scene.materials.at(material)->density();
-  const bool axisymmetric = scene.mode == GeometryMode::axisymmetric;
-  const std::size_t before = scene.particles.size();
-  for (int cy = 0; cy < grid.cells_y(); ++cy) {
-    for (int cr = 0; cr < grid.cells_r(); ++cr) {
-      const double hr = grid.r_axis().cell_size(cr);
-      const double hy = grid.y_axis().cell_size(cy);
-      const double area = hr * hy / (per_direction * per_direction);
+  const Rectangle& box = region.bounds();
+  for (int cy = 0; cy < y_axis.cell_count(); ++cy) {
+    if (y_axis.node(cy + 1) < box.y_min || y_axis.node(cy) > box.y_max) {
+      continue; // no point of this row of cells lies in the region
+    }
+    for (int cr = 0; cr < r_axis.cell_count(); ++cr) {
+      if (r_axis.node(cr + 1) < box.r_min || r_axis.node(cr) > box.r_max) {
+        continue;
+      }
+      const double hr = r_axis.cell_size(cr);
+      const double hy = y_axis.cell_size(cy);
       for (int j = 0; j < per_direction; ++j) {
         for (int i = 0; i < per_direction; ++i) {
-          const double r = grid.r_axis().node(cr) + (i + 0.5) * hr / per_direction;
-          const double y = grid.y_axis().node(cy) + (j + 0.5) * hy / per_direction;
-          if (!region.contains(r, y)) {
-            continue;
+          const double r = r_axis.node(cr) + (i + 0.5) * hr / per_direction;
+          const double y = y_axis.node(cy) + (j + 0.5) * hy / per_direction;
+          if (band.contains(y) && region.contains(r, y)) {
+            seed(cr, cy, r, y, hr, hy);
           }
-          const double weight = axisymmetric ? area * r : area;
-          scene.particles.add(r, y, density * weight, weight, 0.5 * hr / per_direction,
-                              0.5 * hy / per_direction, material, body);
-          scene.particles.cell_r.back() = cr;
-          scene.particles.cell_y.back() = cy;
         }
       }
     }
   }
+}
+
+} // namespace
+
+std::size_t fill_region(Scene& scene, const Region& region, int per_direction,
+                        std::uint16_t material, std::uint16_t body, SeedBand band) {
+  const Grid& grid = scene.grid;
+  const double density = scene.materials.at(material)->density();
+  const bool axisymmetric = scene.mode == GeometryMode::axisymmetric;
+  const std::size_t before = scene.particles.size();
+  for_each_seed(grid.r_axis(), grid.y_axis(), region, per_direction, band,
+                [&](int cr, int cy, double r, double y, double hr, double hy) {
+                  const double area = hr * hy / (per_direction * per_direction);
+                  const double weight = axisymmetric ? area * r : area;
+                  scene.particles.add(r, y, density * weight, weight, 0.5 * hr / per_direction,
+                                      0.5 * hy / per_direction, material, body);
+                  scene.particles.cell_r.back() = cr;
+                  scene.particles.cell_y.back() = cy;
+                });
   return scene.particles.size() - before;
+}
+
+std::size_t fill_rectangle(Scene& scene, const Rectangle& region, int per_direction,
+                           std::uint16_t material, std::uint16_t body) {
+  return fill_region(scene, Region(region), per_direction, material, body);
+}
+
+std::size_t count_region_seeds(const GradedAxis& r_axis, const GradedAxis& y_axis,
+                               const Region& region, int per_direction, SeedBand band) {
+  std::size_t count = 0;
+  for_each_seed(r_axis, y_axis, region, per_direction, band,
+                [&](int, int, double, double, double, double) { ++count; });
+  return count;
 }
 
 void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surface,

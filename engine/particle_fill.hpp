@@ -1,25 +1,33 @@
 #pragma once
 
+#include "engine/region.hpp"
 #include "engine/scene.hpp"
 
 #include <cstdint>
+#include <limits>
 
 namespace mpile {
 
-/// An axis-aligned region of the r-y plane.
-struct Rectangle {
-  double r_min, r_max, y_min, y_max;
-  bool contains(double r, double y) const {
-    return r >= r_min && r <= r_max && y >= y_min && y <= y_max;
-  }
+/// A band y_from <= y < y_to that seeding keeps to (a body split at a moving band's start).
+struct SeedBand {
+  double y_from = -std::numeric_limits<double>::infinity();
+  double y_to = std::numeric_limits<double>::infinity();
+  bool contains(double y) const { return y >= y_from && y < y_to; }
 };
 
-/// Fills a rectangle with particles: per cell, per_direction x per_direction particles at the
-/// centres of equal sub-cells, keeping those inside the rectangle. Mass rho A_p r_p and weight
-/// A_p r_p per radian (axisymmetric) or rho A_p and A_p (plane strain). Returns how many were
-/// added.
+/// Fills a region with particles: per cell, per_direction x per_direction particles at the
+/// centres of equal sub-cells, keeping those inside the region (and the band). Mass rho A_p r_p
+/// and weight A_p r_p per radian (axisymmetric) or rho A_p and A_p (plane strain). Returns how many
+/// were added.
+std::size_t fill_region(Scene& scene, const Region& region, int per_direction,
+                        std::uint16_t material, std::uint16_t body, SeedBand band = {});
 std::size_t fill_rectangle(Scene& scene, const Rectangle& region, int per_direction,
                            std::uint16_t material, std::uint16_t body);
+
+/// How many particles fill_region would add on a grid of these lines (the reader's check that a
+/// region is not too small for its cells).
+std::size_t count_region_seeds(const GradedAxis& r_axis, const GradedAxis& y_axis,
+                               const Region& region, int per_direction, SeedBand band = {});
 
 /// Geostatic stress from a horizontal surface: sigma_yy = -rho g (y_surface - y) and
 /// sigma_rr = sigma_thth = K0 sigma_yy, no shear, for every particle of a body; then each

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mpile {
 
@@ -50,9 +51,70 @@ std::size_t phase_of(const CaseSpec& spec, const std::string& name) {
   return 0;
 }
 
-/// The moving mesh's lines (its rigid body is set once the bodies exist). The travel is rounded
-/// up to whole cells of the band, so that the band's bottom line at the start is also a line of
-/// the mesh at the end of the travel.
+/// Seeds a body's region pass by pass: seed(y_lines, band) seeds the part of the region within the
+/// band on the grid with those y-lines (nullptr: the grid as it starts) and returns how many
+/// particles that gave. Below a moving band with a travel, the soil is seeded for the cells it
+/// will have with the band carried all the way down: the compressed lines drag finer cells into
+/// it, and a cell finer than the spacing of the particles seeded for the cells of the start can be
+/// left empty, which disconnects the soil above it from the soil below (it falls). A point's cells
+/// only get finer as the band moves down, so that seeding holds all along; above the band's start,
+/// the cells of the start are the finest a point sees. The split is a y-line of both grids, so no
+/// particle position lies on it.
+template <typename Seed>
+std::size_t seed_in_passes(const std::optional<MovingMesh>& mesh, const BodySpec& body,
+                           Seed&& seed) {
+  if (!mesh || mesh->travel == 0.0) {
+    return seed(nullptr, SeedBand{});
+  }
+  const double split = mesh->reference_y[static_cast<std::size_t>(mesh->band_bottom)];
+  const Rectangle& bounds = body.region.bounds();
+  std::size_t added = 0;
+  if (bounds.y_min < split) {
+    const std::vector<double> lower = mesh->lines_at(-mesh->travel);
+    added += seed(&lower, SeedBand{-std::numeric_limits<double>::infinity(), split});
+  }
+  if (bounds.y_max > split) {
+    added += seed(nullptr, SeedBand{split, std::numeric_limits<double>::infinity()});
+  }
+  return added;
+}
+
+std::size_t seed_body(Scene& scene, const BodySpec& body, std::uint16_t material,
+                      std::uint16_t index) {
+  const std::optional<MovingMesh>& mesh = scene.moving_mesh;
+  return seed_in_passes(mesh, body, [&](const std::vector<double>* y_lines, SeedBand band) {
+    if (y_lines != nullptr) {
+      scene.grid.set_y_nodes(*y_lines);
+    }
+    const std::size_t added =
+        fill_region(scene, body.region, body.particles_per_direction, material, index, band);
+    if (y_lines != nullptr) {
+      scene.grid.set_y_nodes(mesh->reference_y);
+    }
+    return added;
+  });
+}
+
+/// Surface index of each edge of a structure's outline; edges that share a name form one surface
+/// (pair.surfaces gets the names in the order they first appear).
+std::vector<int> edge_surfaces(const std::vector<std::string>& names, ContactPair& pair) {
+  std::vector<int> surface;
+  for (const std::string& name : names) {
+    if (name.empty()) {
+      surface.push_back(-1);
+      continue;
+    }
+    const auto found = std::find(pair.surfaces.begin(), pair.surfaces.end(), name);
+    surface.push_back(static_cast<int>(found - pair.surfaces.begin()));
+    if (found == pair.surfaces.end()) {
+      pair.surfaces.push_back(name);
+    }
+  }
+  return surface;
+}
+
+} // namespace
+
 MovingMesh moving_mesh_of(const MovingMeshSpec& spec, const GradedAxis& y) {
   MovingMesh mesh;
   mesh.reference_y.assign(y.nodes().begin(), y.nodes().end());
@@ -73,37 +135,21 @@ MovingMesh moving_mesh_of(const MovingMeshSpec& spec, const GradedAxis& y) {
   return mesh;
 }
 
-/// Fills a body's region with particles. Below a moving band with a travel, the soil is seeded
-/// for the cells it will have with the band carried all the way down: the compressed lines drag
-/// finer cells into it, and a cell finer than the spacing of the particles seeded for the cells
-/// of the start can be left empty, which disconnects the soil above it from the soil below (it
-/// falls). A point's cells only get finer as the band moves down, so that seeding holds all
-/// along; above the band's start, the cells of the start are the finest a point sees.
-std::size_t seed_body(Scene& scene, const BodySpec& body, std::uint16_t material,
-                      std::uint16_t index) {
-  const std::optional<MovingMesh>& mesh = scene.moving_mesh;
-  const int per_direction = body.particles_per_direction;
-  if (!mesh || mesh->travel == 0.0) {
-    return fill_rectangle(scene, body.region, per_direction, material, index);
+std::size_t count_body_particles(const CaseSpec& spec, const BodySpec& body) {
+  const GradedAxis r_axis(spec.r_zones);
+  const GradedAxis y_axis(spec.y_zones);
+  std::optional<MovingMesh> mesh;
+  if (spec.moving_mesh) {
+    mesh = moving_mesh_of(*spec.moving_mesh, y_axis);
   }
-  const double split = mesh->reference_y[static_cast<std::size_t>(mesh->band_bottom)];
-  std::size_t added = 0;
-  if (body.region.y_min < split) {
-    Rectangle lower = body.region;
-    lower.y_max = std::min(lower.y_max, split);
-    scene.grid.set_y_nodes(mesh->lines_at(-mesh->travel));
-    added += fill_rectangle(scene, lower, per_direction, material, index);
-    scene.grid.set_y_nodes(mesh->reference_y);
-  }
-  if (body.region.y_max > split) {
-    Rectangle upper = body.region;
-    upper.y_min = std::max(upper.y_min, split);
-    added += fill_rectangle(scene, upper, per_direction, material, index);
-  }
-  return added;
+  return seed_in_passes(mesh, body, [&](const std::vector<double>* y_lines, SeedBand band) {
+    GradedAxis y = y_axis;
+    if (y_lines != nullptr) {
+      y.set_nodes(*y_lines);
+    }
+    return count_region_seeds(r_axis, y, body.region, body.particles_per_direction, band);
+  });
 }
-
-} // namespace
 
 std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
   auto scene =
@@ -149,23 +195,7 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     pair.friction = contact.friction;
     pair.adhesion = contact.adhesion;
     if (contact.outline) {
-      // Edges that share a name form one surface.
-      int edge_surface[4];
-      for (std::size_t e = 0; e < 4; ++e) {
-        if (contact.surfaces[e].empty()) {
-          edge_surface[e] = -1;
-          continue;
-        }
-        const auto found =
-            std::find(pair.surfaces.begin(), pair.surfaces.end(), contact.surfaces[e]);
-        edge_surface[e] = static_cast<int>(found - pair.surfaces.begin());
-        if (found == pair.surfaces.end()) {
-          pair.surfaces.push_back(contact.surfaces[e]);
-        }
-      }
-      pair.outline = StructureOutline::rectangle(
-          body.region.r_min, body.region.r_max, body.region.y_min, body.region.y_max,
-          edge_surface[0], edge_surface[1], edge_surface[2], edge_surface[3]);
+      pair.outline = region_outline(body.region, spec.mode, edge_surfaces(contact.surfaces, pair));
     } else {
       pair.surfaces = {contact.surfaces[0]};
     }

@@ -12,6 +12,15 @@ namespace mpile {
 /// starts: activate_phase_boundaries does that).
 std::unique_ptr<Scene> build_scene(const CaseSpec& spec);
 
+/// The moving mesh a case describes on its y-lines (its rigid body is set once the bodies exist).
+/// The travel is rounded up to whole cells of the band, so that the band's bottom line at the start
+/// is also a line of the mesh at the end of the travel.
+MovingMesh moving_mesh_of(const MovingMeshSpec& spec, const GradedAxis& y);
+
+/// How many particles build_scene seeds for a body, from the grid alone (the reader's check that
+/// a region is not too small for its cells).
+std::size_t count_body_particles(const CaseSpec& spec, const BodySpec& body);
+
 /// Starts the prescribed motions and loads that begin with phase `phase_index`: their time
 /// functions count from start_time. Motions and loads without a phase start with the first.
 void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t phase_index,

@@ -1,7 +1,9 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
 #include "io/case_spec.hpp"
+#include "io/case_builder.hpp"
 #include "io/monopile_reader.hpp"
+#include "io/region_reader.hpp"
 #include "io/toml_reader.hpp"
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 namespace mpile {
 
@@ -217,9 +220,9 @@ void read_materials(TomlTable& top, CaseSpec& spec) {
 }
 
 /// Reads the bodies; returns the [bodies.rigid] tables (by body index), read once the phases are
-/// known.
-std::vector<std::pair<std::size_t, TomlTable>> read_bodies(TomlTable& top, CaseSpec& spec,
-                                                           const Axes& axes) {
+/// known, and keeps each body's table in `tables` for the checks that need the moving mesh.
+std::vector<std::pair<std::size_t, TomlTable>>
+read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTable>& tables) {
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
   std::set<std::string> names;
   for (TomlTable& table : top.tables("bodies")) {
@@ -234,27 +237,7 @@ std::vector<std::pair<std::size_t, TomlTable>> read_bodies(TomlTable& top, CaseS
     if (!known) {
       table.fail("material", "no material named '" + body.material + "' in [materials]");
     }
-    TomlTable region = table.table("region");
-    const auto r = region.numbers("r", 2);
-    const auto y = region.numbers("y", 2);
-    if (!(r[1] > r[0])) {
-      region.fail("r", "must be [r_min, r_max] with r_max > r_min");
-    }
-    if (!(y[1] > y[0])) {
-      region.fail("y", "must be [y_min, y_max] with y_max > y_min");
-    }
-    region.finish();
-    body.region = {r[0], r[1], y[0], y[1]};
-    if (spec.mode == GeometryMode::axisymmetric && r[0] < 0.0) {
-      table.fail("region", "reaches r < 0, behind the axis");
-    }
-    if (r[0] < axes.r.start() || r[1] > axes.r.end() || y[0] < axes.y.start() ||
-        y[1] > axes.y.end()) {
-      table.fail("region", "lies outside the grid (r from " + format_number(axes.r.start()) +
-                               " to " + format_number(axes.r.end()) + ", y from " +
-                               format_number(axes.y.start()) + " to " +
-                               format_number(axes.y.end()) + ")");
-    }
+    body.region = read_region(table, spec.mode, axes.r, axes.y);
     const long per_direction = table.integer_or("particles_per_cell", 2);
     if (per_direction < 1 || per_direction > 8) {
       table.fail("particles_per_cell",
@@ -288,6 +271,7 @@ std::vector<std::pair<std::size_t, TomlTable>> read_bodies(TomlTable& top, CaseS
       rigid_tables.emplace_back(spec.bodies.size(), std::move(*rigid));
     }
     table.finish();
+    tables.push_back(table);
     spec.bodies.push_back(std::move(body));
   }
   if (spec.bodies.empty()) {
@@ -397,32 +381,13 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
       table.fail("normals", "must be \"outline\" or \"mass_gradient\", got \"" + normals + "\"");
     }
     contact.outline = normals == "outline";
-    if (std::optional<TomlTable> surfaces = table.optional_table("surfaces")) {
-      if (!contact.outline) {
-        surfaces->fail("bottom", "mass-gradient normals have one surface: use the key surface");
+    if (contact.outline) {
+      contact.surfaces = read_outline_surfaces(table, body->region, body->name);
+    } else {
+      if (table.has("surfaces")) {
+        table.fail("surfaces", "mass-gradient normals have one surface: use the key surface");
       }
-      // Given a table, edges it does not name are not contact surfaces.
-      const char* edges[] = {"bottom", "right", "top", "left"};
-      for (std::size_t e = 0; e < 4; ++e) {
-        contact.surfaces[e] = surfaces->string_or(edges[e], "");
-        if (surfaces->has(edges[e]) && contact.surfaces[e].empty()) {
-          surfaces->fail(edges[e], "a surface name must not be empty (leave the edge out instead)");
-        }
-      }
-      surfaces->finish();
-      if (std::all_of(contact.surfaces.begin(), contact.surfaces.end(),
-                      [](const std::string& name) { return name.empty(); })) {
-        table.fail("surfaces", "names no edge: give at least one of bottom, right, top, left");
-      }
-    }
-    if (table.has("surface")) {
-      if (contact.outline) {
-        table.fail("surface", "an outline has four edges: name them in surfaces = { bottom = "
-                              "..., right = ..., top = ..., left = ... }");
-      }
-      contact.surfaces[0] = table.string("surface");
-    } else if (!contact.outline) {
-      contact.surfaces[0] = "interface";
+      contact.surfaces = {table.string_or("surface", "interface")};
     }
     table.finish();
     spec.contacts.push_back(std::move(contact));
@@ -468,6 +433,14 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
   table->finish();
   mesh.band_bottom = band[0];
   mesh.band_top = band[1];
+  if (mesh.travel > 0.0) {
+    // The soil below the band is seeded for the lines carried the whole travel down.
+    try {
+      moving_mesh_of(mesh, axes.y).lines_at(-mesh.travel);
+    } catch (const std::runtime_error& e) {
+      table->fail("travel", e.what());
+    }
+  }
   spec.moving_mesh = mesh;
 }
 
@@ -806,6 +779,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
 
   // Either a [monopile] table builds grid, bodies, contact and boundaries, or the file gives them.
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
+  std::vector<TomlTable> body_tables; // empty with [monopile], whose bodies are never empty
   Axes axes;
   if (std::optional<TomlTable> monopile = top.optional_table("monopile")) {
     for (const char* key : {"grid", "bodies", "contact", "boundaries", "moving_mesh"}) {
@@ -830,7 +804,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     }
     axes = axes_of(spec);
     read_materials(top, spec);
-    rigid_tables = read_bodies(top, spec, axes);
+    rigid_tables = read_bodies(top, spec, axes, body_tables);
   }
   if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
     const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
@@ -852,6 +826,17 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
   // The moving mesh before the phases, so that a stop_at penetration is checked against its
   // travel whichever way the geometry is given.
   read_moving_mesh(top, spec, axes, declared_rigid);
+  for (std::size_t b = 0; b < body_tables.size(); ++b) {
+    const BodySpec& body = spec.bodies[b];
+    if (count_body_particles(spec, body) == 0) {
+      const std::string n = std::to_string(body.particles_per_direction);
+      body_tables[b].fail("region", "body '" + body.name +
+                                        "' gets no particle: no particle position (the centres of " +
+                                        n + " x " + n +
+                                        " sub-cells per cell) lies inside its region; make the "
+                                        "cells there finer or raise particles_per_cell");
+    }
+  }
   const bool shape_given = top.has("solver") && top.table("solver").has("shape_functions");
   if (spec.moving_mesh && !shape_given) {
     // Lines moving under soil at rest make every particle cross cells; with bilinear weights

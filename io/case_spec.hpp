@@ -44,7 +44,7 @@ struct RigidSpec {
 struct BodySpec {
   std::string name;
   std::string material;
-  Rectangle region;
+  Region region{Rectangle{0.0, 0.0, 0.0, 0.0}};
   int particles_per_direction = 2;
   std::array<double, 3> velocity{0.0, 0.0, 0.0};
   std::optional<VelocityProfile> velocity_profile;
@@ -56,10 +56,12 @@ struct ContactSpec {
   std::string structure;
   double friction = 0.0;
   double adhesion = 0.0;
-  bool outline = true; // normals from the structure's region rectangle, else its mass gradient
-  /// Surface names of the outline's bottom, right, top and left edges (empty: not a contact
-  /// surface); with mass-gradient normals only the first is used.
-  std::array<std::string, 4> surfaces{"bottom", "right", "top", "left"};
+  bool outline = true; // normals from the structure's region, else its mass gradient
+  /// With an outline, the surface name of each of its edges (empty: not a contact surface), in
+  /// the order of the region's vertices(): a rectangle's bottom, right, top and left edges, a
+  /// polygon's edges counter-clockwise; a circle's single name. With mass-gradient normals, the
+  /// single name.
+  std::vector<std::string> surfaces{"bottom", "right", "top", "left"};
 };
 
 /// Grid nodes on one grid line: r = at (all y within [from, to]) or y = at (r within [from, to]).

@@ -14,7 +14,7 @@ namespace mpile::passes {
 
 namespace {
 
-constexpr std::size_t max_surfaces = 8;
+constexpr std::size_t max_surfaces = max_contact_surfaces;
 constexpr std::uint8_t contact_free = 0;
 constexpr std::uint8_t contact_slide = 1;
 constexpr std::uint8_t contact_stick = 2;

@@ -375,7 +375,7 @@ TEST(CaseReader, TheMonopileCaseBuildsTheSeedGeometry) {
   // The whole 14 m pile: rho L (r2^2 - r1^2) / 2 per radian.
   EXPECT_NEAR(spec.bodies[3].rigid->mass, 8000.0 * 14.0 * (0.373 * 0.373 - 0.3571 * 0.3571) / 2.0,
               1e-9);
-  EXPECT_DOUBLE_EQ(spec.bodies[3].region.y_min, 7.0); // the tip, 3 m below the surface
+  EXPECT_DOUBLE_EQ(spec.bodies[3].region.bounds().y_min, 7.0); // the tip, 3 m below the surface
   ASSERT_EQ(spec.phases[0].k0.size(), 3u);            // K0 on the three soil bodies
   ASSERT_TRUE(spec.moving_mesh.has_value());
   EXPECT_DOUBLE_EQ(spec.phases[1].stop_at->penetration, 0.1);
