@@ -116,11 +116,10 @@ double signed_area(const std::vector<Point>& vertices) {
 }
 
 Region::Region(const Rectangle& rectangle)
-    : shape_(Shape::rectangle), bounds_(rectangle),
-      vertices_{{rectangle.r_min, rectangle.y_min},
-                {rectangle.r_max, rectangle.y_min},
-                {rectangle.r_max, rectangle.y_max},
-                {rectangle.r_min, rectangle.y_max}} {}
+    : shape_(Shape::rectangle), bounds_(rectangle), vertices_{{rectangle.r_min, rectangle.y_min},
+                                                              {rectangle.r_max, rectangle.y_min},
+                                                              {rectangle.r_max, rectangle.y_max},
+                                                              {rectangle.r_min, rectangle.y_max}} {}
 
 Region Region::polygon(std::vector<Point> vertices) {
   check_simple(vertices);

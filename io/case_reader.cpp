@@ -1,7 +1,7 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
-#include "io/case_spec.hpp"
 #include "io/case_builder.hpp"
+#include "io/case_spec.hpp"
 #include "io/monopile_reader.hpp"
 #include "io/region_reader.hpp"
 #include "io/toml_reader.hpp"
@@ -830,11 +830,12 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
     const BodySpec& body = spec.bodies[b];
     if (count_body_particles(spec, body) == 0) {
       const std::string n = std::to_string(body.particles_per_direction);
-      body_tables[b].fail("region", "body '" + body.name +
-                                        "' gets no particle: no particle position (the centres of " +
-                                        n + " x " + n +
-                                        " sub-cells per cell) lies inside its region; make the "
-                                        "cells there finer or raise particles_per_cell");
+      body_tables[b].fail("region",
+                          "body '" + body.name +
+                              "' gets no particle: no particle position (the centres of " + n +
+                              " x " + n +
+                              " sub-cells per cell) lies inside its region; make the "
+                              "cells there finer or raise particles_per_cell");
     }
   }
   const bool shape_given = top.has("solver") && top.table("solver").has("shape_functions");

@@ -57,18 +57,19 @@ Region read_polygon(TomlTable& region, GeometryMode mode, const GradedAxis& r,
   }
   std::vector<Point> vertices;
   for (const TomlValue& item : raw.as_array()) {
-    const bool pair = item.is_array() && item.as_array().size() == 2 &&
-                      std::all_of(item.as_array().begin(), item.as_array().end(),
-                                  [](const TomlValue& x) { return x.is_floating() || x.is_integer(); });
+    const bool pair =
+        item.is_array() && item.as_array().size() == 2 &&
+        std::all_of(item.as_array().begin(), item.as_array().end(),
+                    [](const TomlValue& x) { return x.is_floating() || x.is_integer(); });
     if (!pair) {
       region.fail("polygon", "expected [[r0, y0], [r1, y1], ...]: vertex " +
                                  std::to_string(vertices.size()) + " is not a pair of numbers");
     }
     const Point p{as_number(item.as_array()[0]), as_number(item.as_array()[1])};
     if (!std::isfinite(p[0]) || !std::isfinite(p[1])) {
-      region.fail("polygon",
-                  "vertex " + std::to_string(vertices.size()) + " has a coordinate that is not "
-                                                                "finite");
+      region.fail("polygon", "vertex " + std::to_string(vertices.size()) +
+                                 " has a coordinate that is not "
+                                 "finite");
     }
     vertices.push_back(p);
   }
@@ -92,8 +93,7 @@ Region read_polygon(TomlTable& region, GeometryMode mode, const GradedAxis& r,
   return *polygon;
 }
 
-Region read_circle(TomlTable& region, GeometryMode mode, const GradedAxis& r,
-                   const GradedAxis& y) {
+Region read_circle(TomlTable& region, GeometryMode mode, const GradedAxis& r, const GradedAxis& y) {
   TomlTable circle = region.table("circle");
   const auto centre = circle.numbers("centre", 2);
   const double radius = circle.positive("radius");
@@ -155,9 +155,10 @@ std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region&
     }
     std::vector<std::string> surfaces{"bottom", "right", "top", "left"};
     if (contact.has("surfaces") && !contact.raw("surfaces").is_table()) {
-      contact.fail("surfaces", "body '" + name + "' is a rectangle: name its edges in a table { "
-                                                 "bottom = ..., right = ..., top = ..., left = "
-                                                 "... }");
+      contact.fail("surfaces", "body '" + name +
+                                   "' is a rectangle: name its edges in a table { "
+                                   "bottom = ..., right = ..., top = ..., left = "
+                                   "... }");
     }
     if (std::optional<TomlTable> table = contact.optional_table("surfaces")) {
       // Given a table, edges it does not name are not contact surfaces.
@@ -178,8 +179,9 @@ std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region&
   }
   case Region::Shape::circle: {
     if (contact.has("surfaces")) {
-      contact.fail("surfaces", "body '" + name + "' is a circle, outlined as one surface: name "
-                                                 "it with surface = \"...\"");
+      contact.fail("surfaces", "body '" + name +
+                                   "' is a circle, outlined as one surface: name "
+                                   "it with surface = \"...\"");
     }
     const std::string surface = contact.string_or("surface", "surface");
     if (surface.empty()) {
@@ -194,14 +196,16 @@ std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region&
   if (!region.convex()) {
     const std::size_t vertex = region.given_vertex(region.first_reflex_vertex());
     contact.fail("structure",
-                 "body '" + name + "' is a polygon that is not convex (it turns inwards at vertex " +
+                 "body '" + name +
+                     "' is a polygon that is not convex (it turns inwards at vertex " +
                      std::to_string(vertex) +
                      "), and outline normals (the default) need a convex outline: use normals = "
                      "\"mass_gradient\", or split the structure into convex bodies");
   }
   if (contact.has("surface")) {
-    contact.fail("surface", "body '" + name + "' is a polygon: name each edge in surfaces = "
-                                              "[\"...\", ...]");
+    contact.fail("surface", "body '" + name +
+                                "' is a polygon: name each edge in surfaces = "
+                                "[\"...\", ...]");
   }
   const std::string expected = "an array of " + std::to_string(n) +
                                " surface names, one per edge of body '" + name +

@@ -198,6 +198,56 @@ std::vector<BadInput> bad_inputs() {
        edited("geometry = \"axisymmetric\"\n", "geometry = \"plane_strain\"\n")
            .insert(valid_case.find("velocity_y = {"), "velocity_theta = 0.1\n"),
        "prescribed[0].velocity_theta: plane strain has no theta velocity", "velocity_theta = 0.1"},
+      {"self-intersecting polygon",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { polygon = [[0.0, 0.0], [0.5, 0.5], [0.5, 0.0], [0.0, 0.5]] }"),
+       "bodies[0].region.polygon: crosses itself: edges 0 and 2 meet", "region = {"},
+      {"polygon of two vertices",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { polygon = [[0.0, 0.0], [0.5, 0.5]] }"),
+       "bodies[0].region.polygon: needs at least 3 vertices, got 2", "region = {"},
+      {"polygon of zero area",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { polygon = [[0.0, 0.0], [0.25, 0.25], [0.5, 0.5]] }"),
+       "bodies[0].region.polygon: encloses no area", "region = {"},
+      {"polygon vertex off the grid",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { polygon = [[0.0, 0.0], [0.5, 0.0], [0.5, 1.5]] }"),
+       "bodies[0].region.polygon: vertex 2 (0.5, 1.5) lies outside the grid", "region = {"},
+      {"polygon vertex not a pair",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { polygon = [[0.0, 0.0], [0.5, 0.0, 1.0], [0.5, 0.5]] }"),
+       "bodies[0].region.polygon: expected [[r0, y0], [r1, y1], ...]: vertex 1 is not a pair",
+       "region = {"},
+      {"polygon behind the axis",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { polygon = [[-0.1, 0.0], [0.5, 0.0], [0.5, 0.5]] }"),
+       "bodies[0].region.polygon: vertex 0 (-0.1, 0) lies behind the axis", "region = {"},
+      {"circle of zero radius",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { circle = { centre = [0.3, 0.3], radius = 0.0 } }"),
+       "bodies[0].region.circle.radius: must be positive", "region = {"},
+      {"circle reaching behind the axis",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { circle = { centre = [0.1, 0.3], radius = 0.2 } }"),
+       "bodies[0].region.circle.radius: reaches behind the axis", "region = {"},
+      {"circle off the grid",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { circle = { centre = [0.5, 0.9], radius = 0.2 } }"),
+       "bodies[0].region.circle: reaches outside the grid", "region = {"},
+      {"two shapes in one region",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { r = [0.0, 0.5], y = [0.0, 0.5], circle = { centre = [0.3, 0.3], "
+              "radius = 0.1 } }"),
+       "bodies[0].region.circle: give one shape, not several", "region = {"},
+      {"misspelt shape",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { polygn = [[0.0, 0.0], [0.5, 0.0], [0.5, 0.5]] }"),
+       "bodies[0].region.polygn: unknown key", "region = {"},
+      {"region too small for its cells",
+       edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+              "region = { circle = { centre = [0.0625, 0.0625], radius = 0.02 } }"),
+       "bodies[0].region: body 'block' gets no particle", "region = {"},
       {"table times not increasing",
        edited("traction = -1000.0",
               "traction = { type = \"table\", points = [[0.0, 0.0], [0.0, 1.0]] }"),
@@ -290,6 +340,33 @@ std::vector<BadInput> bad_contact_inputs() {
        "bodies[1].rigid.phase: no phase named 'install'", "phase = \"install\""},
       {"misspelt rigid key", contact_edited("mass = 650.0", "mas = 650.0"),
        "bodies[1].rigid.mas: unknown key", "mas = 650.0"},
+      {"polygon structure with a rectangle's surfaces",
+       contact_edited("region = { r = [0.4, 0.6], y = [0.5, 1.0] }",
+                      "region = { polygon = [[0.4, 0.5], [0.6, 0.6], [0.6, 1.0], [0.4, 1.0]] }"),
+       "contact[0].surfaces: expected an array of 4 surface names, one per edge of body 'pile'",
+       "surfaces = "},
+      {"polygon structure with too few surface names",
+       edited_text(contact_edited("region = { r = [0.4, 0.6], y = [0.5, 1.0] }",
+                                  "region = { polygon = [[0.4, 0.5], [0.6, 0.6], [0.6, 1.0], "
+                                  "[0.4, 1.0]] }"),
+                   "surfaces = { bottom = \"tip\", left = \"inner_shaft\", right = "
+                   "\"outer_shaft\" }",
+                   "surfaces = [\"tip\", \"outer_shaft\", \"\"]"),
+       "contact[0].surfaces: expected an array of 4 surface names, one per edge of body 'pile' "
+       "(edge k from vertex k to the next, the last closing the polygon; \"\" for an edge that is "
+       "no contact surface), got 3 names",
+       "surfaces = "},
+      {"concave polygon structure with outline normals",
+       contact_edited("region = { r = [0.4, 0.6], y = [0.5, 1.0] }",
+                      "region = { polygon = [[0.4, 0.5], [0.6, 0.5], [0.5, 0.7], [0.6, 1.0], "
+                      "[0.4, 1.0]] }"),
+       "contact[0].structure: body 'pile' is a polygon that is not convex (it turns inwards at "
+       "vertex 2)",
+       "structure = "},
+      {"circle structure with edge names",
+       contact_edited("region = { r = [0.4, 0.6], y = [0.5, 1.0] }",
+                      "region = { circle = { centre = [0.5, 0.75], radius = 0.1 } }"),
+       "contact[0].surfaces: body 'pile' is a circle, outlined as one surface", "surfaces = "},
       {"prescribed motion on a rigid body",
        contact_case + "\n[[prescribed]]\nname = \"head\"\nbody = \"pile\"\nnodes = { y = 1.0 }\n"
                       "velocity_y = -0.01\n",
@@ -376,7 +453,7 @@ TEST(CaseReader, TheMonopileCaseBuildsTheSeedGeometry) {
   EXPECT_NEAR(spec.bodies[3].rigid->mass, 8000.0 * 14.0 * (0.373 * 0.373 - 0.3571 * 0.3571) / 2.0,
               1e-9);
   EXPECT_DOUBLE_EQ(spec.bodies[3].region.bounds().y_min, 7.0); // the tip, 3 m below the surface
-  ASSERT_EQ(spec.phases[0].k0.size(), 3u);            // K0 on the three soil bodies
+  ASSERT_EQ(spec.phases[0].k0.size(), 3u);                     // K0 on the three soil bodies
   ASSERT_TRUE(spec.moving_mesh.has_value());
   EXPECT_DOUBLE_EQ(spec.phases[1].stop_at->penetration, 0.1);
   // A moving mesh takes GIMP unless the case says otherwise (docs/design.md, "Shape functions").
@@ -402,6 +479,49 @@ TEST(CaseReader, TheContactCaseReads) {
   EXPECT_DOUBLE_EQ(spec.bodies[1].rigid->mass, 650.0);
   EXPECT_EQ(spec.bodies[1].rigid->drive[RIGID_Y]->kind, RigidDrive::Kind::force);
   EXPECT_EQ(spec.bodies[1].rigid->drive[RIGID_ROTATION]->kind, RigidDrive::Kind::velocity);
+}
+
+TEST(CaseReader, APolygonStructureGivenClockwiseKeepsEachEdgeItsSurface) {
+  // A pile with a slanted tip, given clockwise from its inner tip corner: the reader stores the
+  // polygon counter-clockwise, and each edge must keep the name given for it.
+  std::string text = contact_edited("region = { r = [0.4, 0.6], y = [0.5, 1.0] }",
+                                    "region = { polygon = [[0.4, 0.5], [0.4, 1.0], [0.6, 1.0], "
+                                    "[0.6, 0.6]] }");
+  text = edited_text(text,
+                     "surfaces = { bottom = \"tip\", left = \"inner_shaft\", right = "
+                     "\"outer_shaft\" }",
+                     "surfaces = [\"inner_shaft\", \"\", \"outer_shaft\", \"tip\"]");
+  const CaseSpec spec = read_case_text(text, "case.toml");
+  const Region& region = spec.bodies[1].region;
+  ASSERT_EQ(region.shape(), Region::Shape::polygon);
+  const std::vector<std::string> given{"inner_shaft", "", "outer_shaft", "tip"};
+  const std::vector<Point> given_vertices{{0.4, 0.5}, {0.4, 1.0}, {0.6, 1.0}, {0.6, 0.6}};
+  for (std::size_t k = 0; k < 4; ++k) {
+    // Stored edge k runs from vertices()[k] to the next; the given edge with those end points
+    // must carry the same name.
+    const Point& a = region.vertices()[k];
+    const Point& b = region.vertices()[(k + 1) % 4];
+    std::size_t match = 4;
+    for (std::size_t e = 0; e < 4; ++e) {
+      const Point& ga = given_vertices[e];
+      const Point& gb = given_vertices[(e + 1) % 4];
+      if ((ga == a && gb == b) || (ga == b && gb == a)) {
+        match = e;
+      }
+    }
+    ASSERT_LT(match, 4u);
+    EXPECT_EQ(spec.contacts[0].surfaces[k], given[match]) << "edge " << k;
+  }
+  // The built outline carries them as surface indices, the names in the order they appear.
+  const std::unique_ptr<Scene> scene = build_scene(spec);
+  const ContactPair& pair = scene->contacts.at(0);
+  ASSERT_TRUE(pair.outline.has_value());
+  ASSERT_EQ(pair.outline->vertices.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const int surface = pair.outline->edge_surface[k];
+    EXPECT_EQ(surface < 0 ? std::string() : pair.surfaces[static_cast<std::size_t>(surface)],
+              spec.contacts[0].surfaces[k]);
+  }
 }
 
 TEST(CaseReader, RejectsEachBadContactInputWithFileLineKeyAndReason) {
