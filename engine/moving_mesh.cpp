@@ -16,24 +16,27 @@ std::vector<double> MovingMesh::lines_at(double offset) const {
          "cells would disconnect it; raise the travel (and with it the fine zone)";
     throw std::runtime_error(s.str());
   }
-  const double below = reference_y[index(band_bottom)] - reference_y.front();
-  const double above = reference_y.back() - reference_y[index(band_top)];
+  const double bottom = lower_limit();
+  const double top = upper_limit();
+  const double below = reference_y[index(band_bottom)] - bottom;
+  const double above = top - reference_y[index(band_top)];
   if (below + offset < least_share * below || above - offset < least_share * above) {
     std::ostringstream s;
     s << "the moving mesh band has moved " << offset
       << " m and squeezed the cells between it and the " << (offset < 0.0 ? "bottom" : "top")
-      << " of the grid to a tenth of their size; "
+      << " of the stretch zone (" << (offset < 0.0 ? bottom : top)
+      << " m) to a tenth of their size; "
       << "make the grid deeper or the band smaller";
     throw std::runtime_error(s.str());
   }
   std::vector<double> lines(reference_y.size());
-  const double bottom = reference_y.front();
-  const double top = reference_y.back();
   const double stretch_below = (below + offset) / below;
   const double stretch_above = (above - offset) / above;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const double y = reference_y[i];
-    if (i < index(band_bottom)) {
+    if (i < lower_index() || i > upper_index()) {
+      lines[i] = y;
+    } else if (i < index(band_bottom)) {
       lines[i] = bottom + (y - bottom) * stretch_below;
     } else if (i <= index(band_top)) {
       lines[i] = y + offset;

@@ -8,12 +8,17 @@ namespace mpile {
 /// The moving mesh of physics.md section 7 (after Al-Kafaji 2013) on a rectilinear grid: the
 /// y-lines of a band around the pile tip translate with a rigid body, so the tip stays on its grid
 /// line; the lines between the band and the bottom of the grid are compressed (or stretched)
-/// linearly, and those between the band and the top likewise. The bottom and top lines stay put.
-/// The r-lines never move (the pile walls stay on theirs: the pile only translates along y).
+/// linearly, and those between the band and the top likewise. The bottom and top lines stay put,
+/// or, with stretch limits, every line below the lower limit and above the upper one (a loaded soil
+/// surface under a rod that reaches above it). The r-lines never move (the pile walls stay on
+/// theirs: the pile only translates along y).
 struct MovingMesh {
-  int rigid_body = 0;              // index into Scene::rigid_bodies
-  int band_bottom = 0;             // index of the lowest y-line that moves with the body
-  int band_top = 0;                // index of the highest
+  int rigid_body = 0;  // index into Scene::rigid_bodies
+  int band_bottom = 0; // index of the lowest y-line that moves with the body
+  int band_top = 0;    // index of the highest
+  /// Indices of the lines beyond which nothing moves; -1: the grid's first and last lines.
+  int stretch_bottom = -1;
+  int stretch_top = -1;
   std::vector<double> reference_y; // the y-lines when the body is at its initial position
   /// How far (m) the band may move either way; 0: until a zone beside it is squeezed. Particles
   /// are seeded once, from the cells at the start: a band carried into soil seeded for coarser
@@ -28,11 +33,17 @@ struct MovingMesh {
 
   /// How far the band can move down (negative) and up before a zone between it and the grid's
   /// edge collapses.
-  double lowest_offset() const { return reference_y.front() - reference_y[index(band_bottom)]; }
-  double highest_offset() const { return reference_y.back() - reference_y[index(band_top)]; }
+  double lowest_offset() const { return lower_limit() - reference_y[index(band_bottom)]; }
+  double highest_offset() const { return upper_limit() - reference_y[index(band_top)]; }
 
 private:
   static std::size_t index(int i) { return static_cast<std::size_t>(i); }
+  std::size_t lower_index() const { return stretch_bottom < 0 ? 0 : index(stretch_bottom); }
+  std::size_t upper_index() const {
+    return stretch_top < 0 ? reference_y.size() - 1 : index(stretch_top);
+  }
+  double lower_limit() const { return reference_y[lower_index()]; }
+  double upper_limit() const { return reference_y[upper_index()]; }
 };
 
 } // namespace mpile

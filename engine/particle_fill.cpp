@@ -72,13 +72,13 @@ std::size_t count_region_seeds(const GradedAxis& r_axis, const GradedAxis& y_axi
 }
 
 void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surface,
-                                 double unit_weight, double k0) {
+                                 double unit_weight, double k0, double surcharge) {
   Particles& p = scene.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.body[i] != body) {
       continue;
     }
-    const double vertical = -unit_weight * (y_surface - p.y[i]);
+    const double vertical = -surcharge - unit_weight * (y_surface - p.y[i]);
     p.stress[i] = Stress{k0 * vertical, vertical, k0 * vertical, 0.0, 0.0, 0.0};
     const Material& material = *scene.materials[p.material[i]];
     material.initialise_state(p.stress[i],

@@ -29,10 +29,10 @@ std::size_t fill_rectangle(Scene& scene, const Rectangle& region, int per_direct
 std::size_t count_region_seeds(const GradedAxis& r_axis, const GradedAxis& y_axis,
                                const Region& region, int per_direction, SeedBand band = {});
 
-/// Geostatic stress from a horizontal surface: sigma_yy = -rho g (y_surface - y) and
-/// sigma_rr = sigma_thth = K0 sigma_yy, no shear, for every particle of a body; then each
-/// particle's material sets its state consistently.
+/// Geostatic stress from a horizontal surface carrying a surcharge q: sigma_yy = -(q + rho g
+/// (y_surface - y)) and sigma_rr = sigma_thth = K0 sigma_yy, no shear, for every particle of a
+/// body; then each particle's material sets its state consistently.
 void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surface,
-                                 double unit_weight, double k0);
+                                 double unit_weight, double k0, double surcharge = 0.0);
 
 } // namespace mpile

@@ -53,13 +53,15 @@ std::size_t phase_of(const CaseSpec& spec, const std::string& name) {
 
 /// Seeds a body's region pass by pass: seed(y_lines, band) seeds the part of the region within the
 /// band on the grid with those y-lines (nullptr: the grid as it starts) and returns how many
-/// particles that gave. Below a moving band with a travel, the soil is seeded for the cells it
-/// will have with the band carried all the way down: the compressed lines drag finer cells into
-/// it, and a cell finer than the spacing of the particles seeded for the cells of the start can be
-/// left empty, which disconnects the soil above it from the soil below (it falls). A point's cells
-/// only get finer as the band moves down, so that seeding holds all along; above the band's start,
-/// the cells of the start are the finest a point sees. The split is a y-line of both grids, so no
-/// particle position lies on it.
+/// particles that gave. A cell finer than the spacing of the particles seeded in it can be left
+/// empty, which disconnects the soil above it from the soil below (it falls); so every point is
+/// seeded for the finest cells it will sit in while the band travels down. Above the band's start
+/// those are the cells of the start (lines there only stretch). Below it, a point the band reaches
+/// sits in the band's cells: the soil the band passes through is seeded in slices of the band's
+/// height, each for the band carried down onto it. Below the band's whole travel, a point's cells
+/// only get finer as the compressed lines drag finer cells into it: it is seeded for the band
+/// carried all the way down. Every split is a y-line of the grids on both sides, so no particle
+/// position lies on one.
 template <typename Seed>
 std::size_t seed_in_passes(const std::optional<MovingMesh>& mesh, const BodySpec& body,
                            Seed&& seed) {
@@ -67,11 +69,22 @@ std::size_t seed_in_passes(const std::optional<MovingMesh>& mesh, const BodySpec
     return seed(nullptr, SeedBand{});
   }
   const double split = mesh->reference_y[static_cast<std::size_t>(mesh->band_bottom)];
+  const double height = mesh->reference_y[static_cast<std::size_t>(mesh->band_top)] - split;
   const Rectangle& bounds = body.region.bounds();
   std::size_t added = 0;
-  if (bounds.y_min < split) {
-    const std::vector<double> lower = mesh->lines_at(-mesh->travel);
-    added += seed(&lower, SeedBand{-std::numeric_limits<double>::infinity(), split});
+  for (int slice = 1;; ++slice) {
+    // The band carried down `slice` heights (its travel at most) covers the slice below `top`.
+    const double top = split - (slice - 1) * height;
+    const double offset = std::max(-slice * height, -mesh->travel);
+    const bool lowest = offset <= -mesh->travel;
+    const SeedBand band{lowest ? -std::numeric_limits<double>::infinity() : split + offset, top};
+    if (bounds.y_min < band.y_to && bounds.y_max > band.y_from) {
+      const std::vector<double> lines = mesh->lines_at(offset);
+      added += seed(&lines, band);
+    }
+    if (lowest) {
+      break;
+    }
   }
   if (bounds.y_max > split) {
     added += seed(nullptr, SeedBand{split, std::numeric_limits<double>::infinity()});
@@ -130,6 +143,10 @@ MovingMesh moving_mesh_of(const MovingMeshSpec& spec, const GradedAxis& y) {
   };
   mesh.band_bottom = nearest(spec.band_bottom);
   mesh.band_top = nearest(spec.band_top);
+  if (spec.stretch) {
+    mesh.stretch_bottom = nearest((*spec.stretch)[0]);
+    mesh.stretch_top = nearest((*spec.stretch)[1]);
+  }
   const double cell = y.cell_size(mesh.band_bottom);
   mesh.travel = spec.travel > 0.0 ? std::ceil(spec.travel / cell - 1e-9) * cell : 0.0;
   return mesh;
@@ -316,7 +333,7 @@ void apply_k0(Scene& scene, const CaseSpec& spec, const PhaseSpec& phase) {
         const double unit_weight =
             scene.materials[material_of(spec, spec.bodies[b])]->density() * g;
         initialise_geostatic_stress(scene, static_cast<std::uint16_t>(b), k0.surface, unit_weight,
-                                    k0.k0);
+                                    k0.k0, k0.surcharge);
       }
     }
   }

@@ -430,6 +430,16 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
   if (table->has("travel")) {
     mesh.travel = table->positive("travel");
   }
+  if (table->has("stretch")) {
+    const auto stretch = table->numbers("stretch", 2);
+    if (!on_grid_line(axes.y, stretch[0]) || !on_grid_line(axes.y, stretch[1]) ||
+        !(stretch[0] < band[0]) || !(stretch[1] > band[1])) {
+      table->fail("stretch", "must be [y_bottom, y_top], both on y grid lines, below and above "
+                             "the band: the lines between them and the band are squeezed and "
+                             "stretched, those beyond stay put");
+    }
+    mesh.stretch = std::array<double, 2>{stretch[0], stretch[1]};
+  }
   table->finish();
   mesh.band_bottom = band[0];
   mesh.band_top = band[1];
@@ -629,6 +639,10 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
       K0Spec init;
       init.surface = k0.number("surface");
       init.k0 = k0.positive("k0");
+      init.surcharge = k0.number_or("surcharge", 0.0);
+      if (!(init.surcharge >= 0.0) || !std::isfinite(init.surcharge)) {
+        k0.fail("surcharge", "must be a finite pressure >= 0 (Pa)");
+      }
       k0.finish();
       bool found = false;
       for (const BodySpec& body : spec.bodies) {

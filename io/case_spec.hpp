@@ -95,6 +95,7 @@ struct K0Spec {
   std::string body;
   double surface = 0.0;
   double k0 = 0.5;
+  double surcharge = 0.0; // Pa on the surface (a calibration chamber's vertical stress)
 };
 
 /// Ends a phase once a rigid body has gone down by `penetration` (m, its total downward
@@ -136,6 +137,8 @@ struct MovingMeshSpec {
   double band_bottom = 0.0;
   double band_top = 0.0;
   double travel = 0.0; // m the band may move from where it starts; 0: up to the squeeze limit
+  /// Grid lines (y) beyond which no line moves; unset: the grid's bottom and top.
+  std::optional<std::array<double, 2>> stretch;
 };
 
 struct CaseSpec {

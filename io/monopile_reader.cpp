@@ -116,7 +116,7 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   spec.faces = {FaceCondition::free, FaceCondition::roller, FaceCondition::fixed,
                 FaceCondition::free};
   if (moving) {
-    spec.moving_mesh = MovingMeshSpec{"pile", g.band_bottom, g.band_top, p.travel};
+    spec.moving_mesh = MovingMeshSpec{"pile", g.band_bottom, g.band_top, p.travel, std::nullopt};
   }
   return drive;
 }

@@ -191,6 +191,9 @@ std::vector<BadInput> bad_inputs() {
       {"motion in an unknown phase",
        edited("velocity_y = {", "phase = \"install\"\nvelocity_y = {"),
        "prescribed[0].phase: no phase named 'install'", "phase = \"install\""},
+      {"negative surcharge",
+       edited("surface = 0.5, k0 = 0.5 }", "surface = 0.5, k0 = 0.5, surcharge = -1e3 }"),
+       "phases[0].k0[0].surcharge: must be a finite pressure >= 0 (Pa)", "k0 = [{"},
       {"negative snapshot interval",
        edited("snapshot_interval = 0.05", "snapshot_interval = -0.05"),
        "output.snapshot_interval: must not be negative", "snapshot_interval = -0.05"},
@@ -545,6 +548,19 @@ TEST(CaseReader, APhaseStopsAtThePenetrationOfABodyDeclaredRigidInItsOwnTable) {
   expect_rejected(
       {{"stop beyond the band's travel", banded,
         "phases[1].stop_at.penetration: is beyond the travel of the moving band", "stop_at = {"}});
+  // Stretch limits must be grid lines outside the band.
+  const std::string stretched =
+      contact_case + "\n[moving_mesh]\nbody = \"pile\"\nband = [0.3, 0.7]\nstretch = [0.1, 0.7]\n";
+  expect_rejected({{"stretch limit on the band", stretched,
+                    "moving_mesh.stretch: must be [y_bottom, y_top], both on y grid lines, below "
+                    "and above the band",
+                    "stretch = "}});
+  expect_rejected(
+      {{"stretch limit off the grid lines",
+        replaced(stretched, "stretch = [0.1, 0.7]", "stretch = [0.1, 0.85]"),
+        "moving_mesh.stretch: must be [y_bottom, y_top], both on y grid lines", "stretch = "}});
+  EXPECT_NO_THROW(
+      read_case_text(replaced(stretched, "stretch = [0.1, 0.7]", "stretch = [0.1, 0.9]"), "c"));
   // A body that is not rigid is still refused.
   expect_rejected({{"stop at a soil body",
                     contact_edited("name = \"drive\"\nduration = 0.1",

@@ -13,6 +13,27 @@
 namespace mpile {
 namespace {
 
+TEST(MovingMesh, LinesBeyondTheStretchLimitsStayPut) {
+  // A loaded surface at y = 6 above the band: only [4, 6] stretches, the lines above stay.
+  MovingMesh mesh;
+  mesh.reference_y = {0.0, 1.0, 2.0, 3.0, 3.5, 4.0, 5.0, 6.0, 8.0, 10.0};
+  mesh.band_bottom = 3;
+  mesh.band_top = 5;
+  mesh.stretch_bottom = 1; // y = 1 and below stay put
+  mesh.stretch_top = 7;    // y = 6 and above stay put
+  const std::vector<double> lines = mesh.lines_at(-0.6);
+  // Below: [1, 3] onto [1, 2.4], a factor 0.7; above: [4, 6] onto [3.4, 6], 1.3.
+  const std::vector<double> expected = {0.0, 1.0, 1.7, 2.4, 2.9, 3.4, 3.4 + 1.3, 6.0, 8.0, 10.0};
+  ASSERT_EQ(lines.size(), expected.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_NEAR(lines[i], expected[i], 1e-14) << "line " << i;
+  }
+  // The squeeze limit counts from the stretch limit: [1, 3] may shrink to 0.2, not [0, 3] to 0.3.
+  EXPECT_NO_THROW(mesh.lines_at(-1.75));
+  EXPECT_THROW(mesh.lines_at(-1.85), std::runtime_error);
+  EXPECT_THROW(mesh.lines_at(1.85), std::runtime_error);
+}
+
 TEST(MovingMesh, BandTranslatesAndTheZonesBesideItDeformLinearly) {
   MovingMesh mesh;
   mesh.reference_y = {0.0, 1.0, 2.0, 3.0, 3.5, 4.0, 6.0, 10.0};
@@ -248,6 +269,43 @@ TEST(MovingMesh, SoilBelowTheBandIsSeededForTheCellsItWillHave) {
   const std::string short_travel = replaced(replaced(text, "travel = 0.75", "travel = 0.025"),
                                             "penetration = 0.6", "penetration = 0.02");
   EXPECT_EQ(fewest_particles_below_the_band(short_travel, 0.6), 0u);
+}
+
+TEST(MovingMesh, SoilTheBandPassesThroughKeepsParticlesInEveryCell) {
+  // The CPT chamber carries its band (0.27 m high) 0.62 m down: soil below the band's start first
+  // sits in the band's fine cells, then in the stretched cells above it. Seeded for the cells at
+  // the end of the travel (coarse there), rows of the band's cells passing through it were empty
+  // and the soil above them fell in the first steps; seeded slice by slice for the band carried
+  // onto it, no cell of the chamber is empty at any depth the band reaches.
+  const std::string text = read_text(source / "cases/cpt/cpt_r4.toml");
+  CaseRun run(text);
+  Scene& scene = *run.scene;
+  MovingMesh mesh = *scene.moving_mesh;
+  const double surface = 2.2, rod_radius = 0.0357 / 2.0;
+  ASSERT_GT(mesh.travel, 0.6);
+  const Particles& p = scene.particles;
+  for (double carried = 0.0; carried <= mesh.travel; carried += 0.01) {
+    scene.grid.set_y_nodes(mesh.lines_at(-carried));
+    const Grid& grid = scene.grid;
+    std::vector<std::size_t> count(static_cast<std::size_t>(grid.cells_r() * grid.cells_y()), 0);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.body[i] == 0) {
+        ++count[static_cast<std::size_t>(grid.r_axis().locate(p.r[i]) +
+                                         grid.cells_r() * grid.y_axis().locate(p.y[i]))];
+      }
+    }
+    std::size_t empty = 0;
+    for (int cy = 0; cy < grid.cells_y() && grid.y_axis().node(cy + 1) <= surface + 1e-12; ++cy) {
+      for (int cr = 0; cr < grid.cells_r(); ++cr) {
+        // Soil cells away from the rod (its cells are the rod's or cut by the cone).
+        if (grid.r_axis().node(cr) >= rod_radius - 1e-12 &&
+            count[static_cast<std::size_t>(cr + grid.cells_r() * cy)] == 0) {
+          ++empty;
+        }
+      }
+    }
+    EXPECT_EQ(empty, 0u) << "band carried " << carried << " m";
+  }
 }
 
 TEST(MovingMesh, CarryingTheBandBeyondItsTravelStopsTheRun) {

@@ -1,0 +1,210 @@
+#!/usr/bin/env python3
+"""Writes the CPT calibration-chamber cases cpt_r<N>.toml (N cells per cone radius).
+
+The standard cone (ISO 22476-1: 35.7 mm, 60 degree apex, a 133.7 mm friction sleeve right above
+it) jacked into the seed paper's Hardening Soil sand (Table 5) in a chamber at a uniform vertical
+effective stress of 50 kPa (the seed's CPT, section 2.4) and K0 = 0.5. Gravity is off: the stress
+comes from a surcharge on the surface and the K0 procedure, so sigma'_v0 is the same at every depth
+the cone passes. The rod is wished in place with its tip 0.3 m below the surface and jacked 0.6 m
+(17 diameters) at constant velocity.
+
+The grid is fine (R / N) in a band that moves with the cone, from 4 radii below the tip to 2 radii
+above the sleeve, and in r out to 3 radii; it grows by 1.15 per cell to 50 mm away from them.
+Lines above the band stretch up to the loaded surface, which stays put; above it there is only the
+rod. Run `python3 cases/cpt/make_cases.py` to rewrite the files after changing this script.
+"""
+import math
+import pathlib
+
+RADIUS = 0.0357 / 2.0  # m, cone radius (10 cm^2 cone)
+CONE_HEIGHT = RADIUS * math.sqrt(3.0)  # 60 degree apex: tan 30 deg = R / height
+SLEEVE = 0.1337  # m, 150 cm^2 / (pi 35.7 mm)
+CHAMBER_RADIUS = 0.6  # m, 34 cone radii
+SURFACE = 2.2  # m, the loaded soil surface; the base is at y = 0
+EMBEDMENT = 0.3  # m, initial depth of the cone tip
+PENETRATION = 0.6  # m jacked
+HEAD_ROOM = 0.7  # m of rod above the surface (more than the penetration)
+COARSE = 0.05  # m, the largest cell
+GROWTH = 1.15
+SPEED = 0.5  # m/s, with mass scaling 100 (docs/cpt.md: the rate study)
+
+
+def graded(start, end, near, largest, growth):
+    """Cells from start towards end (either direction): `near`, growing by `growth` up to
+    `largest`, scaled to land on end. Returns the cell sizes in the order they are laid."""
+    length = abs(end - start)
+    sizes = []
+    h = near
+    while sum(sizes) + h < length:
+        sizes.append(h)
+        h = min(h * growth, largest)
+    # The remainder is spread over the cells laid, so no sliver cell is left.
+    scale = length / sum(sizes) if sizes else 1.0
+    return [s * scale for s in sizes] if sizes else [length]
+
+
+def zones(nodes):
+    """TOML zones of one cell each between consecutive nodes, merged where uniform."""
+    out = []
+    for a, b in zip(nodes[:-1], nodes[1:]):
+        h = b - a
+        if out and abs(out[-1][2] - h) < 1e-12 * max(1.0, h):
+            out[-1][1] = b
+            out[-1][3] += 1
+        else:
+            out.append([a, b, h, 1])
+    return ",\n  ".join(
+        f"{{ start = {a:.10g}, end = {b:.10g}, cells = {n} }}" for a, b, _, n in out
+    )
+
+
+def axis(pieces):
+    """Node coordinates from (start, list of cell sizes) pieces laid end to end."""
+    nodes = [pieces[0][0]]
+    for _, sizes in pieces:
+        for s in sizes:
+            nodes.append(nodes[-1] + s)
+    return nodes
+
+
+def case(n):
+    h = RADIUS / n
+    tip = SURFACE - EMBEDMENT
+    shoulder = tip + CONE_HEIGHT
+    sleeve_top = shoulder + SLEEVE
+    band_bottom = tip - 4.0 * RADIUS
+    band_top = sleeve_top + 2.0 * RADIUS
+    # Band lines on multiples of h from the tip, so that the tip is a grid line.
+    below_cells = math.ceil((tip - band_bottom) / h - 1e-9)
+    above_cells = math.ceil((band_top - tip) / h - 1e-9)
+    band_bottom = tip - below_cells * h
+    band_top = tip + above_cells * h
+    top = SURFACE + HEAD_ROOM
+
+    below = graded(band_bottom, 0.0, h, COARSE, GROWTH)
+    y_nodes = axis([(0.0, list(reversed(below)))])
+    y_nodes[-1] = band_bottom
+    y_nodes += [band_bottom + k * h for k in range(1, below_cells + above_cells + 1)]
+    y_nodes[-1] = band_top
+    for s in graded(band_top, SURFACE, h, COARSE, GROWTH):
+        y_nodes.append(y_nodes[-1] + s)
+    y_nodes[-1] = SURFACE
+    for s in graded(SURFACE, top, 2.0 * h, COARSE, GROWTH):
+        y_nodes.append(y_nodes[-1] + s)
+    y_nodes[-1] = top
+
+    fine = 3 * n  # cells across the first 3 radii
+    r_nodes = [k * h for k in range(fine + 1)]
+    r_nodes[-1] = 3.0 * RADIUS
+    for s in graded(3.0 * RADIUS, CHAMBER_RADIUS, h, COARSE, GROWTH):
+        r_nodes.append(r_nodes[-1] + s)
+    r_nodes[-1] = CHAMBER_RADIUS
+
+    f = lambda x: f"{x:.10g}"  # noqa: E731
+    rod = [(0.0, tip), (RADIUS, shoulder), (RADIUS, sleeve_top), (RADIUS, top), (0.0, top)]
+    soil = [
+        (0.0, 0.0),
+        (CHAMBER_RADIUS, 0.0),
+        (CHAMBER_RADIUS, SURFACE),
+        (RADIUS, SURFACE),
+        (RADIUS, shoulder),
+        (0.0, tip),
+    ]
+    polygon = lambda pts: "[" + ", ".join(f"[{f(r)}, {f(y)}]" for r, y in pts) + "]"  # noqa: E731
+    return f"""# CPT in a calibration chamber, {n} cells per cone radius. Written by cases/cpt/make_cases.py
+# (its docstring gives the set-up); docs/cpt.md has the runs and what sets q_c.
+title = "CPT, sigma'_v0 = 50 kPa, {n} cells per cone radius"
+geometry = "axisymmetric"
+
+[grid]
+r = [
+  {zones(r_nodes)}
+]
+y = [
+  {zones(y_nodes)}
+]
+
+[materials.sand]   # the seed's Table 5, as cases/monopile/jacked_quick.toml
+type = "hardening_soil"
+e50_ref = 44e6
+eoed_ref = 44e6
+eur_ref = 132e6
+power = 0.47
+poisson_ur = 0.2
+k0_nc = 0.5
+failure_ratio = 0.91
+p_ref = 100e3
+friction_angle = 37.5
+dilatancy_angle = 0.0
+density = 1656.25
+
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 210e9
+poisson_ratio = 0.3
+density = 7850.0
+
+[[bodies]]
+name = "chamber"
+material = "sand"
+region = {{ polygon = {polygon(soil)} }}
+
+# The cone (60 degrees), its friction sleeve and the rod, as one rigid polygon from the tip.
+[[bodies]]
+name = "cone"
+material = "steel"
+region = {{ polygon = {polygon(rod)} }}
+
+[bodies.rigid]
+phase = "penetration"
+velocity_y = {{ type = "ramp", value = {-SPEED}, duration = 0.01 }}
+
+[[contact]]
+structure = "cone"
+friction = 0.4     # tan 21.8 deg, as the seed's pile
+surfaces = ["cone", "sleeve", "shaft", "", ""]
+
+[moving_mesh]
+body = "cone"
+band = [{f(band_bottom)}, {f(band_top)}]
+stretch = [0.0, {f(SURFACE)}]   # the loaded surface stays put
+travel = {PENETRATION + 0.02}
+
+[boundaries]
+r_max = "roller"
+y_min = "roller"
+
+# The surcharge: sigma'_v0 = 50 kPa on the surface, beside the rod.
+[[loads]]
+name = "surcharge"
+nodes = {{ y = {f(SURFACE)}, r = [{f(r_nodes[n + 1])}, {f(CHAMBER_RADIUS)}] }}
+component = "y"
+traction = -50e3
+
+[solver]
+gravity = [0.0, 0.0]
+courant_number = 0.8
+
+[[phases]]
+name = "chamber"
+duration = 0.05
+local_damping = 0.7
+equilibrium_tolerance = 0.01
+k0 = [{{ body = "chamber", surface = {f(SURFACE)}, surcharge = 50e3, k0 = 0.5 }}]
+
+[[phases]]
+name = "penetration"
+duration = {PENETRATION / SPEED + 0.2:.3g}
+stop_at = {{ body = "cone", penetration = {PENETRATION} }}
+mass_scaling = 100.0
+
+[output]
+history_interval = 0.002
+snapshot_penetrations = [0.1, 0.3, 0.6]
+"""
+
+
+if __name__ == "__main__":
+    here = pathlib.Path(__file__).parent
+    for n in (4, 6, 8):
+        (here / f"cpt_r{n}.toml").write_text(case(n))
