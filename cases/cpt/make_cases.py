@@ -8,6 +8,8 @@ comes from a surcharge on the surface and the K0 procedure, so sigma'_v0 is the 
 the cone passes. The rod is wished in place with its tip 0.3 m below the surface and jacked 0.6 m
 (17 diameters) at constant velocity.
 
+cpt_coarse.toml is the suite's regression case (2 cells per radius, 0.15 m).
+
 The grid is fine (R / N) in a band that moves with the cone, from 4 radii below the tip to 2 radii
 above the sleeve, and in r out to 3 radii; it grows by 1.15 per cell to 50 mm away from them.
 Lines above the band stretch up to the loaded surface, which stays put; above it there is only the
@@ -67,10 +69,11 @@ def axis(pieces):
     return nodes
 
 
-def case(n):
+def case(n, penetration=PENETRATION, flat=False, friction=0.4, speed=SPEED, mass_scaling=100.0):
+    """The case text; flat, friction, speed and mass_scaling vary it for docs/cpt.md's study."""
     h = RADIUS / n
     tip = SURFACE - EMBEDMENT
-    shoulder = tip + CONE_HEIGHT
+    shoulder = tip + (0.0 if flat else CONE_HEIGHT)
     sleeve_top = shoulder + SLEEVE
     band_bottom = tip - 4.0 * RADIUS
     band_top = sleeve_top + 2.0 * RADIUS
@@ -102,6 +105,8 @@ def case(n):
 
     f = lambda x: f"{x:.10g}"  # noqa: E731
     rod = [(0.0, tip), (RADIUS, shoulder), (RADIUS, sleeve_top), (RADIUS, top), (0.0, top)]
+    if flat:
+        rod[1] = (RADIUS, tip + 1e-9 * RADIUS)  # the base as an edge of its own
     soil = [
         (0.0, 0.0),
         (CHAMBER_RADIUS, 0.0),
@@ -110,6 +115,8 @@ def case(n):
         (RADIUS, shoulder),
         (0.0, tip),
     ]
+    if flat:
+        soil[4:] = [(RADIUS, tip), (0.0, tip)]
     polygon = lambda pts: "[" + ", ".join(f"[{f(r)}, {f(y)}]" for r, y in pts) + "]"  # noqa: E731
     return f"""# CPT in a calibration chamber, {n} cells per cone radius. Written by cases/cpt/make_cases.py
 # (its docstring gives the set-up); docs/cpt.md has the runs and what sets q_c.
@@ -157,18 +164,18 @@ region = {{ polygon = {polygon(rod)} }}
 
 [bodies.rigid]
 phase = "penetration"
-velocity_y = {{ type = "ramp", value = {-SPEED}, duration = 0.01 }}
+velocity_y = {{ type = "ramp", value = {-speed}, duration = 0.01 }}
 
 [[contact]]
 structure = "cone"
-friction = 0.4     # tan 21.8 deg, as the seed's pile
+friction = {friction}     # tan 21.8 deg, as the seed's pile
 surfaces = ["cone", "sleeve", "shaft", "", ""]
 
 [moving_mesh]
 body = "cone"
 band = [{f(band_bottom)}, {f(band_top)}]
 stretch = [0.0, {f(SURFACE)}]   # the loaded surface stays put
-travel = {PENETRATION + 0.02}
+travel = {penetration + 0.02:.3g}
 
 [boundaries]
 r_max = "roller"
@@ -194,17 +201,26 @@ k0 = [{{ body = "chamber", surface = {f(SURFACE)}, surcharge = 50e3, k0 = 0.5 }}
 
 [[phases]]
 name = "penetration"
-duration = {PENETRATION / SPEED + 0.2:.3g}
-stop_at = {{ body = "cone", penetration = {PENETRATION} }}
-mass_scaling = 100.0
+duration = {penetration / speed + 0.2:.3g}
+stop_at = {{ body = "cone", penetration = {penetration} }}
+mass_scaling = {mass_scaling}
 
 [output]
 history_interval = 0.002
-snapshot_penetrations = [0.1, 0.3, 0.6]
+snapshot_penetrations = {[d for d in (0.1, 0.3, 0.6) if d <= penetration]}
 """
 
 
 if __name__ == "__main__":
+    import sys
+
+    if len(sys.argv) > 1:  # a variant: make_cases.py OUT.toml N PENETRATION [key=value ...]
+        options = dict(arg.split("=") for arg in sys.argv[4:])
+        options = {k: (v == "true") if k == "flat" else float(v) for k, v in options.items()}
+        pathlib.Path(sys.argv[1]).write_text(case(int(sys.argv[2]), float(sys.argv[3]), **options))
+        sys.exit(0)
     here = pathlib.Path(__file__).parent
     for n in (4, 6, 8):
         (here / f"cpt_r{n}.toml").write_text(case(n))
+    # The suite's regression case: 2 cells per radius, jacked 0.15 m (tests/python_tools.cmake).
+    (here / "cpt_coarse.toml").write_text(case(2, 0.15))
