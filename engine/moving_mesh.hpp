@@ -27,14 +27,9 @@ struct MovingMesh {
   double travel = 0.0;
 
   /// The y-lines for a body displaced by `offset` (m) from its initial position. Throws
-  /// std::runtime_error when the band would move beyond its travel, or reach the bottom or the
-  /// top of the grid.
+  /// std::runtime_error when the band would move beyond its travel, or squeeze a zone between it
+  /// and a stretch limit (the grid's bottom or top by default) to a tenth.
   std::vector<double> lines_at(double offset) const;
-
-  /// How far the band can move down (negative) and up before a zone between it and the grid's
-  /// edge collapses.
-  double lowest_offset() const { return lower_limit() - reference_y[index(band_bottom)]; }
-  double highest_offset() const { return upper_limit() - reference_y[index(band_top)]; }
 
 private:
   static std::size_t index(int i) { return static_cast<std::size_t>(i); }

@@ -22,7 +22,7 @@ namespace {
 // Shapes.
 
 TEST(RegionPolygon, AClockwisePolygonIsStoredCounterClockwiseWithItsEdgesMapped) {
-  // A unit square with a notch-free extra vertex, given clockwise.
+  // A unit square given clockwise.
   const Region region = Region::polygon({{0.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}, {1.0, 0.0}});
   EXPECT_DOUBLE_EQ(region.area(), 1.0);
   EXPECT_GT(signed_area(region.vertices()), 0.0);

@@ -74,8 +74,8 @@ TEST(Surcharge, AChamberUnderItsSurchargeStaysInEquilibrium) {
             << ", largest deviation / q " << anywhere / q << " (" << interior / q
             << " two cells or more from the axis and the side)\n";
   // Statics: the volume integral of sigma_yy is the moment of the surface load, -q V: the mean
-  // vertical stress is -q exactly once the chamber is at rest (damped, 0.4 % of kinetic energy left
-  // at most; 0.1 % allows it).
+  // vertical stress is -q exactly once the chamber is at rest. Measured 1.2e-5 of q; 0.1 % leaves
+  // room for what motion the damped phase has not yet taken out.
   EXPECT_NEAR(vertical / volume, -q, 1e-3 * q);
   // Away from the axis and the side the state stays the uniform one (0.5 % of q, the disturbance
   // travelling in from the corners in the 0.02 s). At the surface beside the axis it cannot: the

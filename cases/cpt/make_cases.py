@@ -60,12 +60,11 @@ def zones(nodes):
     )
 
 
-def axis(pieces):
-    """Node coordinates from (start, list of cell sizes) pieces laid end to end."""
-    nodes = [pieces[0][0]]
-    for _, sizes in pieces:
-        for s in sizes:
-            nodes.append(nodes[-1] + s)
+def lay(nodes, sizes, end):
+    """Appends nodes for cells of these sizes after nodes[-1], the last one exactly at end."""
+    for size in sizes:
+        nodes.append(nodes[-1] + size)
+    nodes[-1] = end
     return nodes
 
 
@@ -85,28 +84,18 @@ def case(n, penetration=PENETRATION, flat=False, friction=0.4, speed=SPEED, mass
     top = SURFACE + HEAD_ROOM
 
     below = graded(band_bottom, 0.0, h, COARSE, GROWTH)
-    y_nodes = axis([(0.0, list(reversed(below)))])
-    y_nodes[-1] = band_bottom
-    y_nodes += [band_bottom + k * h for k in range(1, below_cells + above_cells + 1)]
-    y_nodes[-1] = band_top
-    for s in graded(band_top, SURFACE, h, COARSE, GROWTH):
-        y_nodes.append(y_nodes[-1] + s)
-    y_nodes[-1] = SURFACE
-    for s in graded(SURFACE, top, 2.0 * h, COARSE, GROWTH):
-        y_nodes.append(y_nodes[-1] + s)
-    y_nodes[-1] = top
+    y_nodes = lay([0.0], reversed(below), band_bottom)
+    lay(y_nodes, [h] * (below_cells + above_cells), band_top)
+    lay(y_nodes, graded(band_top, SURFACE, h, COARSE, GROWTH), SURFACE)
+    lay(y_nodes, graded(SURFACE, top, 2.0 * h, COARSE, GROWTH), top)
 
     fine = 3 * n  # cells across the first 3 radii
-    r_nodes = [k * h for k in range(fine + 1)]
-    r_nodes[-1] = 3.0 * RADIUS
-    for s in graded(3.0 * RADIUS, CHAMBER_RADIUS, h, COARSE, GROWTH):
-        r_nodes.append(r_nodes[-1] + s)
-    r_nodes[-1] = CHAMBER_RADIUS
+    r_nodes = lay([0.0], [h] * fine, 3.0 * RADIUS)
+    lay(r_nodes, graded(3.0 * RADIUS, CHAMBER_RADIUS, h, COARSE, GROWTH), CHAMBER_RADIUS)
 
     f = lambda x: f"{x:.10g}"  # noqa: E731
+    # Flat-ended, the shoulder is at the tip and the edge named "cone" is the rod's base.
     rod = [(0.0, tip), (RADIUS, shoulder), (RADIUS, sleeve_top), (RADIUS, top), (0.0, top)]
-    if flat:
-        rod[1] = (RADIUS, tip + 1e-9 * RADIUS)  # the base as an edge of its own
     soil = [
         (0.0, 0.0),
         (CHAMBER_RADIUS, 0.0),
@@ -115,8 +104,6 @@ def case(n, penetration=PENETRATION, flat=False, friction=0.4, speed=SPEED, mass
         (RADIUS, shoulder),
         (0.0, tip),
     ]
-    if flat:
-        soil[4:] = [(RADIUS, tip), (0.0, tip)]
     polygon = lambda pts: "[" + ", ".join(f"[{f(r)}, {f(y)}]" for r, y in pts) + "]"  # noqa: E731
     return f"""# CPT in a calibration chamber, {n} cells per cone radius. Written by cases/cpt/make_cases.py
 # (its docstring gives the set-up); docs/cpt.md has the runs and what sets q_c.
