@@ -64,6 +64,28 @@ void StructureOutline::rotate(double angle, double r, double y) {
   }
 }
 
+std::vector<SurfaceAreas> surface_areas(const StructureOutline& outline, std::size_t surfaces,
+                                        GeometryMode mode) {
+  std::vector<SurfaceAreas> areas(surfaces);
+  const bool axisymmetric = mode == GeometryMode::axisymmetric;
+  const std::size_t edges = outline.vertices.size();
+  for (std::size_t e = 0; e < edges; ++e) {
+    const int surface = outline.edge_surface[e];
+    if (surface < 0 || static_cast<std::size_t>(surface) >= surfaces) {
+      continue;
+    }
+    const auto& a = outline.vertices[e];
+    const auto& b = outline.vertices[(e + 1) % edges];
+    // r is linear along the edge: the integral of r |dy| is |dy| times the mean radius, and that
+    // of r |dr| is |r_b^2 - r_a^2| / 2.
+    const double dr = std::abs(b[0] - a[0]);
+    const double dy = std::abs(b[1] - a[1]);
+    areas[surface].plan += axisymmetric ? 0.5 * std::abs(b[0] * b[0] - a[0] * a[0]) : dr;
+    areas[surface].side += axisymmetric ? dy * 0.5 * (a[0] + b[0]) : dy;
+  }
+  return areas;
+}
+
 OutlineDistance::OutlineDistance(const StructureOutline& outline) {
   const std::size_t edges = outline.vertices.size();
   for (std::size_t e = 0; e < edges; ++e) {

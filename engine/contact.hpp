@@ -120,6 +120,20 @@ struct ContactPair {
 /// resultant; a node at a corner gets the area-weighted mean normal of its edges.
 void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair);
 
+/// The areas of one contact surface that unit resistances are taken over (m^2, per radian in
+/// axisymmetric mode, per metre in plane strain): its plan area, the projection on a horizontal
+/// plane (integral of r |dr| along its edges), over which an end bearing is quoted (a cone's q_c,
+/// a pile tip's q_b); and its side area, the projection on a vertical cylinder (integral of r
+/// |dy|), over which a shaft friction is quoted (a CPT sleeve's f_s).
+struct SurfaceAreas {
+  double plan = 0.0;
+  double side = 0.0;
+};
+
+/// Those areas for each of `surfaces` surfaces of the outline, exact for its straight edges.
+std::vector<SurfaceAreas> surface_areas(const StructureOutline& outline, std::size_t surfaces,
+                                        GeometryMode mode);
+
 /// Normal and surface of a node the outline gives no area (a structure node off its outline):
 /// those of the nearest edge (of surface `only_surface` when it is not negative).
 std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,

@@ -1,5 +1,6 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
+#include "engine/contact.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_spec.hpp"
 #include "io/monopile_reader.hpp"
@@ -681,6 +682,55 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
   }
 }
 
+/// [output.cpt]: the cone and sleeve must be surfaces of a structure's outline with the areas
+/// their resistances are quoted over.
+OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
+  OutputSpec::Cpt cpt;
+  std::vector<std::string> outlined;
+  for (const ContactSpec& c : spec.contacts) {
+    if (c.outline) {
+      outlined.push_back(c.structure);
+    }
+  }
+  cpt.body = table.string_or("body", outlined.size() == 1 ? outlined[0] : "");
+  cpt.cone = table.string_or("cone", cpt.cone);
+  cpt.sleeve = table.string_or("sleeve", cpt.sleeve);
+  table.finish(); // a misspelt key is named before what its absence caused
+  if (spec.mode != GeometryMode::axisymmetric) {
+    table.fail("cone", "a cone penetration test is axisymmetric: set geometry to "
+                       "\"axisymmetric\"");
+  }
+  const auto contact = std::find_if(spec.contacts.begin(), spec.contacts.end(),
+                                    [&](const ContactSpec& c) { return c.structure == cpt.body; });
+  if (contact == spec.contacts.end() || !contact->outline) {
+    table.fail("body", "must name the contact structure that is the cone, with outline normals" +
+                           std::string(cpt.body.empty() ? "" : " (got '" + cpt.body + "')"));
+  }
+  if (cpt.cone == cpt.sleeve) {
+    table.fail("sleeve", "must be another surface than the cone's ('" + cpt.cone + "')");
+  }
+  // Surface 0 is the cone, 1 the sleeve, -1 every other edge.
+  std::vector<int> edges;
+  for (const std::string& name : contact->surfaces) {
+    edges.push_back(name == cpt.cone ? 0 : name == cpt.sleeve ? 1 : -1);
+  }
+  const BodySpec& body = *std::find_if(spec.bodies.begin(), spec.bodies.end(),
+                                       [&](const BodySpec& b) { return b.name == cpt.body; });
+  const std::vector<SurfaceAreas> areas =
+      surface_areas(region_outline(body.region, spec.mode, edges), 2, spec.mode);
+  if (!(areas[0].plan > 0.0)) {
+    table.fail("cone", "'" + cpt.cone + "' is no surface of '" + cpt.body +
+                           "' with a plan area (its horizontal projection, over which q_c is "
+                           "quoted)");
+  }
+  if (!(areas[1].side > 0.0)) {
+    table.fail("sleeve", "'" + cpt.sleeve + "' is no surface of '" + cpt.body +
+                             "' with a side area (its vertical projection, over which f_s is "
+                             "quoted)");
+  }
+  return cpt;
+}
+
 void read_output(TomlTable& top, CaseSpec& spec) {
   std::optional<TomlTable> table = top.optional_table("output");
   if (!table) {
@@ -722,6 +772,9 @@ void read_output(TomlTable& top, CaseSpec& spec) {
     if (std::find(rigid.begin(), rigid.end(), out.penetration_body) == rigid.end()) {
       table->fail("penetration_body", "must name the rigid body whose penetration counts");
     }
+  }
+  if (std::optional<TomlTable> cpt = table->optional_table("cpt")) {
+    out.cpt = read_cpt_output(*cpt, spec);
   }
   table->finish();
 }

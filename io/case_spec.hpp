@@ -129,6 +129,13 @@ struct OutputSpec {
   /// Snapshots when a rigid body's downward displacement reaches these depths (m).
   std::vector<double> snapshot_penetrations;
   std::string penetration_body;
+  /// A cone penetration test's q_c, f_s and R_f in the history ([output.cpt]).
+  struct Cpt {
+    std::string body;              // the contact structure that is the cone
+    std::string cone = "cone";     // its surface whose F_y over its plan area is q_c
+    std::string sleeve = "sleeve"; // its surface whose F_y over its side area is f_s
+  };
+  std::optional<Cpt> cpt;
 };
 
 /// y-lines between band_bottom and band_top (grid lines) move with a rigid body.

@@ -1,6 +1,8 @@
 #include "io/history_writer.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <limits>
 
 namespace mpile {
 
@@ -78,6 +80,7 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
       }
     }
   }
+  add_unit_resistances(spec, scene);
   for (const RigidBody& body : scene.rigid_bodies) {
     const std::string base = "/bodies/" + dataset_name(body.name);
     if (!theta) {
@@ -96,6 +99,49 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
     series(base + "/driving_torque", u.moment);
   }
   file_->flush();
+}
+
+void HistoryWriter::add_unit_resistances(const CaseSpec& spec, const Scene& scene) {
+  const std::string area_unit = scene.mode == GeometryMode::axisymmetric ? "m^2/rad" : "m^2/m";
+  for (std::size_t p = 0; p < scene.contacts.size(); ++p) {
+    const ContactPair& pair = scene.contacts[p];
+    if (!pair.outline) {
+      continue;
+    }
+    const std::vector<SurfaceAreas> areas =
+        surface_areas(*pair.outline, pair.surfaces.size(), scene.mode);
+    for (std::size_t q = 0; q < pair.surfaces.size(); ++q) {
+      const std::string base =
+          "/reactions/" + dataset_name(pair.name) + "/" + dataset_name(pair.surfaces[q]);
+      if (!reopened_) {
+        file_->set_attribute(base, "plan_area", areas[q].plan);
+        file_->set_attribute(base, "side_area", areas[q].side);
+        file_->set_attribute(base, "area_unit", area_unit);
+      }
+      if (areas[q].plan > 0.0) {
+        end_resistances_.push_back({base + "/unit_end_resistance", p, q, areas[q].plan});
+        series(end_resistances_.back().dataset, "Pa");
+      }
+    }
+    if (spec.output.cpt && spec.output.cpt->body == pair.name) {
+      const auto index = [&](const std::string& name) {
+        return static_cast<std::size_t>(
+            std::find(pair.surfaces.begin(), pair.surfaces.end(), name) - pair.surfaces.begin());
+      };
+      // The reader checked both surfaces and their areas.
+      const std::size_t cone = index(spec.output.cpt->cone);
+      const std::size_t sleeve = index(spec.output.cpt->sleeve);
+      cpt_ = {UnitResistance{"/cpt/q_c", p, cone, areas[cone].plan},
+              UnitResistance{"/cpt/f_s", p, sleeve, areas[sleeve].side}};
+      series("/cpt/q_c", "Pa");
+      series("/cpt/f_s", "Pa");
+      series("/cpt/R_f", "-");
+    }
+  }
+}
+
+double HistoryWriter::UnitResistance::of(const Scene& scene) const {
+  return scene.contacts[pair].surface_force[surface][1] / area;
 }
 
 Hdf5Series& HistoryWriter::series(const std::string& name, const std::string& unit) {
@@ -144,6 +190,17 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
         series_.at(base + "/M_theta").append(pair.surface_torque[q]);
       }
     }
+  }
+  for (const UnitResistance& end : end_resistances_) {
+    series_.at(end.dataset).append(end.of(scene));
+  }
+  if (cpt_) {
+    const double q_c = (*cpt_)[0].of(scene);
+    const double f_s = (*cpt_)[1].of(scene);
+    series_.at("/cpt/q_c").append(q_c);
+    series_.at("/cpt/f_s").append(f_s);
+    // No ratio before the cone bears.
+    series_.at("/cpt/R_f").append(q_c > 0.0 ? f_s / q_c : std::numeric_limits<double>::quiet_NaN());
   }
   for (const RigidBody& body : scene.rigid_bodies) {
     const std::string base = "/bodies/" + dataset_name(body.name);

@@ -7,12 +7,14 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace mpile {
 
 /// history.h5 of a run: extendible series of time, step size, energies and the reactions of every
-/// named boundary condition, each with a unit attribute; the root carries the case text, program
+/// named boundary condition and contact surface (with end resistances, and a CPT's q_c, f_s and
+/// R_f), each with a unit attribute; the root carries the case text, program
 /// version, thread count, wall time and how the run ended. Flushed at least every two seconds of
 /// wall time, so an interrupted run leaves a readable file.
 class HistoryWriter {
@@ -35,7 +37,21 @@ public:
   void close(double wall_seconds, const std::string& status, const ResidualSummary& residual);
 
 private:
+  /// Every outlined surface's plan and side areas as attributes and its vertical force over its
+  /// plan area (where it has one) as unit_end_resistance; the CPT's series when asked.
+  void add_unit_resistances(const CaseSpec& spec, const Scene& scene);
   Hdf5Series& series(const std::string& name, const std::string& unit);
+
+  /// A surface's vertical force over one of its areas (Pa): a unit resistance.
+  struct UnitResistance {
+    std::string dataset;
+    std::size_t pair = 0;
+    std::size_t surface = 0;
+    double area = 0.0;
+    double of(const Scene& scene) const;
+  };
+  std::vector<UnitResistance> end_resistances_;
+  std::optional<std::array<UnitResistance, 2>> cpt_; // q_c, f_s
 
   std::unique_ptr<Hdf5File> file_;
   std::map<std::string, Hdf5Series> series_;

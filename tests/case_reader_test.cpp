@@ -370,6 +370,21 @@ std::vector<BadInput> bad_contact_inputs() {
        contact_edited("region = { r = [0.4, 0.6], y = [0.5, 1.0] }",
                       "region = { circle = { centre = [0.5, 0.75], radius = 0.1 } }"),
        "contact[0].surfaces: body 'pile' is a circle, outlined as one surface", "surfaces = "},
+      {"CPT cone without a plan area",
+       contact_case + "\n[output.cpt]\ncone = \"outer_shaft\"\nsleeve = \"inner_shaft\"\n",
+       "output.cpt.cone: 'outer_shaft' is no surface of 'pile' with a plan area", "cone = "},
+      {"CPT sleeve that is no surface",
+       contact_case + "\n[output.cpt]\ncone = \"tip\"\nsleeve = \"sleeve\"\n",
+       "output.cpt.sleeve: 'sleeve' is no surface of 'pile' with a side area", "sleeve = "},
+      {"CPT body that is soil", contact_case + "\n[output.cpt]\nbody = \"soil\"\ncone = \"tip\"\n",
+       "output.cpt.body: must name the contact structure that is the cone, with outline normals "
+       "(got 'soil')",
+       "body = \"soil\""},
+      {"CPT cone and sleeve one surface",
+       contact_case + "\n[output.cpt]\ncone = \"tip\"\nsleeve = \"tip\"\n",
+       "output.cpt.sleeve: must be another surface than the cone's ('tip')", "sleeve = "},
+      {"misspelt CPT key", contact_case + "\n[output.cpt]\ncnoe = \"tip\"\n",
+       "output.cpt.cnoe: unknown key", "cnoe = "},
       {"prescribed motion on a rigid body",
        contact_case + "\n[[prescribed]]\nname = \"head\"\nbody = \"pile\"\nnodes = { y = 1.0 }\n"
                       "velocity_y = -0.01\n",
@@ -482,6 +497,15 @@ TEST(CaseReader, TheContactCaseReads) {
   EXPECT_DOUBLE_EQ(spec.bodies[1].rigid->mass, 650.0);
   EXPECT_EQ(spec.bodies[1].rigid->drive[RIGID_Y]->kind, RigidDrive::Kind::force);
   EXPECT_EQ(spec.bodies[1].rigid->drive[RIGID_ROTATION]->kind, RigidDrive::Kind::velocity);
+}
+
+TEST(CaseReader, ACptOutputNamesTheConeAndSleeveSurfaces) {
+  const CaseSpec spec = read_case_text(
+      contact_case + "\n[output.cpt]\ncone = \"tip\"\nsleeve = \"outer_shaft\"\n", "case.toml");
+  ASSERT_TRUE(spec.output.cpt.has_value());
+  EXPECT_EQ(spec.output.cpt->body, "pile"); // the only outlined structure
+  EXPECT_EQ(spec.output.cpt->cone, "tip");
+  EXPECT_EQ(spec.output.cpt->sleeve, "outer_shaft");
 }
 
 TEST(CaseReader, APolygonStructureGivenClockwiseKeepsEachEdgeItsSurface) {

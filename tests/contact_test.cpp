@@ -62,6 +62,35 @@ TEST(ContactAreas, OutlineAreasIntegrateEachEdgeExactlyInAxisymmetry) {
   EXPECT_NEAR(total, exact[0] + exact[1] + exact[2] + exact[3], 1e-14);
 }
 
+TEST(ContactAreas, ConeAndSleeveGiveTheAreasTheirResistancesAreQuotedOver) {
+  // The standard cone as one outline (counter-clockwise from the apex on the axis): cone face,
+  // sleeve, rod, then head and axis edges that are no surface. q_c is quoted over the cone's plan
+  // area pi R^2 (R^2 / 2 per radian), f_s over the sleeve's 2 pi R L (R L per radian). The cone
+  // face's side area is the integral of r dy, R H / 2; a vertical face has no plan area. The
+  // formulas are exact for straight edges: only round-off remains.
+  const double radius = 0.01785, height = radius * std::sqrt(3.0), sleeve = 0.1337;
+  const double apex = 1.7, shoulder = apex + height, top = shoulder + sleeve;
+  StructureOutline outline;
+  outline.vertices = {{0.0, apex}, {radius, shoulder}, {radius, top}, {radius, 2.9}, {0.0, 2.9}};
+  outline.edge_surface = {0, 1, 2, -1, -1};
+  const std::vector<SurfaceAreas> areas = surface_areas(outline, 3, GeometryMode::axisymmetric);
+  ASSERT_EQ(areas.size(), 3u);
+  EXPECT_NEAR(areas[0].plan, radius * radius / 2.0, 1e-17);
+  EXPECT_NEAR(areas[0].side, radius * height / 2.0, 1e-17);
+  EXPECT_EQ(areas[1].plan, 0.0);
+  EXPECT_NEAR(areas[1].side, radius * sleeve, 1e-17);
+  EXPECT_NEAR(areas[2].side, radius * (2.9 - top), 1e-16);
+  // A pile wall in plane strain: the tip's plan area is the wall's thickness, the shaft's side
+  // area its length; moving the pile changes neither.
+  StructureOutline wall = StructureOutline::rectangle(2.0, 2.1, 1.0, 4.0, 0, 1, -1, 2);
+  wall.translate(0.3, -0.7);
+  const std::vector<SurfaceAreas> plane = surface_areas(wall, 3, GeometryMode::plane_strain);
+  EXPECT_NEAR(plane[0].plan, 0.1, 1e-15);
+  EXPECT_EQ(plane[0].side, 0.0);
+  EXPECT_NEAR(plane[1].side, 3.0, 1e-15);
+  EXPECT_NEAR(plane[2].side, 3.0, 1e-15);
+}
+
 TEST(ContactAreas, CornerNodeOnGridLinesGetsTheAreaWeightedNormal) {
   // A pile tip corner on grid nodes: the node at (r0, y0) carries half a cell of the inner wall
   // (r0 h / 2) and the first half cell of the base (integral of N r dr over [r0, r0 + h]); its

@@ -95,3 +95,9 @@ add_test(NAME CptTool.ConeResistanceAtTenCentimetres
                  --step 0.025 --expect-qc 0.10 5.7 7.0)
 set_tests_properties(CptTool.ConeResistanceAtTenCentimetres PROPERTIES
                      FIXTURES_REQUIRED cpt_coarse LABELS study)
+# [output.cpt]: the history's q_c, f_s and R_f against the standard cone's areas.
+add_test(NAME CptTool.HistoryHoldsQcFsAndRfOverTheStandardAreas
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/check_cpt_history.py
+                 ${cpt_output}/history.h5)
+set_tests_properties(CptTool.HistoryHoldsQcFsAndRfOverTheStandardAreas PROPERTIES
+                     FIXTURES_REQUIRED cpt_coarse LABELS study PASS_REGULAR_EXPRESSION "\nok\n")

@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """Cone resistance q_c, sleeve friction f_s and friction ratio R_f = f_s / q_c of a CPT run.
 
-Reads a history.h5 of a case whose rigid cone has contact surfaces named "cone" and "sleeve"
-(cases/cpt/): q_c is the vertical force on the cone over its plan area, pi R^2 (R^2 / 2 per
-radian); f_s the vertical force on the sleeve over its area, 2 pi R L (R L per radian). Prints
-them averaged over windows of penetration and optionally writes a CSV of every row.
+Reads a history.h5 of a CPT (cases/cpt/): q_c is the vertical force on the cone over its plan
+area, pi R^2 (R^2 / 2 per radian); f_s the vertical force on the sleeve over its area, 2 pi R L
+(R L per radian). A case with [output.cpt] has them in /cpt, with the areas from the cone's
+outline; for a history without, they are computed from the surfaces "cone" and "sleeve" and the
+standard cone's --radius and --sleeve. Prints them averaged over windows of penetration and
+optionally writes a CSV of every row.
 
     tools/cpt.py out/history.h5 [--radius 0.01785] [--sleeve 0.1337] [--csv cpt.csv]
     tools/cpt.py out/history.h5 --expect-qc 0.10 2.0 4.0   # exit 1 unless q_c(0.10 m) in [2, 4] MPa
@@ -20,11 +22,16 @@ def cpt_series(path, body, radius, sleeve):
     with h5py.File(path, "r") as f:
         if f.attrs.get("geometry", "").split(":")[0] != "axisymmetric":
             sys.exit(f"{path}: a CPT history must be axisymmetric")
+        if f"/bodies/{body}/u_y" not in f:
+            sys.exit(f"{path}: no rigid body '{body}' (--body)")
+        penetration = -f[f"/bodies/{body}/u_y"][:]
+        if "/cpt/q_c" in f:
+            return penetration, f["/cpt/q_c"][:], f["/cpt/f_s"][:]
         base = f"/reactions/{body}"
         for surface in ("cone", "sleeve"):
             if f"{base}/{surface}/F_y" not in f:
-                sys.exit(f"{path}: no {base}/{surface}/F_y (contact surfaces 'cone' and 'sleeve')")
-        penetration = -f[f"/bodies/{body}/u_y"][:]
+                sys.exit(f"{path}: no /cpt and no {base}/{surface}/F_y "
+                         "(contact surfaces 'cone' and 'sleeve')")
         cone = f[f"{base}/cone/F_y"][:]
         friction = f[f"{base}/sleeve/F_y"][:]
     q_c = cone / (radius * radius / 2.0)  # per radian: the plan area pi R^2 over 2 pi

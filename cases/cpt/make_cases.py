@@ -195,6 +195,11 @@ mass_scaling = {mass_scaling}
 [output]
 history_interval = 0.002
 snapshot_penetrations = {[d for d in (0.1, 0.3, 0.6) if d <= penetration]}
+
+[output.cpt]  # /cpt/q_c, f_s and R_f in history.h5
+body = "cone"
+cone = "cone"
+sleeve = "sleeve"
 """
 
 
