@@ -50,6 +50,11 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   for (const Key& key : keys) {
     *key.value = table.number_or(key.name, *key.value);
   }
+  const long wall_cells = table.integer_or("wall_cells", p.wall_cells);
+  if (wall_cells < 1 || wall_cells > 16) {
+    table.fail("wall_cells", "must lie between 1 and 16, got " + std::to_string(wall_cells));
+  }
+  p.wall_cells = static_cast<int>(wall_cells);
   const MaterialSpec& soil = material_named(table, spec, "soil_material");
   const MaterialSpec& pile_material = material_named(table, spec, "pile_material");
   const long per_direction = table.integer_or("particles_per_cell", 2);

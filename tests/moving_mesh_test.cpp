@@ -89,6 +89,60 @@ TEST(MonopileGeometry, WallsTipAndBandOnGridLinesAndTheWholePilesMass) {
               1e-9 * mass);
 }
 
+TEST(MonopileGeometry, AResolvedWallHasItsCellsAcrossItBesideItAndAtTheTip) {
+  MonopileParameters p; // the seed pile, its 15.9 mm wall in 3 cells of 5.3 mm
+  p.wall_cells = 3;
+  const MonopileGeometry g = build_monopile_geometry(p);
+  const GradedAxis r(g.r_zones);
+  const GradedAxis y(g.y_zones);
+  const double h = 0.0159 / 3.0;
+  const auto cell_at = [](const GradedAxis& axis, double x) {
+    for (int c = 0; c < axis.cell_count(); ++c) {
+      if (std::abs(axis.node(c) - x) < 1e-12) {
+        return c;
+      }
+    }
+    return -1;
+  };
+  // The wall's three cells start on the internal shaft's line and end on the external one's; the
+  // cells beside the wall have the wall's size.
+  const int inner = cell_at(r, 0.373 - 0.0159);
+  ASSERT_GE(inner, 1);
+  EXPECT_NEAR(r.node(inner + 3), 0.373, 1e-12);
+  for (int c = inner - 1; c <= inner + 3; ++c) {
+    EXPECT_NEAR(r.cell_size(c), h, 1e-12) << "r cell " << c;
+  }
+  // The tip on a line with cells of the wall's size on both sides, the band on lines, and the
+  // sizes growing from there by at most the growth ratio (1.25 allows for the rescaled last cell
+  // of a graded stretch) on both axes, the wall included.
+  const int tip = cell_at(y, 7.0);
+  ASSERT_GE(tip, 1);
+  EXPECT_NEAR(y.cell_size(tip - 1), h, 1e-12);
+  EXPECT_NEAR(y.cell_size(tip), h, 1e-12);
+  EXPECT_GE(cell_at(y, g.band_bottom), 0);
+  EXPECT_GE(cell_at(y, g.band_top), 0);
+  for (const GradedAxis* axis : {&r, &y}) {
+    for (int c = 1; c < axis->cell_count(); ++c) {
+      const double ratio = axis->cell_size(c) / axis->cell_size(c - 1);
+      EXPECT_LT(std::max(ratio, 1.0 / ratio), 1.25 * p.growth) << "cell " << c;
+    }
+  }
+  // The default (one cell) keeps the seed's mesh: the wall one cell flanked by fine cells.
+  const GradedAxis seed(build_monopile_geometry(MonopileParameters{}).r_zones);
+  const int wall = cell_at(seed, 0.373 - 0.0159);
+  EXPECT_NEAR(seed.cell_size(wall), 0.0159, 1e-12);
+  EXPECT_NEAR(seed.cell_size(wall - 1), 0.05, 1e-12);
+  EXPECT_NEAR(seed.cell_size(wall + 1), 0.05, 1e-12);
+  // A transition that does not fit in the band is refused, naming the key.
+  p.wall_cells = 8;
+  try {
+    build_monopile_geometry(p);
+    ADD_FAILURE() << "an 8-cell wall's transition fits no 0.4 m band";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("wall_cells: the cells growing", 0), 0u) << e.what();
+  }
+}
+
 /// A small monopile in Mohr-Coulomb soil, jacked fast: a thick wall and a coarse mesh keep it
 /// short.
 std::string jacked_pile(double band) {

@@ -28,6 +28,62 @@ void append_uniform(std::vector<AxisZone>& zones, double start, double end, doub
   zones.push_back({start, end, cells});
 }
 
+/// Nodes from `from` towards `to` with cells of `start`, growing by `growth` while smaller than
+/// `limit`: the transition from a resolved wall or tip to the fine cells. Returns `from` alone
+/// when start is not below limit.
+std::vector<double> transition_nodes(double from, double to, double start, double limit,
+                                     double growth) {
+  const double direction = to > from ? 1.0 : -1.0;
+  std::vector<double> nodes{from};
+  for (double h = start; h < limit * (1.0 - 1e-9); h *= growth) {
+    nodes.push_back(nodes.back() + direction * h);
+  }
+  return nodes;
+}
+
+/// Nodes from `from` to `to`: a transition from cells of `start` to `fine` (see above), then
+/// graded_nodes from fine with a uniform stretch of `uniform_length` (counted from `from`). A
+/// remainder shorter than two fine cells is taken as whole fine cells with the transition, all but
+/// its first cell scaled to land on `to`, so no sliver cell is left beside a grown one.
+std::vector<double> resolved_nodes(double from, double to, double start, double fine,
+                                   double uniform_length, double largest, double growth) {
+  std::vector<double> nodes = transition_nodes(from, to, start, fine, growth);
+  const double length = std::abs(to - from);
+  const double covered = std::abs(nodes.back() - from);
+  const double direction = to > from ? 1.0 : -1.0;
+  if (nodes.size() > 1 && length - covered < 2.0 * fine) {
+    std::vector<double> sizes;
+    for (std::size_t i = 1; i < nodes.size(); ++i) {
+      sizes.push_back(std::abs(nodes[i] - nodes[i - 1]));
+    }
+    const double whole = std::round((length - covered) / fine);
+    sizes.insert(sizes.end(), static_cast<std::size_t>(whole), fine);
+    const double scale = (length - sizes[0]) / (covered + whole * fine - sizes[0]);
+    nodes.resize(2);
+    for (std::size_t i = 1; i < sizes.size(); ++i) {
+      nodes.push_back(i + 1 == sizes.size() ? to : nodes.back() + direction * sizes[i] * scale);
+    }
+    return nodes;
+  }
+  const std::vector<double> rest = graded_nodes(
+      nodes.back(), to, fine, std::max(0.0, uniform_length - covered), largest, growth);
+  // graded_nodes returns increasing order; continue from the transition's end in its direction.
+  if (to > from) {
+    nodes.insert(nodes.end(), rest.begin() + 1, rest.end());
+  } else {
+    nodes.insert(nodes.end(), rest.rbegin() + 1, rest.rend());
+  }
+  return nodes;
+}
+
+/// Increasing order, for append_zones.
+std::vector<double> increasing(std::vector<double> nodes) {
+  if (nodes.size() > 1 && nodes.front() > nodes.back()) {
+    std::reverse(nodes.begin(), nodes.end());
+  }
+  return nodes;
+}
+
 } // namespace
 
 std::vector<double> graded_nodes(double from, double to, double near, double uniform_length,
@@ -79,6 +135,7 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
   require(p.wall_thickness > 0.0 && p.wall_thickness < p.diameter / 2.0, "wall_thickness",
           "must be positive and less than the radius");
   require(p.fine_cell > 0.0, "fine_cell", "must be positive");
+  require(p.wall_cells >= 1 && p.wall_cells <= 16, "wall_cells", "must lie between 1 and 16");
   require(p.fine_width >= 0.0, "fine_width", "must not be negative");
   require(p.coarse_cell >= p.fine_cell, "coarse_cell", "must be at least fine_cell");
   require(p.shaft_cell >= p.fine_cell, "shaft_cell", "must be at least fine_cell");
@@ -100,20 +157,36 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
   require(p.embedment < p.pile_length, "embedment", "must be less than pile_length");
   g.band_bottom = g.tip - p.band_below;
   g.band_top = g.tip + p.band_above;
+  const double wall_cell = p.wall_thickness / p.wall_cells;
+  const double near = p.wall_cells > 1 ? wall_cell : p.fine_cell;
+  if (p.wall_cells > 1) {
+    // The band holds the cells growing from the tip's size to fine_cell and then whole fine
+    // cells: its ends are rounded out to the next of them.
+    const double growing =
+        std::abs(transition_nodes(g.tip, 0.0, near, p.fine_cell, p.growth).back() - g.tip);
+    require(growing + p.fine_cell <= std::min(p.band_below, p.band_above), "wall_cells",
+            "the cells growing from the tip's to fine_cell take " + std::to_string(growing) +
+                " m: band_below and band_above must exceed that by a fine cell");
+    const auto rounded = [&](double extent) {
+      return growing + std::ceil((extent - growing) / p.fine_cell - 1e-9) * p.fine_cell;
+    };
+    g.band_bottom = g.tip - rounded(p.band_below);
+    g.band_top = g.tip + rounded(p.band_above);
+  }
   require(g.band_bottom > 2.0 * p.fine_cell, "band_below",
           "the moving band reaches the bottom of the soil (soil_depth - embedment - band_below "
           "must leave room for cells below it)");
   require(g.band_top < g.surface, "band_above",
           "the moving band reaches the soil surface (band_above must be less than embedment)");
 
-  // r: graded from the axis to the fine zone inside the wall, the wall as one cell, then fine
-  // and graded outwards.
+  // r: graded from the axis to the fine zone inside the wall, the wall in wall_cells cells, then
+  // fine and graded outwards; a resolved wall's cells continue beside it and grow to fine_cell.
   const double inside_uniform = std::min(p.fine_width, g.inner_radius);
-  append_zones(g.r_zones, graded_nodes(g.inner_radius, 0.0, p.fine_cell, inside_uniform,
-                                       p.coarse_cell, p.growth));
-  g.r_zones.push_back({g.inner_radius, g.outer_radius, 1});
-  append_zones(g.r_zones, graded_nodes(g.outer_radius, p.soil_width, p.fine_cell, p.fine_width,
-                                       p.coarse_cell, p.growth));
+  append_zones(g.r_zones, increasing(resolved_nodes(g.inner_radius, 0.0, near, p.fine_cell,
+                                                    inside_uniform, p.coarse_cell, p.growth)));
+  g.r_zones.push_back({g.inner_radius, g.outer_radius, p.wall_cells});
+  append_zones(g.r_zones, resolved_nodes(g.outer_radius, p.soil_width, near, p.fine_cell,
+                                         p.fine_width, p.coarse_cell, p.growth));
 
   // y: graded from the band down to the bottom, uniform fine in the band, graded from the band up
   // to the surface (at most shaft_cell along the shaft), then uniform to the top of the grid.
@@ -123,7 +196,17 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
           "shorter)");
   append_zones(g.y_zones,
                graded_nodes(g.band_bottom, 0.0, p.fine_cell, 0.0, p.coarse_cell, p.growth));
-  append_uniform(g.y_zones, g.band_bottom, g.band_top, p.fine_cell);
+  if (p.wall_cells > 1) {
+    // The band: cells of the wall's at the tip, growing to fine_cell above and below it.
+    const std::vector<double> below =
+        resolved_nodes(g.tip, g.band_bottom, near, p.fine_cell, 0.0, p.fine_cell, p.growth);
+    const std::vector<double> above =
+        resolved_nodes(g.tip, g.band_top, near, p.fine_cell, 0.0, p.fine_cell, p.growth);
+    append_zones(g.y_zones, increasing(below));
+    append_zones(g.y_zones, above);
+  } else {
+    append_uniform(g.y_zones, g.band_bottom, g.band_top, p.fine_cell);
+  }
   const std::vector<double> shaft =
       graded_nodes(g.band_top, g.surface, p.fine_cell, 0.0, p.shaft_cell, p.growth);
   append_zones(g.y_zones, shaft);

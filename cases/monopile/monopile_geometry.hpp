@@ -28,8 +28,13 @@ struct MonopileParameters {
   double coarse_cell = 0.5; // the largest cell far from the pile
   double shaft_cell = 0.1;  // the largest cell along the shaft, between the band and the surface
   double growth = 1.15;     // ratio of neighbouring cell sizes where the mesh coarsens
-  double band_below = 0.4;  // the band that moves with the pile: this far below the tip
-  double band_above = 0.4;  // and this far above it
+  /// Cells across the wall. 1: the wall is one cell with fine cells right beside it (the seed's
+  /// mesh); more: cells of wall_thickness / wall_cells across the wall, beside it and in y at the
+  /// tip (inside the band, so they move with the pile), growing by `growth` to fine_cell; the
+  /// band's ends are then rounded out to whole fine cells after that growth.
+  int wall_cells = 1;
+  double band_below = 0.4; // the band that moves with the pile: this far below the tip
+  double band_above = 0.4; // and this far above it
   /// The deepest (m) the band may be carried down: the soil below the band is seeded for the cells
   /// it will have then (io/case_builder.cpp), and a run that goes further stops.
   double travel = 0.7;
