@@ -101,3 +101,10 @@ add_test(NAME CptTool.HistoryHoldsQcFsAndRfOverTheStandardAreas
                  ${cpt_output}/history.h5)
 set_tests_properties(CptTool.HistoryHoldsQcFsAndRfOverTheStandardAreas PROPERTIES
                      FIXTURES_REQUIRED cpt_coarse LABELS study PASS_REGULAR_EXPRESSION "\nok\n")
+
+# The convergence tool (Richardson extrapolation, observed order, error bands) on values whose
+# limit and order are known exactly.
+add_test(NAME Convergence.RecoversTheLimitAndOrderOfAKnownSeries
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/convergence_test.py)
+set_tests_properties(Convergence.RecoversTheLimitAndOrderOfAKnownSeries PROPERTIES
+                     PASS_REGULAR_EXPRESSION "\nall ok\n")

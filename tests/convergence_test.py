@@ -1,0 +1,80 @@
+#!/usr/bin/python3
+"""tools/convergence.py on values whose limit and order are known exactly.
+
+f(h) = f0 + C h^p with p = 1.5 at three unevenly refined cell sizes must give p and f0 to the
+bisection's precision (1e-9 relative: 200 halvings leave far less, round-off remains); values
+that oscillate with refinement must be reported as having no observed order. End to end, three
+synthetic histories with such forces must be read at a penetration and extrapolated the same way.
+"""
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import convergence  # noqa: E402
+
+H = [0.004, 0.0053, 0.008]  # finest first, ratios 1.33 and 1.51
+F0, C, P = 12.5, -300.0, 1.5
+
+
+def exact(h):
+    return F0 + C * h**P
+
+
+def check(name, ok):
+    print(f"{name}: {'ok' if ok else 'FAILED'}")
+    return ok
+
+
+def write_history(path, h, wall):
+    rows = 101
+    with h5py.File(path, "w") as f:
+        f.attrs["status"] = "complete"
+        f.attrs["wall_time"] = wall
+        f.attrs["case_text"] = '[[phases]]\nname = "a"\n[[phases]]\nname = "b"\n'
+        f["/time"] = np.linspace(0.0, 1.0, rows)
+        f["/phase"] = np.r_[np.zeros(1), np.ones(rows - 1)]
+        f["/bodies/pile/u_y"] = -np.linspace(0.0, 0.1, rows)
+        # A force that does not vary with depth, so the window's mean is the value itself.
+        f["/reactions/pile/tip/F_y"] = np.full(rows, exact(h) * 1e3)
+
+
+def main():
+    ok = True
+    f = [exact(h) for h in H]
+    p = convergence.observed_order(H, f)
+    ok &= check("order of f0 + C h^1.5", p is not None and abs(p - P) < 1e-9)
+    f0, band, _, observed = convergence.extrapolate(H, f, 1.0)
+    ok &= check("extrapolated limit", observed and abs(f0 - F0) < 1e-9 * F0)
+    # The band is 1.25 times the Richardson correction, which here is the exact error.
+    ok &= check("error band", abs(band - 1.25 * abs(f[0] - F0)) < 1e-9 * abs(f[0] - F0))
+    wobble = [F0 + 0.1, F0 - 0.2, F0 + 0.4]
+    ok &= check("oscillation has no order", convergence.observed_order(H, wobble) is None)
+    _, band2, p2, observed2 = convergence.extrapolate(H, wobble, 1.0)
+    ok &= check("oscillation falls back to the assumed order and safety 3",
+                not observed2 and p2 == 1.0 and abs(band2 - 3.0 * 0.3 / (H[1] / H[0] - 1.0)) < 1e-12)
+    with tempfile.TemporaryDirectory() as directory:
+        specs = []
+        for k, h in enumerate(H):
+            run = os.path.join(directory, f"run{k}")
+            os.makedirs(run)
+            write_history(os.path.join(run, "history.h5"), h, 10.0 * (k + 1))
+            specs.append(f"{run}:{h}")
+        out = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "convergence.py"), *specs,
+                              "--at", "0.05", "--quantities", "tip_Fy",
+                              "--csv", os.path.join(directory, "t.csv")],
+                             capture_output=True, text=True)
+        print(out.stdout, out.stderr)
+        ok &= check("tool exit status", out.returncode == 0)
+        ok &= check("tool prints order and limit", "1.50  12.5 +-" in out.stdout)
+    print("all ok" if ok else "FAILED")
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,200 @@
+#!/usr/bin/python3
+"""Mesh convergence of pile forces: Richardson extrapolation with an error estimate, and the error
+of each resolution against its run time.
+
+Give the runs of one case at several resolutions, each as DIRECTORY:H with H the characteristic
+cell size (m) of that run (for example the cell at the pile tip):
+
+  tools/convergence.py out/w2:0.00795 out/w3:0.0053 out/w4:0.003975 --at 0.05,0.1
+  tools/convergence.py out/quick:0.05 out/mid:0.035 out/paper:0.025 --at 0.1,0.3 \\
+      --quantities tip_Fy,int_Fr,ext_Fr --csv study.csv --figure error_vs_time.png
+
+For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the soil's force on
+the pile in kN/rad, or tip_qb for the tip's unit end resistance in MPa) and penetration, the value
+of each run is the mean over the installation rows within --window of that penetration. The three
+finest runs give the observed order p of f(h) = f0 + C h^p (the root of the ratio of successive
+differences, which allows any refinement ratios) and the extrapolated f0; the error band is Roache's
+grid convergence index of the finest run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where the three do
+not converge monotonically, or p falls outside [0.5, 4], no order can be observed: the table says
+so, takes p = --order (default 1, the order of the contact and GIMP transfer) and widens the
+safety factor to 3, as for two runs. Each run's error is then |f - f0|, plotted against its wall
+time (the history's wall_time) on log-log axes, one line per quantity and penetration.
+
+Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (tools/setup.sh).
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+import tomllib
+
+import h5py
+import numpy as np
+
+SURFACES = {"tip": "tip", "ext": "external_shaft", "int": "internal_shaft"}
+COMPONENTS = {"Fr": "F_r", "Fy": "F_y", "Ft": "F_theta"}
+ORDER_RANGE = (0.5, 4.0)
+SAFETY_THREE = 1.25  # Roache: three grids with an observed order
+SAFETY_TWO = 3.0  # two grids, or an order that could not be observed
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def dataset(quantity, body):
+    """The history dataset and the scale to the reported unit of a quantity name."""
+    surface, _, component = quantity.partition("_")
+    if surface not in SURFACES:
+        sys.exit(f"convergence: unknown surface in '{quantity}' (tip, ext or int)")
+    if component == "qb" and surface == "tip":
+        return f"/reactions/{body}/tip/unit_end_resistance", 1e-6, "MPa"
+    if component not in COMPONENTS:
+        sys.exit(f"convergence: unknown component in '{quantity}' (Fr, Fy, Ft; tip_qb)")
+    return f"/reactions/{body}/{SURFACES[surface]}/{COMPONENTS[component]}", 1e-3, "kN/rad"
+
+
+def load(spec, quantities, depths, window, body):
+    """One run: its cell size, wall time and {(quantity, depth): value}."""
+    directory, separator, h = spec.rpartition(":")
+    if not separator:
+        sys.exit(f"convergence: give each run as DIRECTORY:H, got '{spec}'")
+    path = directory if directory.endswith(".h5") else os.path.join(directory, "history.h5")
+    if not os.path.isfile(path):
+        sys.exit(f"convergence: no history {path}")
+    values = {}
+    with h5py.File(path, "r") as history:
+        if not text(history.attrs.get("status", "")).startswith("complete"):
+            sys.exit(f"convergence: {path} is not a complete run "
+                     f"(status '{text(history.attrs.get('status', ''))}')")
+        case = tomllib.loads(text(history.attrs["case_text"]))
+        phase = history["/phase"][:]
+        rows = phase == len(case["phases"]) - 1  # the installation is the last phase
+        penetration = -history[f"/bodies/{body}/u_y"][rows]
+        for quantity in quantities:
+            name, scale, _ = dataset(quantity, body)
+            if name not in history:
+                sys.exit(f"convergence: {path} has no dataset {name}")
+            series = history[name][rows] * scale
+            for depth in depths:
+                near = np.abs(penetration - depth) <= window
+                if not near.any():
+                    sys.exit(f"convergence: {path} has no installation row within {window} m of "
+                             f"{depth} m (it reached {penetration.max(initial=0.0):.4f} m)")
+                values[(quantity, depth)] = float(series[near].mean())
+        wall = float(history.attrs["wall_time"])
+    return float(h), wall, directory, values
+
+
+def observed_order(h, f):
+    """p of f = f0 + C h^p through three points (h[0] < h[1] < h[2]), or None where the differences
+    change sign (no monotone convergence) or no p in ORDER_RANGE fits."""
+    d21 = f[1] - f[0]
+    d32 = f[2] - f[1]
+    if d21 == 0.0 or d32 == 0.0 or (d21 > 0.0) != (d32 > 0.0):
+        return None
+    target = d32 / d21
+
+    def residual(p):
+        return (h[2] ** p - h[1] ** p) / (h[1] ** p - h[0] ** p) - target
+
+    low, high = ORDER_RANGE
+    if residual(low) * residual(high) > 0.0:
+        return None
+    for _ in range(200):  # bisection: the ratio grows monotonically with p
+        middle = 0.5 * (low + high)
+        if residual(low) * residual(middle) <= 0.0:
+            high = middle
+        else:
+            low = middle
+    return 0.5 * (low + high)
+
+
+def extrapolate(h, f, fallback_order):
+    """(f0, band, p, observed) from runs sorted finest first: Richardson on the two finest with the
+    observed order of the three finest where there is one, else with the fallback order."""
+    p = observed_order(h[:3], f[:3]) if len(h) >= 3 else None
+    observed = p is not None
+    if not observed:
+        p = fallback_order
+    ratio = (h[1] / h[0]) ** p - 1.0
+    f0 = f[0] + (f[0] - f[1]) / ratio
+    band = (SAFETY_THREE if observed else SAFETY_TWO) * abs(f[0] - f[1]) / ratio
+    return f0, band, p, observed
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("runs", nargs="+", help="DIRECTORY:H, at least two resolutions")
+    parser.add_argument("--at", required=True, help="penetrations (m), comma-separated")
+    parser.add_argument("--quantities", default="tip_Fy,tip_qb,ext_Fr,ext_Fy,int_Fr,int_Fy")
+    parser.add_argument("--window", type=float, default=0.005,
+                        help="m either side of a penetration averaged over")
+    parser.add_argument("--order", type=float, default=1.0,
+                        help="order assumed where none is observed")
+    parser.add_argument("--body", default="pile")
+    parser.add_argument("--csv", help="write the table")
+    parser.add_argument("--figure", help="write error against wall time (PNG)")
+    args = parser.parse_args()
+    if len(args.runs) < 2:
+        sys.exit("convergence: give at least two runs")
+    quantities = [q for q in args.quantities.split(",") if q]
+    depths = [float(d) for d in args.at.split(",") if d]
+    runs = sorted((load(spec, quantities, depths, args.window, args.body) for spec in args.runs),
+                  key=lambda run: run[0])
+    h = [run[0] for run in runs]
+    if len(set(h)) != len(h):
+        sys.exit("convergence: two runs have the same cell size")
+
+    header = ["quantity", "unit", "penetration_m"] + [f"h={x:g}" for x in h]
+    header += ["order", "observed", "extrapolated", "error_band"]
+    header += [f"error h={x:g}" for x in h]
+    table = []
+    for quantity in quantities:
+        unit = dataset(quantity, args.body)[2]
+        for depth in depths:
+            f = [run[3][(quantity, depth)] for run in runs]
+            f0, band, p, observed = extrapolate(h, f, args.order)
+            table.append([quantity, unit, depth] + f + [p, observed, f0, band]
+                         + [abs(x - f0) for x in f])
+
+    print("  ".join(f"{name}" for name in header[:3] + header[3:3 + len(h)]
+                    + ["p", "f0 +- band"]))
+    for row in table:
+        values = "  ".join(f"{x:.4g}" for x in row[3:3 + len(h)])
+        p, observed, f0, band = row[3 + len(h):7 + len(h)]
+        order = f"{p:.2f}" if observed else f"{p:g} (assumed: no monotone convergence)"
+        print(f"{row[0]}  {row[1]}  {row[2]:g}  {values}  {order}  {f0:.4g} +- {band:.2g}")
+    print("wall time (s): " + "  ".join(f"h={x:g}: {run[1]:.0f}" for x, run in zip(h, runs)))
+
+    if args.csv:
+        with open(args.csv, "w", newline="") as out:
+            writer = csv.writer(out)
+            writer.writerow(header)
+            writer.writerows(table)
+        print(args.csv)
+    if args.figure:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        figure, axes = plt.subplots(figsize=(6.5, 4.5))
+        wall = [run[1] for run in runs]
+        for row in table:
+            errors = row[7 + len(h):]
+            relative = [e / abs(row[5 + len(h)]) if row[5 + len(h)] else math.nan for e in errors]
+            axes.loglog(wall, relative, "o-", label=f"{row[0]} at {row[2]:g} m")
+        axes.set_xlabel("wall time (s)")
+        axes.set_ylabel("|f - f0| / |f0| (Richardson)")
+        axes.grid(True, which="both", alpha=0.3)
+        axes.legend(fontsize=7)
+        figure.tight_layout()
+        figure.savefig(args.figure, dpi=120)
+        print(args.figure)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
