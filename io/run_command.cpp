@@ -270,14 +270,12 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         log.info("phase " + phase.name + " from t = " + format_time(solver->time()) + " s");
         std::string ended = "after its duration";
         while (!reached(solver->time(), phase_end, solver->stable_time_step())) {
-          // Steps land exactly on the phase end and on snapshot times.
+          // Steps land exactly on the phase end and on snapshot times, without a sliver step.
           double limit = std::min(phase_end, progress.next_snapshot_time) - solver->time();
           if (progress.next_listed_snapshot < listed.size()) {
             limit = std::min(limit, listed[progress.next_listed_snapshot] - solver->time());
           }
-          solver->step(limit <= solver->stable_time_step() * (1.0 + 1e-6)
-                           ? limit
-                           : std::numeric_limits<double>::infinity());
+          solver->step(landing_step(limit, solver->stable_time_step()));
           const double t = solver->time();
           const double dt = solver->last_time_step();
           if (output.history_interval == 0.0 || reached(t, progress.next_history_time, dt)) {

@@ -338,12 +338,21 @@ void ExplicitSolver::particle_to_grid() {
   }
 }
 
-void ExplicitSolver::advance_to(double end_time) {
-  // Steps shorter than this fraction of dt are merged into the previous one.
+double landing_step(double remaining, double stable_dt) {
+  // A remainder within this fraction beyond one step is taken in one (slightly longer) step.
   constexpr double merge_fraction = 1e-6;
+  if (remaining <= stable_dt * (1.0 + merge_fraction)) {
+    return remaining;
+  }
+  if (remaining < 2.0 * stable_dt) {
+    return 0.5 * remaining;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+void ExplicitSolver::advance_to(double end_time) {
   while (time_ < end_time * (1.0 - 1e-15)) {
-    const double remaining = end_time - time_;
-    step(remaining <= stable_dt_ * (1.0 + merge_fraction) ? remaining : stable_dt_);
+    step(landing_step(end_time - time_, stable_dt_));
   }
 }
 

@@ -39,6 +39,13 @@ struct SolverState {
   EnergyLedger energy;
 };
 
+/// The longest step (s) towards a target `remaining` seconds away that leaves no sliver: the
+/// remainder itself when one stable step reaches it, half of it when it lies between one and two
+/// stable steps (so the last two steps are at least half a stable step each), else infinity (a
+/// full stable step). A sliver step of 1e-8 s would divide the contact corrections, impulses that
+/// do not shrink with the step, by a tiny dt and record forces a thousand times too large.
+double landing_step(double remaining, double stable_dt);
+
 /// The explicit MPM time integrator (MUSL, physics.md section 3) over a scene.
 class ExplicitSolver {
 public:
@@ -51,7 +58,7 @@ public:
 
   /// One explicit step of length min(stable dt, max_dt).
   void step(double max_dt = std::numeric_limits<double>::infinity());
-  /// Steps until end_time; the last step is shortened to land on it.
+  /// Steps until end_time; the last steps are shortened to land on it (landing_step).
   void advance_to(double end_time);
 
   double time() const { return time_; }

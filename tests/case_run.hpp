@@ -49,7 +49,8 @@ struct CaseRun {
   }
   template <class F> void run(F&& after_step) {
     while (solver->time() < spec.phases[0].duration * (1.0 - 1e-12)) {
-      solver->step(spec.phases[0].duration - solver->time());
+      solver->step(
+          landing_step(spec.phases[0].duration - solver->time(), solver->stable_time_step()));
       after_step();
     }
   }

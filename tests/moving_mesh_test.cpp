@@ -474,14 +474,14 @@ k0 = [{ body = "soil", surface = 2.0, k0 = 0.5 }]
 // 1 % and 2 % (a few times the measured, far below the disturbance the bilinear weights make);
 // in the top two cells the free surface lies inside a cell as the lines stretch, an error of the
 // order of one cell's weight, rho g h = 5 % of rho g H. With bilinear weights the same run
-// swings the base reaction by 12 times the weight and sigma_yy by 1.8 rho g H.
+// swings the base reaction by 97 % of the weight and sigma_yy by 1.8 rho g H.
 TEST(MovingMesh, LeavesSoilAtRestUndisturbedWithGimp) {
   const FarField gimp = soil_under_a_moving_mesh("gimp");
   EXPECT_LT(gimp.base_reaction, 0.01);
   EXPECT_LT(gimp.sigma_yy_below, 0.02);
   EXPECT_LT(gimp.sigma_yy, 0.05);
   const FarField linear = soil_under_a_moving_mesh("linear");
-  EXPECT_GT(linear.base_reaction, 1.0);
+  EXPECT_GT(linear.base_reaction, 0.5);
   EXPECT_GT(linear.sigma_yy_below, 0.5);
 }
 

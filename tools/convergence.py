@@ -164,7 +164,8 @@ def main():
     for row in table:
         values = "  ".join(f"{x:.4g}" for x in row[3:3 + len(h)])
         p, observed, f0, band = row[3 + len(h):7 + len(h)]
-        order = f"{p:.2f}" if observed else f"{p:g} (assumed: no monotone convergence)"
+        reason = "two runs" if len(h) < 3 else "no monotone convergence"
+        order = f"{p:.2f}" if observed else f"{p:g} (assumed: {reason})"
         print(f"{row[0]}  {row[1]}  {row[2]:g}  {values}  {order}  {f0:.4g} +- {band:.2g}")
     print("wall time (s): " + "  ".join(f"h={x:g}: {run[1]:.0f}" for x, run in zip(h, runs)))
 
