@@ -11,14 +11,19 @@ cell size (m) of that run (for example the cell at the pile tip):
 
 For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the soil's force on
 the pile in kN/rad, or tip_qb for the tip's unit end resistance in MPa) and penetration, the value
-of each run is the mean over the installation rows within --window of that penetration. The three
+of each run is the mean over the installation rows within --window of that penetration (default
+10 mm: stick-slip makes pile forces scatter by several per cent from row to row, so a single row
+is no value to extrapolate), and its scatter the standard deviation there. The three
 finest runs give the observed order p of f(h) = f0 + C h^p (the root of the ratio of successive
 differences, which allows any refinement ratios) and the extrapolated f0; the error band is Roache's
-grid convergence index of the finest run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where the three do
-not converge monotonically, or p falls outside [0.5, 4], no order can be observed: the table says
-so, takes p = --order (default 1, the order of the contact and GIMP transfer) and widens the
-safety factor to 3, as for two runs. Each run's error is then |f - f0|, plotted against its wall
-time (the history's wall_time) on log-log axes, one line per quantity and penetration.
+grid convergence index of the finest run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where no order can
+be observed (the values oscillate with refinement, or their differences do not shrink as h^p with
+p in [0.5, 4]), the table says which, takes p = --order (default 1, the order of the contact and
+GIMP transfer) and widens the safety factor to 3, as for two runs. Each run's error is then
+|f - f0|, plotted against its wall time (the history's wall_time) on log-log axes, one line per
+quantity and penetration. Where the two finest runs differ by less than the larger of their
+scatters, the table says so: the extrapolation then rests on noise, and the honest statement is
+the scatter itself.
 
 Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (tools/setup.sh).
 """
@@ -82,7 +87,8 @@ def load(spec, quantities, depths, window, body):
                 if not near.any():
                     sys.exit(f"convergence: {path} has no installation row within {window} m of "
                              f"{depth} m (it reached {penetration.max(initial=0.0):.4f} m)")
-                values[(quantity, depth)] = float(series[near].mean())
+                values[(quantity, depth)] = (float(series[near].mean()),
+                                             float(series[near].std()))
         wall = float(history.attrs["wall_time"])
     return float(h), wall, directory, values
 
@@ -129,7 +135,7 @@ def main():
     parser.add_argument("runs", nargs="+", help="DIRECTORY:H, at least two resolutions")
     parser.add_argument("--at", required=True, help="penetrations (m), comma-separated")
     parser.add_argument("--quantities", default="tip_Fy,tip_qb,ext_Fr,ext_Fy,int_Fr,int_Fy")
-    parser.add_argument("--window", type=float, default=0.005,
+    parser.add_argument("--window", type=float, default=0.01,
                         help="m either side of a penetration averaged over")
     parser.add_argument("--order", type=float, default=1.0,
                         help="order assumed where none is observed")
@@ -148,25 +154,33 @@ def main():
         sys.exit("convergence: two runs have the same cell size")
 
     header = ["quantity", "unit", "penetration_m"] + [f"h={x:g}" for x in h]
-    header += ["order", "observed", "extrapolated", "error_band"]
+    header += ["order", "observed", "extrapolated", "error_band", "scatter"]
     header += [f"error h={x:g}" for x in h]
     table = []
     for quantity in quantities:
         unit = dataset(quantity, args.body)[2]
         for depth in depths:
-            f = [run[3][(quantity, depth)] for run in runs]
+            f = [run[3][(quantity, depth)][0] for run in runs]
+            scatter = max(run[3][(quantity, depth)][1] for run in runs[:2])
             f0, band, p, observed = extrapolate(h, f, args.order)
-            table.append([quantity, unit, depth] + f + [p, observed, f0, band]
+            table.append([quantity, unit, depth] + f + [p, observed, f0, band, scatter]
                          + [abs(x - f0) for x in f])
 
     print("  ".join(f"{name}" for name in header[:3] + header[3:3 + len(h)]
-                    + ["p", "f0 +- band"]))
+                    + ["p", "f0 +- band", "scatter"]))
     for row in table:
         values = "  ".join(f"{x:.4g}" for x in row[3:3 + len(h)])
-        p, observed, f0, band = row[3 + len(h):7 + len(h)]
-        reason = "two runs" if len(h) < 3 else "no monotone convergence"
+        p, observed, f0, band, scatter = row[3 + len(h):8 + len(h)]
+        if len(h) < 3:
+            reason = "two runs"
+        elif (row[4] - row[3]) * (row[5] - row[4]) <= 0.0:
+            reason = "oscillates with refinement"
+        else:
+            reason = f"differences shrink as no h^p, {ORDER_RANGE[0]:g} <= p <= {ORDER_RANGE[1]:g}"
         order = f"{p:.2f}" if observed else f"{p:g} (assumed: {reason})"
-        print(f"{row[0]}  {row[1]}  {row[2]:g}  {values}  {order}  {f0:.4g} +- {band:.2g}")
+        noise = "  (the finest two differ by less than it)" if abs(row[3] - row[4]) < scatter else ""
+        print(f"{row[0]}  {row[1]}  {row[2]:g}  {values}  {order}  {f0:.4g} +- {band:.2g}  "
+              f"{scatter:.2g}{noise}")
     print("wall time (s): " + "  ".join(f"h={x:g}: {run[1]:.0f}" for x, run in zip(h, runs)))
 
     if args.csv:
@@ -184,7 +198,7 @@ def main():
         figure, axes = plt.subplots(figsize=(6.5, 4.5))
         wall = [run[1] for run in runs]
         for row in table:
-            errors = row[7 + len(h):]
+            errors = row[8 + len(h):]
             relative = [e / abs(row[5 + len(h)]) if row[5 + len(h)] else math.nan for e in errors]
             axes.loglog(wall, relative, "o-", label=f"{row[0]} at {row[2]:g} m")
         axes.set_xlabel("wall time (s)")
