@@ -62,11 +62,48 @@ std::size_t phase_of(const CaseSpec& spec, const std::string& name) {
 /// only get finer as the compressed lines drag finer cells into it: it is seeded for the band
 /// carried all the way down. Every split is a y-line of the grids on both sides, so no particle
 /// position lies on one.
+///
+/// A graded band (a resolved pile tip: its finest cells at the tip, growing away from it) is
+/// different: a point the tip passes meets the band's finest cell, which the band's start or end
+/// would not seed it for. The soil the finest cell passes through is seeded slice by slice, each
+/// slice the finest cell with the band carried down by whole finest cells; above that the start,
+/// below it the band's whole travel (the cells below the tip only get finer as it approaches).
+template <typename Seed> std::size_t seed_graded_band(const MovingMesh& mesh, Seed&& seed) {
+  const auto y = [&](int line) { return mesh.reference_y[static_cast<std::size_t>(line)]; };
+  int finest = mesh.band_bottom; // the lowest cell of the smallest size (below the tip)
+  for (int c = mesh.band_bottom; c < mesh.band_top; ++c) {
+    if (y(c + 1) - y(c) < (y(finest + 1) - y(finest)) * (1.0 - 1e-9)) {
+      finest = c;
+    }
+  }
+  const double h = y(finest + 1) - y(finest);
+  std::size_t added =
+      seed(nullptr, SeedBand{y(finest + 1), std::numeric_limits<double>::infinity()});
+  double split = y(finest + 1);
+  for (int k = 0; k * h <= mesh.travel * (1.0 + 1e-12); ++k) {
+    const std::vector<double> lines = mesh.lines_at(-k * h);
+    const double bottom = lines[static_cast<std::size_t>(finest)];
+    added += seed(&lines, SeedBand{bottom, split});
+    split = bottom;
+  }
+  const std::vector<double> lines = mesh.lines_at(-mesh.travel);
+  return added + seed(&lines, SeedBand{-std::numeric_limits<double>::infinity(), split});
+}
+
 template <typename Seed>
 std::size_t seed_in_passes(const std::optional<MovingMesh>& mesh, const BodySpec& body,
                            Seed&& seed) {
   if (!mesh || mesh->travel == 0.0) {
     return seed(nullptr, SeedBand{});
+  }
+  const auto cell = [&](int c) {
+    return mesh->reference_y[static_cast<std::size_t>(c + 1)] -
+           mesh->reference_y[static_cast<std::size_t>(c)];
+  };
+  for (int c = mesh->band_bottom + 1; c < mesh->band_top; ++c) {
+    if (std::abs(cell(c) - cell(mesh->band_bottom)) > 1e-9 * cell(mesh->band_bottom)) {
+      return seed_graded_band(*mesh, seed);
+    }
   }
   const double split = mesh->reference_y[static_cast<std::size_t>(mesh->band_bottom)];
   const double height = mesh->reference_y[static_cast<std::size_t>(mesh->band_top)] - split;
