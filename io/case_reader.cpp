@@ -8,7 +8,9 @@
 #include "io/toml_reader.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -928,9 +930,27 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
 }
 
 CaseSpec read_case_file(const std::string& path) {
+  // Only a regular file of bounded size: a directory would read as empty, a FIFO would block and
+  // /dev/zero would be read without end.
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (error) {
+    throw CaseError(path + ": cannot open the case file: " + error.message());
+  }
+  if (std::filesystem::is_directory(status)) {
+    throw CaseError(path + ": is a directory, not a case file");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw CaseError(path + ": is not a regular file (a case file is a TOML text file)");
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (!error && size > max_case_file_bytes) {
+    throw CaseError(path + ": is " + std::to_string(size) + " bytes; a case file is at most " +
+                    std::to_string(max_case_file_bytes) + " bytes");
+  }
   std::ifstream in(path);
   if (!in) {
-    throw CaseError(path + ": cannot open the case file");
+    throw CaseError(path + ": cannot open the case file: " + std::strerror(errno));
   }
   std::ostringstream text;
   text << in.rdbuf();

@@ -13,6 +13,7 @@
 #include "solver/solver_settings.hpp"
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -178,6 +179,10 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name);
 
 /// Reads and validates a case file; throws CaseError naming file, line, key and reason.
 CaseSpec read_case_file(const std::string& path);
+
+/// The largest case file read (bytes): the shipped ones are below 10 KiB, a case with every
+/// snapshot time of a long run listed below 1 MiB.
+constexpr std::uintmax_t max_case_file_bytes = 16u << 20;
 CaseSpec read_case_text(const std::string& text, const std::string& file);
 
 } // namespace mpile

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <sys/stat.h>
+
 namespace mpile {
 namespace {
 
@@ -632,7 +634,39 @@ TEST(CaseReader, RunExitsWithStatusTwoAndOneLineReasonOnBadInput) {
   EXPECT_FALSE(std::filesystem::exists(directory / "out" / "history.h5"));
   options.case_path = (directory / "missing.toml").string();
   EXPECT_EQ(run_case(options, out, err), exit_bad_input);
-  EXPECT_NE(err.str().find("cannot open the case file"), std::string::npos);
+  EXPECT_NE(err.str().find("missing.toml: cannot open the case file: No such file or directory"),
+            std::string::npos)
+      << err.str();
+}
+
+TEST(CaseReader, OnlyARegularFileOfBoundedSizeIsReadAsACase) {
+  // A directory read as an empty file ("grid: missing"), a FIFO blocked the reader for ever and
+  // /dev/zero was read to 2 GB: each is refused before reading, with the reason.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_case_file_test";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const auto refused = [](const std::string& path, const std::string& reason) {
+    try {
+      read_case_file(path);
+      ADD_FAILURE() << path << " was read";
+    } catch (const CaseError& e) {
+      EXPECT_EQ(std::string(e.what()), path + ": " + reason);
+    }
+  };
+  refused(directory.string(), "is a directory, not a case file");
+  const std::string fifo = (directory / "fifo.toml").string();
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  refused(fifo, "is not a regular file (a case file is a TOML text file)");
+  if (std::filesystem::exists("/dev/zero")) {
+    refused("/dev/zero", "is not a regular file (a case file is a TOML text file)");
+  }
+  const std::string large = (directory / "large.toml").string();
+  std::ofstream(large).close();
+  std::filesystem::resize_file(large, max_case_file_bytes + 1); // sparse: no 16 MiB written
+  refused(large, "is " + std::to_string(max_case_file_bytes + 1) +
+                     " bytes; a case file is at most " + std::to_string(max_case_file_bytes) +
+                     " bytes");
+  std::filesystem::remove_all(directory);
 }
 
 } // namespace
