@@ -97,9 +97,13 @@ struct ContactPair {
   // opening or a slip the positions never made, and feed energy into the soil.
   std::vector<std::uint8_t> state;
   std::vector<std::array<double, 2>> contact_normal;
+  /// The nodes where node_force, node_dissipation, state and contact_normal were last written;
+  /// outside it they are zero (free), as allocate leaves them.
+  NodeBox written;
   std::vector<int> outlined_nodes; // nodes the outline gave an area, cleared before the next step
   /// Per node, with an outline: the smallest gap between the outline and the domain of a soil
   /// particle in the node's cells (distance minus half the particle's size; <= 0: touching).
+  /// Formed at the nodes of the structure field's reach only, the only nodes it is read at.
   /// Contact needs it: a node both bodies occupy may still have a gap smaller than a cell between
   /// them, which the nodal test alone would never let close.
   std::vector<double> gap;

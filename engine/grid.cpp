@@ -16,6 +16,9 @@ int Grid::add_structure_field() {
   NodeField field;
   field.nodes.assign(nodes.size(), GridNode{});
   field.constrained.assign(nodes.size(), 0);
+  // The whole grid until the particles have been binned and the reach narrowed to them.
+  field.reach = {0, nodes_r(), 0, nodes_y()};
+  field.held = field.reach;
   structure_fields.push_back(std::move(field));
   return field_count() - 1;
 }

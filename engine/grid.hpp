@@ -1,6 +1,7 @@
 #pragma once
 
 #include "engine/graded_axis.hpp"
+#include "engine/node_box.hpp"
 
 #include <array>
 #include <cstdint>
@@ -33,7 +34,15 @@ enum DofBit : std::uint8_t { DOF_R = 1, DOF_Y = 2, DOF_THETA = 4 };
 /// The nodal velocity field of one contact structure (physics.md section 5): its own mass,
 /// momentum and force per node, and its own constrained-DOF mask. Exists only in scenes with
 /// contact.
+///
+/// Its passes visit only `reach`, the nodes the structure's particles can touch in this step (set
+/// when the particles are binned; empty for a structure without particles). Outside `held`, the
+/// box it was last scattered to, every node and mass gradient is zero, so that clearing `held` and
+/// scattering into `reach` leaves the field exact everywhere: a small or idle structure costs in
+/// proportion to its size, not to the grid's.
 struct NodeField {
+  NodeBox reach;
+  NodeBox held;
   std::vector<GridNode> nodes;
   std::vector<std::uint8_t> constrained;
   /// sum m_p grad N_i(x_p) per node (it points out of the body at its surface), only for a
@@ -93,7 +102,7 @@ public:
   /// node's own momentum balance, decides the soil's motion.
   bool structure_occupies(std::size_t node, double mass_floor) const {
     for (const NodeField& field : structure_fields) {
-      if (field.nodes[node].mass > mass_floor) {
+      if (!field.reach.empty() && field.nodes[node].mass > mass_floor) {
         return true;
       }
     }

@@ -64,6 +64,7 @@ void ParticleBins::rebuild(std::span<const std::int32_t> cell_r,
     }
   });
 
+  block_tag_.clear();
   non_empty_blocks_.clear();
   for (auto& list : colored_blocks_) {
     list.clear();

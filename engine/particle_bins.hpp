@@ -40,6 +40,26 @@ public:
                                               std::span<const std::int32_t> cell_y) const;
   void reset_to_identity();
 
+  /// Marks every block with the bitwise OR of tag(particle) over its particles (0 for an empty
+  /// block), for passes that can take a shorter path through blocks of one kind. Valid until the
+  /// next rebuild; a permutation of the particles (reset_to_identity) keeps it.
+  template <class Tag> void tag_blocks(Tag&& tag) {
+    block_tag_.assign(static_cast<std::size_t>(block_count()), 0);
+    parallel_for(non_empty_blocks_.size(), [&](std::size_t k) {
+      const int block = non_empty_blocks_[k];
+      std::uint64_t t = 0;
+      for (const std::int32_t q : particles_in(block)) {
+        t |= tag(static_cast<std::size_t>(q));
+      }
+      block_tag_[static_cast<std::size_t>(block)] = t;
+    });
+  }
+  /// A block's tag; every bit set while the blocks are untagged, so that a pass never takes a
+  /// block for one kind it has not been shown to be.
+  std::uint64_t block_tag(int block) const {
+    return block_tag_.empty() ? ~std::uint64_t{0} : block_tag_[static_cast<std::size_t>(block)];
+  }
+
   /// Number of places where the visiting order jumps in memory; many jumps mean the particle arrays
   /// should be physically re-sorted to keep the passes streaming through memory.
   std::size_t order_breaks() const;
@@ -74,6 +94,7 @@ private:
   std::vector<std::int32_t> block_start_;
   std::vector<std::int32_t> non_empty_blocks_;
   std::array<std::vector<std::int32_t>, 4> colored_blocks_;
+  std::vector<std::uint64_t> block_tag_;
 };
 
 } // namespace mpile

@@ -36,7 +36,8 @@ void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double,
                      const std::array<double, 3>& u_before, double mass_floor,
                      bool record_increment) {
   std::vector<GridNode>& nodes = grid.field_nodes(body.field);
-  parallel_for(nodes.size(), [&](std::size_t i) {
+  const NodeBox& reach = grid.structure_fields[static_cast<std::size_t>(body.field - 1)].reach;
+  parallel_for_box(reach, grid.nodes_r(), [&](std::size_t i) {
     GridNode& node = nodes[i];
     if (node.mass <= mass_floor) {
       return;
@@ -70,8 +71,12 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
   Grid& grid = scene.grid;
   std::vector<GridNode>& soil = grid.nodes;
   std::vector<GridNode>& structure = grid.field_nodes(pair.field);
-  const std::vector<std::array<double, 2>>& gradient =
-      grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].mass_gradient;
+  const NodeField& field = grid.structure_fields[static_cast<std::size_t>(pair.field - 1)];
+  const std::vector<std::array<double, 2>>& gradient = field.mass_gradient;
+  // Both fields have mass only in the structure's reach; the per-node results of the last step
+  // were written in pair.written.
+  const NodeBox& reach = field.reach;
+  const int nodes_r = grid.nodes_r();
   const bool rigid = pair.rigid_body >= 0;
   // A constrained DOF of a deformable structure moves as prescribed: for contact it is rigid.
   const std::vector<std::uint8_t>& held = grid.field_constrained(pair.field);
@@ -137,7 +142,7 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
 
   if (!record) {
     // After the remap: the nodes in contact in this step keep their kind of contact.
-    parallel_for(soil.size(), [&](std::size_t i) {
+    parallel_for_box(reach, nodes_r, [&](std::size_t i) {
       if (pair.state[i] == contact_free) {
         return;
       }
@@ -155,7 +160,9 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     });
     return 0.0;
   }
-  parallel_for(soil.size(), [&](std::size_t i) {
+  const NodeBox visited = NodeBox::hull(pair.written, reach);
+  pair.written = reach;
+  parallel_for_box(visited, nodes_r, [&](std::size_t i) {
     GridNode& s = soil[i];
     GridNode& k = structure[i];
     pair.node_force[i] = {0.0, 0.0, 0.0};
@@ -256,12 +263,12 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
   const RigidBody* body =
       rigid ? &scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)] : nullptr;
   const SurfaceSums sums = parallel_reduce(
-      soil.size(), SurfaceSums{},
+      reach.count(), SurfaceSums{},
       [&](std::size_t begin, std::size_t end, SurfaceSums sum) {
-        for (std::size_t i = begin; i != end; ++i) {
+        reach.visit(begin, end, nodes_r, [&](std::size_t i) {
           const auto& f = pair.node_force[i];
           if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) {
-            continue;
+            return;
           }
           sum.dissipation += pair.node_dissipation[i];
           const double r = grid.node_r(static_cast<int>(i));
@@ -313,7 +320,7 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
             sum.body[1] += f[1];
             sum.body[2] += body->moment_of(f, r, y);
           }
-        }
+        });
         return sum;
       },
       [](SurfaceSums a, const SurfaceSums& b) {

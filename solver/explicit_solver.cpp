@@ -234,6 +234,7 @@ void ExplicitSolver::set_stable_time_step(double step_crossing_time, double cros
 
 void ExplicitSolver::rebin() {
   bins_.rebuild(scene_.particles.cell_r, scene_.particles.cell_y);
+  passes::find_structure_reach(scene_, bins_);
   // Physically re-sort once the visiting order jumps around in memory too often (on average
   // less than 32 particles in a row), so that the passes keep streaming through the arrays.
   if (bins_.order_breaks() * 32 > scene_.particles.size()) {

@@ -21,12 +21,16 @@ void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettin
   const double dt = step.dt;
   [[maybe_unused]] const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
-  bins.for_each_block([&](int, std::span<const std::int32_t> particles) {
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    // A block of soil particles only gathers from field 0.
+    [[maybe_unused]] const bool mixed = contact && bins.block_tag(block) != 0;
     for (const std::int32_t q : particles) {
       const auto i = static_cast<std::size_t>(q);
       const GridNode* nodes = grid.nodes.data();
       if constexpr (contact) {
-        nodes = fields->nodes(p.body[i]);
+        if (mixed) {
+          nodes = fields->nodes(p.body[i]);
+        }
       }
       const auto w = particle_weights<shape>(grid, p, i);
       double velocity[3] = {0.0, 0.0, 0.0};

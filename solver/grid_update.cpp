@@ -7,6 +7,7 @@
 
 #include "engine/parallel.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mpile::passes {
@@ -31,20 +32,21 @@ GridUpdateResult combine(GridUpdateResult a, const GridUpdateResult& b) {
   return a;
 }
 
-/// partner_occupies(i): whether the field's contact partner has mass at node i.
+/// partner_occupies(i): whether the field's contact partner has mass at node i. Nodes outside
+/// `box` hold no mass of the field.
 template <int dofs, class PartnerOccupies>
 GridUpdateResult
 update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uint8_t>& mask,
-                        PartnerOccupies partner_occupies, const SolverSettings& settings,
-                        const StepParameters& step) {
+                        const NodeBox& box, int nodes_r, PartnerOccupies partner_occupies,
+                        const SolverSettings& settings, const StepParameters& step) {
   const double alpha = settings.local_damping;
   const double dt_over_beta = step.dt / settings.mass_scaling;
   auto update = [&](std::size_t begin, std::size_t end, GridUpdateResult result) {
-    for (std::size_t i = begin; i != end; ++i) {
+    box.visit(begin, end, nodes_r, [&](std::size_t i) {
       GridNode& node = nodes[i];
       if (node.mass <= step.mass_floor) {
         node = GridNode{};
-        continue;
+        return;
       }
       const double inverse_mass = 1.0 / node.mass;
       // The theta DOF is the angular velocity: its inertia is the rotational one, which is > 0
@@ -79,11 +81,11 @@ update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uin
       if (!std::isfinite(finite_check) && result.node_nonfinite < 0) {
         result.node_nonfinite = static_cast<std::int64_t>(i);
       }
-    }
+    });
     return result;
   };
   // The damping sum must not depend on the thread count; without damping the split is free.
-  return parallel_reduce(nodes.size(), GridUpdateResult{}, update, combine, alpha > 0.0);
+  return parallel_reduce(box.count(), GridUpdateResult{}, update, combine, alpha > 0.0);
 }
 
 } // namespace
@@ -94,17 +96,28 @@ GridUpdateResult update_grid_velocities(Scene& scene, const SolverSettings& sett
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   // The soil's contact partners are the structures; a structure's partner is the soil.
-  GridUpdateResult result = update_field_velocities<dofs>(
-      grid.nodes, grid.constrained,
-      [&](std::size_t i) { return grid.structure_occupies(i, step.mass_floor); }, settings, step);
+  const NodeBox all{0, grid.nodes_r(), 0, grid.nodes_y()};
+  const bool any_structure =
+      std::any_of(grid.structure_fields.begin(), grid.structure_fields.end(),
+                  [](const NodeField& field) { return !field.reach.empty(); });
+  GridUpdateResult result =
+      any_structure
+          ? update_field_velocities<dofs>(
+                grid.nodes, grid.constrained, all, grid.nodes_r(),
+                [&](std::size_t i) { return grid.structure_occupies(i, step.mass_floor); },
+                settings, step)
+          : update_field_velocities<dofs>(
+                grid.nodes, grid.constrained, all, grid.nodes_r(),
+                [](std::size_t) { return false; }, settings, step);
   const auto soil_occupies = [&](std::size_t i) { return grid.nodes[i].mass > step.mass_floor; };
   // Deformable structures have their own momentum balance; rigid bodies set their fields from
   // their DOFs instead.
   for (const ContactPair& pair : scene.contacts) {
     if (pair.rigid_body < 0) {
-      GridUpdateResult field = update_field_velocities<dofs>(grid.field_nodes(pair.field),
-                                                             grid.field_constrained(pair.field),
-                                                             soil_occupies, settings, step);
+      const NodeBox& reach = grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
+      GridUpdateResult field = update_field_velocities<dofs>(
+          grid.field_nodes(pair.field), grid.field_constrained(pair.field), reach, grid.nodes_r(),
+          soil_occupies, settings, step);
       result = combine(result, field);
     }
   }

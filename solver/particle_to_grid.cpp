@@ -15,31 +15,94 @@
 
 namespace mpile::passes {
 
+namespace {
+
+/// Scatters particle i's mass, momentum, forces and, in axisymmetric mode, its angular momentum,
+/// rotational inertia and torque to the nodes of one field; returns its weights.
+template <GeometryMode mode, ShapeFunctions shape>
+[[gnu::always_inline]] inline auto scatter(GridNode* nodes, const Grid& grid, const Particles& p,
+                                           std::size_t i, double g_r, double g_y) {
+  const auto w = particle_weights<shape>(grid, p, i);
+  const double m = p.mass[i];
+  const double weight = p.volume[i]; // integration weight (A r per radian in axisymmetry)
+  const Stress& s = p.stress[i];
+  const double m_v_r = m * p.v_r[i];
+  const double m_v_y = m * p.v_y[i];
+  // Stresses times the integration weight, so that each node needs only multiply-adds.
+  const double w_rr = weight * s[RR];
+  const double w_yy = weight * s[YY];
+  const double w_ry = weight * s[RY];
+  for (int k = 0; k < w.size; ++k) {
+    GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
+    const double n = w.N[k];
+    node.mass += n * m;
+    node.momentum[0] += n * m_v_r;
+    node.momentum[1] += n * m_v_y;
+    node.force[0] += n * m * g_r - (w.dN_dr[k] * w_rr + w.dN_dy[k] * w_ry);
+    node.force[1] += n * m * g_y - (w.dN_dy[k] * w_yy + w.dN_dr[k] * w_ry);
+  }
+  if constexpr (has_theta(mode)) {
+    // Hoop stress in the r row. The theta DOF is the node's angular velocity (v_theta =
+    // r sum N omega), so a rigid spin is exact: the node takes angular momentum m r v_theta
+    // and rotational inertia m r^2, and its torque row is the virtual work of tau_ytheta and
+    // tau_rtheta on gamma_ytheta = r d(omega)/dy and gamma_rtheta = r d(omega)/dr (seed eq. 8's
+    // dv/dr - v/r with v = r omega: its -v/r term cancels the rigid part exactly).
+    const double r = p.r[i];
+    const double w_hoop = weight * s[TT] * (1.0 / r);
+    const double w_yt = weight * r * s[YT];
+    const double w_rt = weight * r * s[RT];
+    const double m_r = m * r;
+    const double angular_momentum = m_r * p.v_theta[i];
+    const double rotational_inertia = m_r * r;
+    for (int k = 0; k < w.size; ++k) {
+      GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
+      const double n = w.N[k];
+      node.force[0] -= n * w_hoop;
+      node.momentum[2] += n * angular_momentum;
+      node.inertia += n * rotational_inertia;
+      node.force[2] -= w.dN_dy[k] * w_yt + w.dN_dr[k] * w_rt;
+    }
+  }
+  return w;
+}
+
+} // namespace
+
 template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings) {
   Grid& grid = scene.grid;
   const Particles& p = scene.particles;
   parallel_for(grid.nodes.size(), [&](std::size_t i) { grid.nodes[i] = GridNode{}; });
   if constexpr (contact) {
+    // A structure field is zero outside the box it was last scattered to (NodeField::held).
     for (NodeField& field : grid.structure_fields) {
-      parallel_for(field.nodes.size(), [&](std::size_t i) { field.nodes[i] = GridNode{}; });
-      parallel_for(field.mass_gradient.size(), [&](std::size_t i) {
-        field.mass_gradient[i] = {0.0, 0.0};
+      const bool gradient = !field.mass_gradient.empty();
+      parallel_for_box(field.held, grid.nodes_r(), [&](std::size_t i) {
+        field.nodes[i] = GridNode{};
+        if (gradient) {
+          field.mass_gradient[i] = {0.0, 0.0};
+        }
       });
+      field.held = field.reach;
     }
   }
   // Gaps between the soil and each structure outline, as the smallest over the soil particles
-  // of a node's cells (ContactPair::gap).
+  // of a node's cells (ContactPair::gap), at the nodes of the structure's reach: only there can
+  // the structure have mass, and only there is the gap read.
   struct OutlineGap {
     OutlineDistance distance;
     double* gap;
+    NodeBox reach;
   };
   std::vector<OutlineGap> gaps;
   if constexpr (contact) {
     for (ContactPair& pair : scene.contacts) {
-      if (pair.outline) {
-        std::fill(pair.gap.begin(), pair.gap.end(), std::numeric_limits<double>::infinity());
-        gaps.push_back({OutlineDistance(*pair.outline), pair.gap.data()});
+      const NodeBox& reach = grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
+      if (pair.outline && !reach.empty()) {
+        parallel_for_box(reach, grid.nodes_r(), [&](std::size_t i) {
+          pair.gap[i] = std::numeric_limits<double>::infinity();
+        });
+        gaps.push_back({OutlineDistance(*pair.outline), pair.gap.data(), reach});
       }
     }
   }
@@ -48,59 +111,35 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
 
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
-  bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
-    for (const std::int32_t q : particles) {
-      const auto i = static_cast<std::size_t>(q);
-      GridNode* nodes = grid.nodes.data();
-      if constexpr (contact) {
-        nodes = fields->nodes(p.body[i]);
+  bins.for_each_block_colored([&](int block, std::span<const std::int32_t> particles) {
+    if constexpr (!contact) {
+      for (const std::int32_t q : particles) {
+        scatter<mode, shape>(grid.nodes.data(), grid, p, static_cast<std::size_t>(q), g_r, g_y);
       }
-      const auto w = particle_weights<shape>(grid, p, i);
-      const double m = p.mass[i];
-      const double weight = p.volume[i]; // integration weight (A r per radian in axisymmetry)
-      const Stress& s = p.stress[i];
-      const double m_v_r = m * p.v_r[i];
-      const double m_v_y = m * p.v_y[i];
-      // Stresses times the integration weight, so that each node needs only multiply-adds.
-      const double w_rr = weight * s[RR];
-      const double w_yy = weight * s[YY];
-      const double w_ry = weight * s[RY];
-      for (int k = 0; k < w.size; ++k) {
-        GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
-        const double n = w.N[k];
-        node.mass += n * m;
-        node.momentum[0] += n * m_v_r;
-        node.momentum[1] += n * m_v_y;
-        node.force[0] += n * m * g_r - (w.dN_dr[k] * w_rr + w.dN_dy[k] * w_ry);
-        node.force[1] += n * m * g_y - (w.dN_dy[k] * w_yy + w.dN_dr[k] * w_ry);
+    } else {
+      // A block of soil particles scatters to field 0 alone, as without contact, and keeps no
+      // mass gradient; it needs the gaps only where its nodes meet a structure's reach.
+      const bool mixed = bins.block_tag(block) != 0;
+      const NodeBox block_nodes = block_node_box(grid, bins, block);
+      bool near_outline = false;
+      for (const OutlineGap& g : gaps) {
+        near_outline = near_outline || block_nodes.intersects(g.reach);
       }
-      if constexpr (has_theta(mode)) {
-        // Hoop stress in the r row. The theta DOF is the node's angular velocity (v_theta =
-        // r sum N omega), so a rigid spin is exact: the node takes angular momentum m r v_theta
-        // and rotational inertia m r^2, and its torque row is the virtual work of tau_ytheta and
-        // tau_rtheta on gamma_ytheta = r d(omega)/dy and gamma_rtheta = r d(omega)/dr (seed eq. 8's
-        // dv/dr - v/r with v = r omega: its -v/r term cancels the rigid part exactly).
-        const double r = p.r[i];
-        const double w_hoop = weight * s[TT] * (1.0 / r);
-        const double w_yt = weight * r * s[YT];
-        const double w_rt = weight * r * s[RT];
-        const double m_r = m * r;
-        const double angular_momentum = m_r * p.v_theta[i];
-        const double rotational_inertia = m_r * r;
-        for (int k = 0; k < w.size; ++k) {
-          GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
-          const double n = w.N[k];
-          node.force[0] -= n * w_hoop;
-          node.momentum[2] += n * angular_momentum;
-          node.inertia += n * rotational_inertia;
-          node.force[2] -= w.dN_dy[k] * w_yt + w.dN_dr[k] * w_rt;
+      if (!mixed && !near_outline) {
+        for (const std::int32_t q : particles) {
+          scatter<mode, shape>(grid.nodes.data(), grid, p, static_cast<std::size_t>(q), g_r, g_y);
         }
+        return;
       }
-      if constexpr (contact) {
-        if (!gaps.empty() && fields->is_soil(p.body[i])) {
+      for (const std::int32_t q : particles) {
+        const auto i = static_cast<std::size_t>(q);
+        const std::uint16_t body = p.body[i];
+        const auto w = scatter<mode, shape>(mixed ? fields->nodes(body) : grid.nodes.data(), grid,
+                                            p, i, g_r, g_y);
+        if (near_outline && (!mixed || fields->is_soil(body))) {
           // Half the particle's size (a square domain of its area in the r-y plane), widened by
           // 1 % so that a particle whose domain ends on the outline counts as touching it.
-          const double area = has_theta(mode) ? weight / p.r[i] : weight;
+          const double area = has_theta(mode) ? p.volume[i] / p.r[i] : p.volume[i];
           const double half_size = 0.505 * std::sqrt(area);
           for (const OutlineGap& g : gaps) {
             const double gap = g.distance(p.r[i], p.y[i]) - half_size;
@@ -110,7 +149,9 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
             }
           }
         }
-        if (std::array<double, 2>* gradient = fields->mass_gradient(p.body[i])) {
+        std::array<double, 2>* gradient = mixed ? fields->mass_gradient(body) : nullptr;
+        if (gradient != nullptr) {
+          const double m = p.mass[i];
           for (int k = 0; k < w.size; ++k) {
             auto& g = gradient[static_cast<std::size_t>(w.node[k])];
             g[0] += m * w.dN_dr[k];

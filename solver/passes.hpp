@@ -76,6 +76,17 @@ StressPassResult
 update_stress_and_positions(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                             const StepParameters& step, std::span<double> signal_speed = {});
 
+/// The bit a particle of a field sets in its block's tag (ParticleBins::tag_blocks): none for the
+/// soil (field 0), one per structure field (fields past the 64th share the last bit).
+std::uint64_t structure_tag(int field);
+
+/// The nodes the particles of a block can touch: its cells widened by one on either side (GIMP).
+NodeBox block_node_box(const Grid& grid, const ParticleBins& bins, int block);
+
+/// Tags the blocks with their particles' structure fields and sets each structure field's reach
+/// to the nodes its blocks' particles can touch. Called whenever the particles are binned anew.
+void find_structure_reach(Scene& scene, ParticleBins& bins);
+
 /// min over particles of h_cell / (c_p + |v_p|) from the materials' current stiffness.
 double min_crossing_time(const Scene& scene, const SolverSettings& settings);
 

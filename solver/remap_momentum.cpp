@@ -12,16 +12,19 @@ namespace mpile::passes {
 
 namespace {
 
-template <int dofs> void clear_momentum(std::vector<GridNode>& nodes) {
-  parallel_for(nodes.size(), [&](std::size_t i) {
+template <int dofs>
+void clear_momentum(std::vector<GridNode>& nodes, const NodeBox& box, int nodes_r) {
+  parallel_for_box(box, nodes_r, [&](std::size_t i) {
     for (int d = 0; d < dofs; ++d) {
       nodes[i].momentum[d] = 0.0;
     }
   });
 }
 
-template <int dofs> void momentum_to_velocity(std::vector<GridNode>& nodes, double mass_floor) {
-  parallel_for(nodes.size(), [&](std::size_t i) {
+template <int dofs>
+void momentum_to_velocity(std::vector<GridNode>& nodes, const NodeBox& box, int nodes_r,
+                          double mass_floor) {
+  parallel_for_box(box, nodes_r, [&](std::size_t i) {
     GridNode& node = nodes[i];
     const bool occupied = node.mass > mass_floor;
     const double inverse_mass = occupied ? 1.0 / node.mass : 0.0;
@@ -40,17 +43,26 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   const Particles& p = scene.particles;
+  const NodeBox all{0, grid.nodes_r(), 0, grid.nodes_y()};
+  // A structure field holds mass only in its reach (NodeField).
+  auto box_of = [&](int f) {
+    return f == 0 ? all : grid.structure_fields[static_cast<std::size_t>(f - 1)].reach;
+  };
   for (int f = 0; f < (contact ? grid.field_count() : 1); ++f) {
-    clear_momentum<dofs>(grid.field_nodes(f));
+    clear_momentum<dofs>(grid.field_nodes(f), box_of(f), grid.nodes_r());
   }
   [[maybe_unused]] const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
-  bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
+  bins.for_each_block_colored([&](int block, std::span<const std::int32_t> particles) {
+    // A block of soil particles only scatters to field 0.
+    [[maybe_unused]] const bool mixed = contact && bins.block_tag(block) != 0;
     for (const std::int32_t q : particles) {
       const auto i = static_cast<std::size_t>(q);
       GridNode* nodes = grid.nodes.data();
       if constexpr (contact) {
-        nodes = fields->nodes(p.body[i]);
+        if (mixed) {
+          nodes = fields->nodes(p.body[i]);
+        }
       }
       const auto w = particle_weights<shape>(grid, p, i);
       const double m = p.mass[i];
@@ -67,7 +79,7 @@ void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters
     }
   });
   for (int f = 0; f < (contact ? grid.field_count() : 1); ++f) {
-    momentum_to_velocity<dofs>(grid.field_nodes(f), step.mass_floor);
+    momentum_to_velocity<dofs>(grid.field_nodes(f), box_of(f), grid.nodes_r(), step.mass_floor);
   }
 }
 

@@ -94,12 +94,17 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
       std::fill_n(cell_weight.begin(), block_cells * block_cells, 0.0);
     }
 
+    // A block of soil particles only reads field 0 (and carries no rigid particle).
+    [[maybe_unused]] const bool mixed = contact && bins.block_tag(block) != 0;
+
     // 1. Strain increment and spin from the nodal velocities at x^n (physics.md section 2).
     for (std::size_t k = 0; k < particles.size(); ++k) {
       const auto i = static_cast<std::size_t>(particles[k]);
       const GridNode* nodes = grid.nodes.data();
       if constexpr (contact) {
-        nodes = fields->nodes(p.body[i]);
+        if (mixed) {
+          nodes = fields->nodes(p.body[i]);
+        }
       }
       const auto w = particle_weights<shape>(grid, p, i);
       double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
@@ -202,7 +207,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
       }
       bool carries_gravity = true;
       if constexpr (contact) {
-        carries_gravity = rigid_material[p.material[i]] == 0;
+        carries_gravity = !mixed || rigid_material[p.material[i]] == 0;
       }
       if (carries_gravity) {
         out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
