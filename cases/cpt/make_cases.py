@@ -68,7 +68,18 @@ def lay(nodes, sizes, end):
     return nodes
 
 
-def case(n, penetration=PENETRATION, flat=False, friction=0.4, speed=SPEED, mass_scaling=100.0):
+def case(
+    n,
+    penetration=PENETRATION,
+    flat=False,
+    friction=0.4,
+    speed=SPEED,
+    mass_scaling=100.0,
+    chamber_radius=CHAMBER_RADIUS,
+    k0=0.5,
+    bbar=True,
+    particles_per_cell=2,
+):
     """The case text; flat, friction, speed and mass_scaling vary it for docs/cpt.md's study."""
     h = RADIUS / n
     tip = SURFACE - EMBEDMENT
@@ -81,7 +92,7 @@ def case(n, penetration=PENETRATION, flat=False, friction=0.4, speed=SPEED, mass
     above_cells = math.ceil((band_top - tip) / h - 1e-9)
     band_bottom = tip - below_cells * h
     band_top = tip + above_cells * h
-    top = SURFACE + HEAD_ROOM
+    top = SURFACE + max(HEAD_ROOM, penetration + 0.1)
 
     below = graded(band_bottom, 0.0, h, COARSE, GROWTH)
     y_nodes = lay([0.0], reversed(below), band_bottom)
@@ -91,19 +102,22 @@ def case(n, penetration=PENETRATION, flat=False, friction=0.4, speed=SPEED, mass
 
     fine = 3 * n  # cells across the first 3 radii
     r_nodes = lay([0.0], [h] * fine, 3.0 * RADIUS)
-    lay(r_nodes, graded(3.0 * RADIUS, CHAMBER_RADIUS, h, COARSE, GROWTH), CHAMBER_RADIUS)
+    lay(r_nodes, graded(3.0 * RADIUS, chamber_radius, h, COARSE, GROWTH), chamber_radius)
 
     f = lambda x: f"{x:.10g}"  # noqa: E731
     # Flat-ended, the shoulder is at the tip and the edge named "cone" is the rod's base.
     rod = [(0.0, tip), (RADIUS, shoulder), (RADIUS, sleeve_top), (RADIUS, top), (0.0, top)]
     soil = [
         (0.0, 0.0),
-        (CHAMBER_RADIUS, 0.0),
-        (CHAMBER_RADIUS, SURFACE),
+        (chamber_radius, 0.0),
+        (chamber_radius, SURFACE),
         (RADIUS, SURFACE),
         (RADIUS, shoulder),
         (0.0, tip),
     ]
+    # Written only when varied, so that the shipped cases keep their defaults implicit.
+    ppc_line = "" if particles_per_cell == 2 else f"particles_per_cell = {particles_per_cell}\n"
+    bbar_line = "" if bbar else "bbar = false\n"
     polygon = lambda pts: "[" + ", ".join(f"[{f(r)}, {f(y)}]" for r, y in pts) + "]"  # noqa: E731
     return f"""# CPT in a calibration chamber, {n} cells per cone radius. Written by cases/cpt/make_cases.py
 # (its docstring gives the set-up); docs/cpt.md has the runs and what sets q_c.
@@ -142,7 +156,7 @@ density = 7850.0
 name = "chamber"
 material = "sand"
 region = {{ polygon = {polygon(soil)} }}
-
+{ppc_line}
 # The cone (60 degrees), its friction sleeve and the rod, as one rigid polygon from the tip.
 [[bodies]]
 name = "cone"
@@ -171,20 +185,20 @@ y_min = "roller"
 # The surcharge: sigma'_v0 = 50 kPa on the surface, beside the rod.
 [[loads]]
 name = "surcharge"
-nodes = {{ y = {f(SURFACE)}, r = [{f(r_nodes[n + 1])}, {f(CHAMBER_RADIUS)}] }}
+nodes = {{ y = {f(SURFACE)}, r = [{f(r_nodes[n + 1])}, {f(chamber_radius)}] }}
 component = "y"
 traction = -50e3
 
 [solver]
 gravity = [0.0, 0.0]
 courant_number = 0.8
-
+{bbar_line}
 [[phases]]
 name = "chamber"
 duration = 0.05
 local_damping = 0.7
 equilibrium_tolerance = 0.01
-k0 = [{{ body = "chamber", surface = {f(SURFACE)}, surcharge = 50e3, k0 = 0.5 }}]
+k0 = [{{ body = "chamber", surface = {f(SURFACE)}, surcharge = 50e3, k0 = {k0} }}]
 
 [[phases]]
 name = "penetration"
@@ -208,7 +222,11 @@ if __name__ == "__main__":
 
     if len(sys.argv) > 1:  # a variant: make_cases.py OUT.toml N PENETRATION [key=value ...]
         options = dict(arg.split("=") for arg in sys.argv[4:])
-        options = {k: (v == "true") if k == "flat" else float(v) for k, v in options.items()}
+        flags = ("flat", "bbar")
+        options = {
+            k: (v == "true") if k in flags else int(v) if k == "particles_per_cell" else float(v)
+            for k, v in options.items()
+        }
         pathlib.Path(sys.argv[1]).write_text(case(int(sys.argv[2]), float(sys.argv[3]), **options))
         sys.exit(0)
     here = pathlib.Path(__file__).parent
