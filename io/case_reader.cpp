@@ -669,7 +669,8 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
         std::ostringstream why;
         why << "is beyond the travel of the moving band (" << spec.moving_mesh->travel
             << " m): below that depth the soil is seeded for coarser cells than the band's; "
-               "raise [monopile] travel";
+               "raise "
+            << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
         stop->fail("penetration", why.str());
       }
       s.at_rest = stop->boolean_or("at_rest", false);

@@ -4,6 +4,9 @@
 
 #include "engine/parallel.hpp"
 
+#include <cmath>
+#include <sstream>
+
 namespace mpile {
 
 namespace {
@@ -56,6 +59,79 @@ double elastic_energy(const Scene& scene) {
            material.elastic_energy_density(
                p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
   });
+}
+
+KineticHotspot kinetic_hotspot(const Scene& scene) {
+  const Particles& p = scene.particles;
+  const bool theta = has_theta(scene.mode);
+  KineticHotspot hot;
+  hot.body_energy.assign(scene.body_names.size(), 0.0);
+  std::vector<char> rigid;
+  for (const auto& material : scene.materials) {
+    rigid.push_back(material->is_rigid() ? 1 : 0);
+  }
+  // Serial: this runs once, when a guard reports, and the sums then come in index order.
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (rigid[p.material[i]] != 0) {
+      continue;
+    }
+    double v2 = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
+    if (theta) {
+      v2 += p.v_theta[i] * p.v_theta[i];
+    }
+    const double energy = 0.5 * p.mass[i] * v2;
+    if (p.body[i] < hot.body_energy.size()) {
+      hot.body_energy[p.body[i]] += energy;
+    }
+    // A non-finite energy is the first thing to name.
+    if (hot.particle < 0 || energy > hot.particle_energy ||
+        (!std::isfinite(energy) && std::isfinite(hot.particle_energy))) {
+      hot.particle = static_cast<std::int64_t>(i);
+      hot.particle_energy = energy;
+      hot.particle_speed = std::sqrt(v2);
+    }
+  }
+  for (const ContactPair& pair : scene.contacts) {
+    if (pair.rigid_body >= 0 && pair.structure_body < hot.body_energy.size()) {
+      hot.body_energy[pair.structure_body] =
+          scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)].kinetic_energy();
+    }
+  }
+  return hot;
+}
+
+std::string describe_kinetic_hotspot(const Scene& scene, double mass_scaling) {
+  KineticHotspot hot = kinetic_hotspot(scene);
+  for (double& e : hot.body_energy) {
+    e *= mass_scaling;
+  }
+  hot.particle_energy *= mass_scaling;
+  std::ostringstream s;
+  double total = 0.0;
+  std::size_t top = 0;
+  for (std::size_t b = 0; b < hot.body_energy.size(); ++b) {
+    total += hot.body_energy[b];
+    if (hot.body_energy[b] > hot.body_energy[top]) {
+      top = b;
+    }
+  }
+  if (hot.body_energy.empty()) {
+    return "no body has kinetic energy";
+  }
+  s << "most kinetic energy in body '" << scene.body_names[top] << "' (" << hot.body_energy[top]
+    << " J";
+  if (total > 0.0 && std::isfinite(total)) {
+    s << ", " << std::lround(100.0 * hot.body_energy[top] / total) << " % of " << total << " J";
+  }
+  s << ")";
+  if (hot.particle >= 0) {
+    const auto i = static_cast<std::size_t>(hot.particle);
+    const Particles& p = scene.particles;
+    s << "; the most in one particle: particle " << i << " of body '" << scene.body_names[p.body[i]]
+      << "' at (r, y) = (" << p.r[i] << ", " << p.y[i] << ") in cell (" << p.cell_r[i] << ", "
+      << p.cell_y[i] << "), " << hot.particle_energy << " J at " << hot.particle_speed << " m/s";
+  }
+  return s.str();
 }
 
 std::array<double, 3> mean_velocity(const Scene& scene, int body) {

@@ -210,6 +210,14 @@ TEST(Guards, EnergyResidualPastTheLimitStopsTheRun) {
             std::string::npos)
       << err.str();
   EXPECT_NE(err.str().find("the run went unstable"), std::string::npos) << err.str();
+  // It says where the energy is: the one body holds all of it, and the particle with the most is
+  // named with its place.
+  EXPECT_NE(err.str().find("most kinetic energy in body 'column' ("), std::string::npos)
+      << err.str();
+  EXPECT_NE(err.str().find(" J, 100 % of "), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("; the most in one particle: particle "), std::string::npos)
+      << err.str();
+  EXPECT_NE(err.str().find(") in cell ("), std::string::npos) << err.str();
   Hdf5File history((directory / "out" / "history.h5").string(), Hdf5File::Mode::read);
   const std::string status = history.string_attribute("/", "status");
   EXPECT_EQ(status.rfind("failed: step ", 0), 0u) << status;
