@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace mpile {
 
@@ -205,6 +206,44 @@ std::size_t count_body_particles(const CaseSpec& spec, const BodySpec& body) {
   });
 }
 
+namespace {
+
+/// Two bodies whose regions share a particle position would be seeded twice there (double mass
+/// and stress): refused, naming the later body, the earlier one and a position they share.
+void refuse_overlapping_bodies(const Scene& scene, const CaseSpec& spec) {
+  const Particles& p = scene.particles;
+  // Positions on a 1e-9 m lattice: seeds of one grid are equal to the last bit, or far apart.
+  struct Seed {
+    long long r, y;
+    std::uint16_t body;
+    std::size_t index;
+  };
+  std::vector<Seed> seeds(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    seeds[i] = {std::llround(p.r[i] * 1e9), std::llround(p.y[i] * 1e9), p.body[i], i};
+  }
+  std::sort(seeds.begin(), seeds.end(), [](const Seed& a, const Seed& b) {
+    return a.y != b.y ? a.y < b.y : a.r != b.r ? a.r < b.r : a.body < b.body;
+  });
+  for (std::size_t k = 1; k < seeds.size(); ++k) {
+    const Seed& a = seeds[k - 1];
+    const Seed& b = seeds[k];
+    if (a.r == b.r && a.y == b.y && a.body != b.body) {
+      const BodySpec& later = spec.bodies[std::max(a.body, b.body)];
+      const BodySpec& earlier = spec.bodies[std::min(a.body, b.body)];
+      std::ostringstream s;
+      s << spec.file << ":" << later.line << ": "
+        << (later.key.empty() ? "body '" + later.name + "'" : later.key) << ": overlaps body '"
+        << earlier.name << "' (both seed a particle at (r, y) = (" << p.r[a.index] << ", "
+        << p.y[a.index] << ")): its particles would be doubled there; make the regions "
+        << "disjoint (a polygon can leave out another body's region)";
+      throw CaseError(s.str());
+    }
+  }
+}
+
+} // namespace
+
 std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
   auto scene =
       std::make_unique<Scene>(spec.mode, Grid(GradedAxis(spec.r_zones), GradedAxis(spec.y_zones)));
@@ -238,6 +277,7 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
       }
     }
   }
+  refuse_overlapping_bodies(*scene, spec);
 
   for (const ContactSpec& contact : spec.contacts) {
     std::uint16_t b = 0;

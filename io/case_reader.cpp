@@ -1,6 +1,7 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
 #include "engine/contact.hpp"
+#include "engine/particle_bins.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_spec.hpp"
 #include "io/monopile_reader.hpp"
@@ -45,7 +46,7 @@ std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key) {
     zones.push_back(z);
   }
   if (zones.empty()) {
-    grid.fail(key, "missing (required): at least one zone {start, end, cells}");
+    grid.missing(key, "at least one zone {start, end, cells}");
   }
   try {
     GradedAxis axis(zones);
@@ -218,7 +219,7 @@ void read_materials(TomlTable& top, CaseSpec& spec) {
     spec.materials.push_back(read_material_table(table, name));
   }
   if (spec.materials.empty()) {
-    top.fail("materials", "missing (required): at least one [materials.<name>] table");
+    top.missing("materials", "at least one [materials.<name>] table");
   }
 }
 
@@ -241,6 +242,8 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
       table.fail("material", "no material named '" + body.material + "' in [materials]");
     }
     body.region = read_region(table, spec.mode, axes.r, axes.y);
+    body.line = table.line_of("region");
+    body.key = table.key_path("region");
     const long per_direction = table.integer_or("particles_per_cell", 2);
     if (per_direction < 1 || per_direction > 8) {
       table.fail("particles_per_cell",
@@ -278,7 +281,7 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
     spec.bodies.push_back(std::move(body));
   }
   if (spec.bodies.empty()) {
-    top.fail("bodies", "missing (required): at least one [[bodies]] table");
+    top.missing("bodies", "at least one [[bodies]] table");
   }
   return rigid_tables;
 }
@@ -558,7 +561,16 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     const auto g = table->numbers("gravity", 2);
     s.gravity = {g[0], g[1]};
   }
-  s.block_cells = static_cast<int>(table->integer_or("block_cells", s.block_cells));
+  if (table->has("block_cells")) {
+    // Checked as read: a value past int's range would wrap into the valid one when narrowed.
+    const long cells = table->integer("block_cells");
+    if (cells < 1 || cells > ParticleBins::max_block_cells) {
+      table->fail("block_cells", "must lie between 1 and " +
+                                     std::to_string(ParticleBins::max_block_cells) + ", got " +
+                                     std::to_string(cells));
+    }
+    s.block_cells = static_cast<int>(cells);
+  }
   if (table->has("shape_functions")) {
     const std::string shape = table->string("shape_functions");
     if (shape != "linear" && shape != "gimp") {
@@ -681,7 +693,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     spec.phases.push_back(std::move(phase));
   }
   if (spec.phases.empty()) {
-    top.fail("phases", "missing (required): at least one [[phases]] table with a duration");
+    top.missing("phases", "at least one [[phases]] table with a duration");
   }
 }
 
@@ -803,8 +815,7 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
     if (table.has(parameter.name)) {
       material.parameters[parameter.name] = table.number(parameter.name);
     } else if (!parameter.default_value) {
-      table.fail(parameter.name,
-                 "missing (required): " + parameter.meaning + ", in " + parameter.unit);
+      table.missing(parameter.name, parameter.meaning + ", in " + parameter.unit);
     }
   }
   table.finish();

@@ -50,6 +50,9 @@ struct BodySpec {
   std::array<double, 3> velocity{0.0, 0.0, 0.0};
   std::optional<VelocityProfile> velocity_profile;
   std::optional<RigidSpec> rigid;
+  /// Where the region is written (for messages about it); 0 for a body a generator made.
+  int line = 0;
+  std::string key; // its key path, e.g. "bodies[1].region"
 };
 
 /// Contact between the soil (every body that is not a structure) and one structure body.

@@ -1,6 +1,8 @@
 #include "io/toml_reader.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <vector>
 
 namespace mpile {
 
@@ -23,6 +25,24 @@ std::string type_name(const TomlValue& v) {
   default:
     return "a date or time";
   }
+}
+
+/// Levenshtein distance (insertions, deletions, substitutions).
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) {
+    row[j] = j;
+  }
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
 }
 
 bool is_number(const TomlValue& v) {
@@ -71,9 +91,19 @@ void TomlTable::type_error(const std::string& key, const std::string& expected) 
   fail(key, "expected " + expected + ", got " + type_name(table_->as_table().at(key)));
 }
 
+void TomlTable::missing(const std::string& key, const std::string& what) const {
+  constexpr std::size_t max_edits = 2;
+  for (const auto& [present, v] : table_->as_table()) {
+    if (read_.count(present) == 0 && edit_distance(present, key) <= max_edits) {
+      fail(present, "unknown key; did you mean '" + key + "'?");
+    }
+  }
+  fail(key, what.empty() ? "missing (required)" : "missing (required): " + what);
+}
+
 const TomlValue& TomlTable::value(const std::string& key) {
   if (!has(key)) {
-    fail(key, "missing (required)");
+    missing(key);
   }
   read_.insert(key);
   return table_->as_table().at(key);

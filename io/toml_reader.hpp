@@ -46,6 +46,10 @@ public:
 
   /// "file:line: key: message" for a key of this table (the table's line when the key is absent).
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
+  /// A required key is absent: when the table holds an unread key spelled within two edits of it,
+  /// that key is the error (a typo reported as the key it was meant to be would point at the wrong
+  /// line); otherwise "missing (required)", followed by `what` when given.
+  [[noreturn]] void missing(const std::string& key, const std::string& what = "") const;
   std::string key_path(const std::string& key) const;
   int line_of(const std::string& key) const;
   const std::string& file() const { return file_; }

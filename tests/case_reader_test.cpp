@@ -96,6 +96,9 @@ std::vector<BadInput> bad_inputs() {
       {"TOML syntax error", edited("title = \"reader test\"", "title = \"reader test"),
        "not valid TOML", ""},
       {"misspelt top-level key", edited("title =", "titel ="), "titel: unknown key", "titel ="},
+      // A misspelt required key is named as the typo, on its own line, not as the key it missed.
+      {"misspelt table array", edited("[[phases]]", "[[phase]]"),
+       "phase: unknown key; did you mean 'phases'?", "[[phase]]"},
       {"unknown geometry", edited("geometry = \"axisymmetric\"", "geometry = \"3d\""),
        "geometry: must be \"axisymmetric\" or \"plane_strain\"", "geometry = \"3d\""},
       {"no grid",
@@ -118,6 +121,9 @@ std::vector<BadInput> bad_inputs() {
        "grid.r: starts at r = -0.5 < 0", ""},
       {"unknown material type", edited("type = \"linear_elastic\"", "type = \"elastic\""),
        "materials.soil.type: unknown material type 'elastic'", "type = \"elastic\""},
+      {"block size past int's range",
+       edited("courant_number = 0.5", "courant_number = 0.5\nblock_cells = 4294967304"),
+       "solver.block_cells: must lie between 1 and 16, got 4294967304", "block_cells ="},
       {"unknown shape functions",
        edited("courant_number = 0.5", "courant_number = 0.5\nshape_functions = \"cubic\""),
        "solver.shape_functions: must be \"linear\" or \"gimp\", got \"cubic\"",
@@ -142,7 +148,10 @@ std::vector<BadInput> bad_inputs() {
       {"missing density", edited("density = 1800.0\n", ""),
        "materials.soil.density: missing (required)", ""},
       {"misspelt material parameter", edited("young_modulus = 1e7", "youngs_modulus = 1e7"),
-       "materials.soil.young_modulus: missing (required)", ""},
+       "materials.soil.youngs_modulus: unknown key; did you mean 'young_modulus'?",
+       "youngs_modulus = 1e7"},
+      {"missing material parameter", edited("young_modulus = 1e7\n", ""),
+       "materials.soil.young_modulus: missing (required): Young's modulus E, in Pa", ""},
       {"body of an undefined material", edited("material = \"soil\"", "material = \"sand\""),
        "bodies[0].material: no material named 'sand'", "material = \"sand\""},
       {"body outside the grid",
@@ -621,6 +630,38 @@ TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
   const auto table = bad_inputs();
   ASSERT_GE(table.size(), 25u);
   expect_rejected(table);
+}
+
+TEST(CaseReader, OverlappingBodiesAreRefusedWhereTheLaterIsWritten) {
+  // A second body whose region covers part of the first would seed particles twice there.
+  const std::string text =
+      edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+             "region = { r = [0.0, 0.5], y = [0.0, 0.5] }\n\n[[bodies]]\nname = \"cap\"\n"
+             "material = \"soil\"\nregion = { r = [0.25, 0.5], y = [0.25, 0.75] }");
+  const CaseSpec spec = read_case_text(text, "case.toml");
+  try {
+    build_scene(spec);
+    FAIL() << "overlapping bodies were accepted";
+  } catch (const CaseError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("case.toml:", 0), 0u) << message;
+    EXPECT_NE(message.find(": bodies[1].region: overlaps body 'block' (both seed a particle at "),
+              std::string::npos)
+        << message;
+    // The line is that of the second body's region.
+    const auto line =
+        std::count(text.begin(),
+                   text.begin() + static_cast<long>(text.find("region = { r = [0.25")), '\n') +
+        1;
+    EXPECT_EQ(message.rfind("case.toml:" + std::to_string(line) + ":", 0), 0u) << message;
+  }
+  // Touching regions share no particle position: accepted.
+  const CaseSpec touching = read_case_text(
+      edited("region = { r = [0.0, 0.5], y = [0.0, 0.5] }",
+             "region = { r = [0.0, 0.5], y = [0.0, 0.5] }\n\n[[bodies]]\nname = \"cap\"\n"
+             "material = \"soil\"\nregion = { r = [0.0, 0.5], y = [0.5, 0.75] }"),
+      "case.toml");
+  EXPECT_NO_THROW(build_scene(touching));
 }
 
 TEST(CaseReader, RunExitsWithStatusTwoAndOneLineReasonOnBadInput) {
