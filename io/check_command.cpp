@@ -1,5 +1,6 @@
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
+#include "io/plausibility.hpp"
 #include "io/run_command.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -68,6 +69,7 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
   try {
     ExplicitSolver solver(*scene, phase_settings(spec, spec.phases.front()), log);
     const double dt = solver.stable_time_step();
+    refuse_implausible_run(spec, *scene, dt);
     const double steps = spec.end_time() / dt;
     // A short trial run on a copy of the particles measures this machine's step rate.
     const auto start = std::chrono::steady_clock::now();
@@ -92,6 +94,9 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
     out << "estimated memory: " << std::setprecision(3) << memory / 1048576.0 << " MiB ("
         << std::setprecision(0) << std::fixed
         << memory / static_cast<double>(scene->particles.size()) << " bytes per particle)\n";
+  } catch (const CaseError& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_bad_input;
   } catch (const std::exception& e) {
     err << "mpile: " << spec.file << ": " << e.what() << '\n';
     return exit_bad_input;

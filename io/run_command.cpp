@@ -4,6 +4,7 @@
 #include "io/case_error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history_writer.hpp"
+#include "io/plausibility.hpp"
 #include "io/progress_reporter.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
@@ -118,6 +119,33 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     return exit_bad_input;
   }
 
+  RunLog log(&out);
+  RunProgress progress = restarting ? restored.progress : RunProgress{};
+  if (!restarting) {
+    progress.phase_starts = {0.0};
+    apply_k0(*scene, spec, spec.phases.front());
+  }
+  for (std::size_t p = 0; p < progress.phase_starts.size(); ++p) {
+    activate_phase_boundaries(*scene, spec, p, progress.phase_starts[p]);
+  }
+
+  std::unique_ptr<ExplicitSolver> solver;
+  try {
+    const SolverSettings settings = phase_settings(spec, spec.phases[progress.phase]);
+    solver = restarting ? std::make_unique<ExplicitSolver>(*scene, settings, log, restored.solver)
+                        : std::make_unique<ExplicitSolver>(*scene, settings, log);
+    if (!restarting) {
+      refuse_implausible_run(spec, *scene, solver->stable_time_step());
+    }
+  } catch (const CaseError& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const std::invalid_argument& e) {
+    err << "mpile: " << spec.file << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+
+  // Nothing is written before the case has been read, built and judged runnable.
   const std::string directory = output_directory(options, spec);
   try {
     std::filesystem::create_directories(directory);
@@ -138,26 +166,6 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         std::filesystem::remove(entry.path());
       }
     }
-  }
-
-  RunLog log(&out);
-  RunProgress progress = restarting ? restored.progress : RunProgress{};
-  if (!restarting) {
-    progress.phase_starts = {0.0};
-    apply_k0(*scene, spec, spec.phases.front());
-  }
-  for (std::size_t p = 0; p < progress.phase_starts.size(); ++p) {
-    activate_phase_boundaries(*scene, spec, p, progress.phase_starts[p]);
-  }
-
-  std::unique_ptr<ExplicitSolver> solver;
-  try {
-    const SolverSettings settings = phase_settings(spec, spec.phases[progress.phase]);
-    solver = restarting ? std::make_unique<ExplicitSolver>(*scene, settings, log, restored.solver)
-                        : std::make_unique<ExplicitSolver>(*scene, settings, log);
-  } catch (const std::invalid_argument& e) {
-    err << "mpile: " << spec.file << ": " << e.what() << '\n';
-    return exit_bad_input;
   }
 
   const OutputSpec& output = spec.output;

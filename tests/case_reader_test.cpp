@@ -664,6 +664,38 @@ TEST(CaseReader, OverlappingBodiesAreRefusedWhereTheLaterIsWritten) {
   EXPECT_NO_THROW(build_scene(touching));
 }
 
+TEST(CaseReader, ARunThatWouldStepForEverOrNotAtAllIsRefusedBeforeAnythingIsWritten) {
+  // Young's modulus 1e308 makes the step 1e-154 s (the run would never end); 1e-300 makes it
+  // longer than the whole run (it ended "complete" in 0 steps); a density of 1e-300 is the first
+  // case again. Each is refused by check and run with exit 2, and run writes nothing.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_implausible_test";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  // {text replaced, replacement, reason, the value as the message prints it}
+  const std::vector<std::array<std::string, 4>> cases = {
+      {"young_modulus = 1e7", "young_modulus = 1e308", "steps (more than 1e+09)",
+       "young_modulus = 1e+308"},
+      {"young_modulus = 1e7", "young_modulus = 1e-300", "longer than the whole run",
+       "young_modulus = 1e-300"},
+      {"density = 1800.0", "density = 1e-300", "steps (more than 1e+09)", "density = 1e-300"}};
+  for (const auto& [from, to, reason, printed] : cases) {
+    const std::string path = (directory / "case.toml").string();
+    std::ofstream(path) << edited(from, to);
+    RunOptions options;
+    options.case_path = path;
+    options.output_directory = (directory / "out").string();
+    std::ostringstream out, err;
+    EXPECT_EQ(check_case(options, out, err), exit_bad_input) << to;
+    EXPECT_NE(err.str().find(reason), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find("material 'soil' (linear_elastic: "), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find(printed), std::string::npos) << err.str();
+    std::ostringstream run_out, run_err;
+    EXPECT_EQ(run_case(options, run_out, run_err), exit_bad_input) << to;
+    EXPECT_NE(run_err.str().find(reason), std::string::npos) << run_err.str();
+    EXPECT_FALSE(std::filesystem::exists(directory / "out")) << to;
+  }
+}
+
 TEST(CaseReader, RunExitsWithStatusTwoAndOneLineReasonOnBadInput) {
   const auto directory = std::filesystem::temp_directory_path() / "mpile_bad_input_test";
   std::filesystem::create_directories(directory);
