@@ -55,7 +55,87 @@ double as_number(const TomlValue& v) {
 
 } // namespace
 
+namespace {
+
+/// The TOML parser recurses once per level of nested arrays and inline tables (a few thousand
+/// levels overflow the stack) and takes time quadratic in a line's length (a 435 kB line took
+/// 11 s): both are bounded here, before parsing, with the line that breaks the bound.
+void check_toml_bounds(const std::string& text, const std::string& file) {
+  constexpr int max_depth = 64;
+  constexpr std::size_t max_line = 16384;
+  enum class In { code, comment, basic, literal, multiline_basic, multiline_literal };
+  In in = In::code;
+  int depth = 0;
+  int line = 1;
+  std::size_t line_start = 0;
+  auto refuse = [&](const std::string& why) {
+    throw CaseError(file + ":" + std::to_string(line) + ": " + why);
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      if (i - line_start > max_line) {
+        refuse("the line is " + std::to_string(i - line_start) + " characters long (at most " +
+               std::to_string(max_line) + "): break long arrays over several lines");
+      }
+      ++line;
+      line_start = i + 1;
+      if (in == In::comment || in == In::basic || in == In::literal) {
+        in = In::code; // a single-line string cannot span lines; the parser reports it
+      }
+      continue;
+    }
+    const bool triple = i + 2 < text.size() && text[i + 1] == c && text[i + 2] == c;
+    switch (in) {
+    case In::comment:
+      break;
+    case In::basic:
+    case In::multiline_basic:
+      if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
+        ++i; // an escaped character, possibly a quote (a line-ending backslash is counted above)
+      } else if (c == '"' && (in == In::basic || triple)) {
+        i += in == In::basic ? 0 : 2;
+        in = In::code;
+      }
+      break;
+    case In::literal:
+    case In::multiline_literal:
+      if (c == '\'' && (in == In::literal || triple)) {
+        i += in == In::literal ? 0 : 2;
+        in = In::code;
+      }
+      break;
+    case In::code:
+      if (c == '#') {
+        in = In::comment;
+      } else if (c == '"') {
+        in = triple ? In::multiline_basic : In::basic;
+        i += triple ? 2 : 0;
+      } else if (c == '\'') {
+        in = triple ? In::multiline_literal : In::literal;
+        i += triple ? 2 : 0;
+      } else if (c == '[' || c == '{') {
+        if (++depth > max_depth) {
+          refuse("arrays and inline tables are nested more than " + std::to_string(max_depth) +
+                 " deep");
+        }
+      } else if ((c == ']' || c == '}') && depth > 0) {
+        --depth;
+      }
+      break;
+    }
+  }
+  if (text.size() - line_start > max_line) {
+    refuse("the line is " + std::to_string(text.size() - line_start) +
+           " characters long (at most " + std::to_string(max_line) +
+           "): break long arrays over several lines");
+  }
+}
+
+} // namespace
+
 TomlValue parse_toml(const std::string& text, const std::string& file) {
+  check_toml_bounds(text, file);
   std::istringstream stream(text);
   try {
     return toml::parse<toml::discard_comments, std::map, std::vector>(stream, file);

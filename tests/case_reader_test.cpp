@@ -696,6 +696,51 @@ TEST(CaseReader, ARunThatWouldStepForEverOrNotAtAllIsRefusedBeforeAnythingIsWrit
   }
 }
 
+TEST(CaseReader, DeepNestingAndOverlongLinesAreRefusedBeforeTheParserSeesThem) {
+  // 200 000 nested arrays or 20 000 nested inline tables overflowed the parser's stack (SIGSEGV);
+  // a 435 kB line took 11 s (the parser is quadratic in a line's length).
+  auto message = [](const std::string& text) {
+    try {
+      read_case_text(text, "case.toml");
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string arrays = "x = " + std::string(200000, '[') + std::string(200000, ']') + "\n";
+  EXPECT_EQ(message(arrays + valid_case),
+            "case.toml:1: arrays and inline tables are nested more than 64 deep");
+  std::string tables = "x = ";
+  for (int k = 0; k < 20000; ++k) {
+    tables += "{a=";
+  }
+  tables += "1" + std::string(20000, '}') + "\n";
+  EXPECT_EQ(message(tables + valid_case),
+            "case.toml:1: arrays and inline tables are nested more than 64 deep");
+  // Brackets inside strings and comments do not count; 64 levels are allowed.
+  const std::string quoted = "# [[[[ {{{{\ntitle = \"[[[[[\"\n";
+  EXPECT_EQ(message(edited("title = \"reader test\"\n", quoted)), "accepted");
+  const std::string deep_ok =
+      "x = " + std::string(64, '[') + std::string(64, ']') + "\n" + valid_case;
+  EXPECT_EQ(message(deep_ok).find("nested"), std::string::npos) << message(deep_ok);
+  // A long array on one line is refused with its line; the same array over several lines reads.
+  // (valid_case ends in its [output] table, which takes the array.)
+  std::string one_line = "snapshot_times = [";
+  std::string lines = "snapshot_times = [\n";
+  for (int k = 1; k < 40000; ++k) {
+    const std::string value = std::to_string(1e-7 * k);
+    one_line += value + (k + 1 < 40000 ? ", " : "]\n");
+    lines += value + (k + 1 < 40000 ? ",\n" : "]\n");
+  }
+  const std::string long_line = valid_case + one_line;
+  const auto line = std::count(valid_case.begin(), valid_case.end(), '\n') + 1;
+  EXPECT_EQ(message(long_line).rfind("case.toml:" + std::to_string(line) + ": the line is ", 0), 0u)
+      << message(long_line);
+  EXPECT_NE(message(long_line).find("(at most 16384): break long arrays over several lines"),
+            std::string::npos);
+  EXPECT_EQ(message(valid_case + lines), "accepted");
+}
+
 TEST(CaseReader, RunExitsWithStatusTwoAndOneLineReasonOnBadInput) {
   const auto directory = std::filesystem::temp_directory_path() / "mpile_bad_input_test";
   std::filesystem::create_directories(directory);
