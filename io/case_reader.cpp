@@ -182,6 +182,18 @@ NodeLineSpec read_node_line(TomlTable& owner, const Axes& axes) {
   if (!(line.to >= line.from)) {
     nodes.fail(line.along_y ? "y" : "r", "range must be increasing");
   }
+  // A range that holds no node would prescribe nothing, silently.
+  const GradedAxis& along = line.along_y ? axes.y : axes.r;
+  const double tolerance = 1e-9 * std::max(1.0, along.end() - along.start());
+  const bool holds_a_node = std::any_of(along.nodes().begin(), along.nodes().end(), [&](double x) {
+    return x >= line.from - tolerance && x <= line.to + tolerance;
+  });
+  if (!holds_a_node) {
+    nodes.fail(line.along_y ? "y" : "r",
+               "the range [" + format_number(line.from) + ", " + format_number(line.to) +
+                   "] holds no node of the grid (" + (line.along_y ? "y" : "r") + " from " +
+                   format_number(along.start()) + " to " + format_number(along.end()) + ")");
+  }
   nodes.finish();
   return line;
 }

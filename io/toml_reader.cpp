@@ -259,6 +259,10 @@ std::vector<double> TomlTable::numbers(const std::string& key, std::size_t expec
       fail(key, "expected an array of numbers, found " + type_name(item) + " in it");
     }
     out.push_back(as_number(item));
+    if (!std::isfinite(out.back())) {
+      fail(key, "must hold finite numbers, got " + toml::format(item) + " at index " +
+                    std::to_string(out.size() - 1));
+    }
   }
   if (expected_size > 0 && out.size() != expected_size) {
     fail(key, "expected " + std::to_string(expected_size) + " numbers, got " +

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -155,6 +156,12 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
           "the pile's inner radius must exceed fine_cell (room for the soil plug)");
   require(p.embedment > 0.0, "embedment", "must be positive");
   require(p.embedment < p.pile_length, "embedment", "must be less than pile_length");
+  if (!(p.embedment < p.soil_depth)) {
+    std::ostringstream why;
+    why << "must be less than soil_depth (" << p.soil_depth
+        << " m): the tip would start below the soil";
+    require(false, "embedment", why.str());
+  }
   g.band_bottom = g.tip - p.band_below;
   g.band_top = g.tip + p.band_above;
   const double wall_cell = p.wall_thickness / p.wall_cells;
