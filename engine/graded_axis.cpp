@@ -73,8 +73,13 @@ void GradedAxis::build_lookup() {
   }
   // Buckets of at most the smallest cell size: a bucket then spans at most two cells, so locate()
   // needs at most one correction step (the loop there also absorbs rounding at bucket edges).
+  // The table is capped at 64 buckets per cell: a grid whose smallest cell is tiny against its
+  // extent (a mistyped zone) then walks a few cells more in locate() instead of allocating
+  // gigabytes here; ordinary graded grids stay far below the cap.
   const double length = end() - start();
-  const auto buckets = static_cast<std::size_t>(std::ceil(length / min_cell_size_)) + 1;
+  const double wanted = std::ceil(length / min_cell_size_) + 1.0;
+  const double cap = 64.0 * cell_count() + 1024.0;
+  const auto buckets = static_cast<std::size_t>(std::min(wanted, cap));
   inverse_bucket_size_ = static_cast<double>(buckets) / length;
   first_cell_of_bucket_.assign(buckets, 0);
   int c = 0;

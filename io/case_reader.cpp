@@ -8,12 +8,15 @@
 #include "io/region_reader.hpp"
 #include "io/toml_reader.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -709,6 +712,68 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
   }
 }
 
+/// The memory a case will take, from its grid and its bodies' regions before anything is
+/// allocated: refused past the machine's physical memory with the key that drives it (a mistyped
+/// cell size or zone took 15 GB and ended in std::bad_alloc).
+void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes& axes,
+                               std::vector<TomlTable>& body_tables) {
+  // Per node: the 64-byte node and its constraint mask, per field; a contact pair's arrays take
+  // about 100 bytes more. Per particle: its arrays with a Hardening Soil state, about 300 bytes.
+  constexpr double node_bytes = 65.0, pair_node_bytes = 100.0, particle_bytes = 300.0;
+  const double nodes =
+      static_cast<double>(axes.r.node_count()) * static_cast<double>(axes.y.node_count());
+  const auto structures = static_cast<double>(spec.contacts.size());
+  const double grid_bytes =
+      nodes * (node_bytes * (1.0 + structures) + pair_node_bytes * structures);
+  // Particles: the cells of each region's bounding box times the particles per cell (an upper
+  // bound short of the graded band's extra seeding).
+  std::vector<double> body_bytes;
+  double particles_bytes = 0.0;
+  for (const BodySpec& body : spec.bodies) {
+    const Rectangle& box = body.region.bounds();
+    auto cells = [](const GradedAxis& axis, double from, double to) {
+      const double a = std::max(from, axis.start()), b = std::min(to, axis.end());
+      if (!(b > a)) {
+        return 0.0;
+      }
+      const int first = axis.locate(a);
+      const int last = b >= axis.end() ? axis.cell_count() - 1 : axis.locate(b);
+      return static_cast<double>(last - first + 1);
+    };
+    const double n = cells(axes.r, box.r_min, box.r_max) * cells(axes.y, box.y_min, box.y_max) *
+                     body.particles_per_direction * body.particles_per_direction;
+    body_bytes.push_back(n * particle_bytes);
+    particles_bytes += body_bytes.back();
+  }
+  const double physical =
+      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  const double total = grid_bytes + particles_bytes;
+  if (!(physical > 0.0) || total <= physical) {
+    return;
+  }
+  std::ostringstream why;
+  why << std::setprecision(3) << "the case needs about " << total / 1e9 << " GB ("
+      << axes.r.cell_count() << " x " << axes.y.cell_count() << " cells: " << grid_bytes / 1e9
+      << " GB; particles: " << particles_bytes / 1e9 << " GB), more than this machine's "
+      << physical / 1e9 << " GB";
+  if (grid_bytes >= particles_bytes || grid_bytes > physical) {
+    if (top.has("monopile")) {
+      top.table("monopile").fail("fine_cell", why.str() + "; check the cell sizes and extents");
+    }
+    const bool r_larger = axes.r.cell_count() >= axes.y.cell_count();
+    top.table("grid").fail(r_larger ? "r" : "y", why.str() + "; check the zones' cells and ends");
+  }
+  const auto largest = static_cast<std::size_t>(
+      std::max_element(body_bytes.begin(), body_bytes.end()) - body_bytes.begin());
+  if (largest < body_tables.size()) {
+    body_tables[largest].fail("region",
+                              why.str() + "; body '" + spec.bodies[largest].name +
+                                  "' takes the most: check its region, the cells there and "
+                                  "particles_per_cell");
+  }
+  top.table("monopile").fail("particles_per_cell", why.str());
+}
+
 /// [output.cpt]: the cone and sleeve must be surfaces of a structure's outline with the areas
 /// their resistances are quoted over.
 OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
@@ -919,6 +984,7 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
   // The moving mesh before the phases, so that a stop_at penetration is checked against its
   // travel whichever way the geometry is given.
   read_moving_mesh(top, spec, axes, declared_rigid);
+  refuse_past_memory_budget(top, spec, axes, body_tables);
   for (std::size_t b = 0; b < body_tables.size(); ++b) {
     const BodySpec& body = spec.bodies[b];
     if (count_body_particles(spec, body) == 0) {

@@ -125,6 +125,13 @@ std::vector<BadInput> bad_inputs() {
        edited("[[bodies]]\nname = \"block\"",
               "[[bodies]]\nvelocity = [nan, 0, 0]\nname = \"block\""),
        "bodies[0].velocity: must hold finite numbers, got nan at index 0", "velocity = [nan"},
+      // More memory than any machine has: refused at the key that drives it, before allocating.
+      {"grid past the memory budget",
+       edited("r = [{ start = 0.0, end = 1.0, cells = 8 }]\ny = [{ start = 0.0, end = 1.0, cells = "
+              "8 }]",
+              "r = [{ start = 0.0, end = 1.0, cells = 100000 }]\ny = [{ start = 0.0, end = 1.0, "
+              "cells = 100000 }]"),
+       "grid.r: the case needs about", "r = [{"},
       {"block size past int's range",
        edited("courant_number = 0.5", "courant_number = 0.5\nblock_cells = 4294967304"),
        "solver.block_cells: must lie between 1 and 16, got 4294967304", "block_cells ="},
@@ -452,6 +459,9 @@ std::vector<BadInput> bad_monopile_inputs() {
        "monopile.soil_width: must exceed the pile's outer radius", "soil_width"},
       {"tip below the bottom", monopile_edited("embedment = 3.0", "embedment = 9.9"),
        "monopile.band_below: the moving band reaches the bottom of the soil", ""},
+      {"monopile cells past the memory budget",
+       monopile_edited("fine_cell = ", "fine_cell = 1e-6 #"),
+       "monopile.fine_cell: the case needs about", "fine_cell"},
       {"tip below the soil", monopile_edited("embedment = 3.0", "embedment = 12.0"),
        "monopile.embedment: must be less than soil_depth (10 m): the tip would start below the "
        "soil",

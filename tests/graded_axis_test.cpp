@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace mpile {
@@ -46,6 +47,22 @@ TEST(GradedAxis, LocateMatchesSearchEverywhereIncludingNodesAndEdges) {
   }
   EXPECT_EQ(axis.locate(5.0), -1);
   EXPECT_EQ(axis.locate(std::nan("")), -1);
+}
+
+TEST(GradedAxis, ATinyCellBesideAHugeZoneLocatesWithoutAHugeTable) {
+  // A lookup sized by extent over the smallest cell would be 1e14 buckets here (a mistyped zone
+  // end took 15 GB); the capped table still finds every point's cell.
+  const AxisZone zones[] = {{0.0, 1e-6, 1}, {1e-6, 0.06, 4}, {0.06, 1e8, 1000}};
+  const GradedAxis axis(zones);
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> exponent(-7.0, 8.0);
+  for (int k = 0; k < 20000; ++k) {
+    const double point = std::pow(10.0, exponent(random));
+    ASSERT_EQ(axis.locate(point), locate_by_search(axis, point)) << "x = " << point;
+  }
+  for (int i = 0; i < axis.node_count(); ++i) {
+    ASSERT_EQ(axis.locate(axis.node(i)), locate_by_search(axis, axis.node(i))) << "node " << i;
+  }
 }
 
 TEST(GradedAxis, MovedNodesRebuildTheLookup) {
