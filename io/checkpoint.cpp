@@ -1,4 +1,5 @@
 #include "io/checkpoint.hpp"
+#include "io/replace_file.hpp"
 
 #include "io/case_error.hpp"
 #include "io/hdf5_file.hpp"
@@ -118,7 +119,7 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     file.write("/run/snapshot_times", snapshot_times, "s");
     file.set_attribute("/run/snapshot_times", "files", snapshot_files);
   }
-  std::filesystem::rename(temporary, path);
+  replace_file(temporary, path);
 }
 
 Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene& scene) {

@@ -147,24 +147,35 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
 
   // Nothing is written before the case has been read, built and judged runnable.
   const std::string directory = output_directory(options, spec);
-  try {
-    std::filesystem::create_directories(directory);
-  } catch (const std::exception& e) {
-    err << "mpile: cannot create the output directory " << directory << ": " << e.what() << '\n';
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) {
+    err << "mpile: cannot create the output directory " << directory << ": " << error.message()
+        << '\n';
     return exit_failure;
   }
 
   if (!restarting) {
     // A fresh run replaces the outputs of an earlier run in the same directory, so that no stale
     // snapshot or checkpoint is taken for part of this one.
-    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
       const std::string name = entry.path().filename().string();
       const bool ours = name.rfind("particles_", 0) == 0 || name.rfind("grid_", 0) == 0 ||
                         name == "particles.pvd" || name == "grid.pvd" || name == "checkpoint.h5" ||
                         name == "history.h5";
       if (ours && entry.is_regular_file()) {
-        std::filesystem::remove(entry.path());
+        std::filesystem::remove(entry.path(), error);
+        if (error) {
+          err << "mpile: cannot remove the earlier run's " << entry.path().string() << ": "
+              << error.message() << '\n';
+          return exit_failure;
+        }
       }
+    }
+    if (error) {
+      err << "mpile: cannot list the output directory " << directory << ": " << error.message()
+          << '\n';
+      return exit_failure;
     }
   }
 

@@ -1,4 +1,5 @@
 #include "io/vtk_writer.hpp"
+#include "io/replace_file.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
@@ -213,7 +214,7 @@ void SnapshotWriter::write_collection(
       throw std::runtime_error("cannot write " + temporary);
     }
   }
-  std::filesystem::rename(temporary, path);
+  replace_file(temporary, path);
 }
 
 } // namespace mpile

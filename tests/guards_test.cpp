@@ -188,6 +188,26 @@ TEST(Guards, UnstableRunStopsAndLeavesAReadableHistory) {
   EXPECT_TRUE(std::filesystem::exists(directory / "out" / "checkpoint.h5"));
 }
 
+TEST(Guards, AnOutputThatCannotBeWrittenIsNamedWithTheSystemsReason) {
+  // particles.pvd is a directory: the snapshot index cannot replace it. The message names the file
+  // and the reason, not the library's "filesystem error: cannot rename".
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_write";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory / "out" / "particles.pvd" / "inside");
+  const auto path = directory / "column.toml";
+  std::ofstream(path) << column;
+  RunOptions options;
+  options.case_path = path.string();
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_failure);
+  const std::string expected =
+      "cannot write " + (directory / "out" / "particles.pvd").string() + ": ";
+  EXPECT_NE(err.str().find(expected), std::string::npos) << err.str();
+  EXPECT_EQ(err.str().find("filesystem error"), std::string::npos) << err.str();
+  EXPECT_FALSE(std::filesystem::exists(directory / "out" / "particles.pvd.tmp"));
+}
+
 TEST(Guards, EnergyResidualPastTheLimitStopsTheRun) {
   // The column under suddenly applied gravity closes its energy balance to O(omega dt) (a few
   // 1e-3 here), never exactly: a limit of 1e-9 is passed from the first rows on, and the run must
