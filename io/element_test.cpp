@@ -182,6 +182,9 @@ std::vector<double> targets(TomlTable& table, const std::string& key) {
   return values;
 }
 
+/// The most increments a whole path may take (a CSV of about a gigabyte).
+constexpr double max_total_increments = 1e7;
+
 long count(TomlTable& table, const std::string& key, long fallback, long minimum) {
   const long value = table.integer_or(key, fallback);
   if (value < minimum || value > 10000000) {
@@ -335,6 +338,23 @@ void read_path(TomlTable& top, ElementTestSpec& spec) {
     table.fail("type", "unknown path '" + type +
                            "' (triaxial, oedometer, isotropic, unload_reload, cyclic_triaxial, "
                            "cyclic_torsion, strain_table)");
+  }
+  // Each count is bounded, but their product is the number of increments (and CSV rows): 1e7
+  // cycles of 1e7 increments ran on for ever with growing memory.
+  const double stages = static_cast<double>(std::max<std::size_t>(1, spec.stress_targets.size()));
+  const double total =
+      spec.path == ElementPath::strain_table
+          ? static_cast<double>(spec.repeat) * static_cast<double>(spec.strain_increments.size())
+          : stages * static_cast<double>(spec.increments) *
+                static_cast<double>(std::max<long>(1, spec.cycles));
+  if (total > max_total_increments) {
+    const char* key = spec.path == ElementPath::strain_table ? "repeat"
+                      : spec.cycles > 1                      ? "cycles"
+                                                             : "increments";
+    std::ostringstream why;
+    why << "the path takes " << total << " increments in all (more than " << max_total_increments
+        << ")";
+    table.fail(key, why.str());
   }
   table.finish();
 }

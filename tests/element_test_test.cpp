@@ -337,6 +337,11 @@ TEST(ElementTest, BadInputIsRejectedWithFileLineAndKey) {
        "path.increments", "increments", "between 4"},
       {"title = \"reader test\"", "title = \"reader test\"\nsteps = 3", "steps", "steps",
        "unknown key"},
+      // Each count within its bound, their product (the increments in all) not.
+      {"type = \"triaxial\"\naxial_strain = 0.02\nincrements = 50",
+       "type = \"cyclic_torsion\"\nshear_strain_amplitude = 0.01\nincrements = 10000000\n"
+       "cycles = 10000000",
+       "path.cycles", "cycles", "the path takes 1e+14 increments in all (more than 1e+07)"},
   };
   for (const BadInput& c : cases) {
     std::string text = valid;
