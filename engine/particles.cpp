@@ -38,7 +38,7 @@ void permute_array(std::vector<T>& values, std::span<const std::int32_t> order, 
   if (values.empty()) {
     return;
   }
-  std::vector<T> sorted(values.size());
+  std::vector<T> sorted(order.size() * width);
   parallel_for(order.size(), [&](std::size_t k) {
     const auto from = static_cast<std::size_t>(order[k]) * width;
     for (std::size_t j = 0; j < width; ++j) {

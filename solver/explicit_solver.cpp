@@ -242,6 +242,37 @@ void ExplicitSolver::rebin() {
   }
 }
 
+void ExplicitSolver::drop_rigid_particles_outside() {
+  Particles& p = scene_.particles;
+  std::vector<std::int32_t> kept;
+  kept.reserve(p.size());
+  std::vector<std::size_t> dropped(scene_.body_names.size(), 0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.cell_r[i] >= 0) {
+      kept.push_back(static_cast<std::int32_t>(i));
+    } else {
+      ++dropped[p.body[i]];
+    }
+  }
+  p.permute(kept);
+  if (!signal_speed_.empty()) {
+    std::vector<double> speed(kept.size());
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      speed[k] = signal_speed_[static_cast<std::size_t>(kept[k])];
+    }
+    signal_speed_.swap(speed);
+  }
+  for (std::size_t b = 0; b < dropped.size(); ++b) {
+    if (dropped[b] > 0) {
+      std::ostringstream s;
+      s << "step " << steps_ + 1 << ", t = " << time_ << " s: " << dropped[b]
+        << " particles of rigid body '" << scene_.body_names[b]
+        << "' left the grid and were dropped (the body moves on; they no longer mark its nodes)";
+      log_.info(s.str());
+    }
+  }
+}
+
 void ExplicitSolver::sort_particles_by_cell() {
   const auto order = bins_.cell_sorted_order(scene_.particles.cell_r, scene_.particles.cell_y);
   scene_.particles.permute(order);
@@ -420,6 +451,10 @@ void ExplicitSolver::step_in_mode(double dt) {
   }
   if constexpr (contact) {
     passes::move_rigid_bodies(scene_, step);
+    if (result.rigid_left_grid && result.particle_nonfinite < 0 && result.particle_outside < 0) {
+      drop_rigid_particles_outside();
+      result.block_changed = true; // the bins index the particles: rebuild them
+    }
   }
   double moved_crossing_time = 0.0;
   if (scene_.moving_mesh) {

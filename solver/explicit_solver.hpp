@@ -104,6 +104,8 @@ private:
   /// computed in (Courant number above 1) or the step collapsed.
   void set_stable_time_step(double step_crossing_time, double crossing_time, double dt_taken);
   void sort_particles_by_cell();
+  /// Removes the rigid bodies' particles the stress pass found outside the grid (cell_r = -1).
+  void drop_rigid_particles_outside();
   void report_settings();
 
   Scene& scene_;

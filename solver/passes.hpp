@@ -62,6 +62,7 @@ struct StressPassResult {
   double min_crossing_time = 0.0;       // min over particles of h_cell / (c_p + |v_p|)
   double step_crossing_time = 0.0;      // the same in the cells the step was computed in
   bool block_changed = false;           // a particle moved into another scatter block
+  bool rigid_left_grid = false;         // a rigid body's particle left the grid (cell_r = -1)
   std::int64_t particle_outside = -1;   // lowest index of a particle that left the grid, or -1
   double gravity_work = 0.0;            // sum of m g . du over the particles
   double internal_work = 0.0;           // sum of V sigma : d eps over the particles

@@ -75,6 +75,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
     double min_time = std::numeric_limits<double>::infinity();
     double step_time = std::numeric_limits<double>::infinity();
     bool changed = false;
+    bool rigid_outside = false;
     std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
     double gravity_work = 0.0;
     double internal_work = 0.0;
@@ -218,7 +219,18 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
       const int cr = grid.r_axis().locate(p.r[i]);
       const int cy = grid.y_axis().locate(p.y[i]);
       if (cr < 0 || cy < 0) {
-        out.first_outside = std::min(out.first_outside, static_cast<std::int64_t>(i));
+        // A rigid body's particle only marks the nodes its body occupies (its motion is the
+        // body's): one that leaves the grid is dropped after the pass, not an error.
+        bool rigid = false;
+        if constexpr (contact) {
+          rigid = mixed && rigid_material[p.material[i]] != 0;
+        }
+        if (rigid) {
+          p.cell_r[i] = -1;
+          out.rigid_outside = true;
+        } else {
+          out.first_outside = std::min(out.first_outside, static_cast<std::int64_t>(i));
+        }
         continue;
       }
       out.changed = out.changed || bins.block_of(cr, cy) != block;
@@ -249,6 +261,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
     result.min_crossing_time = std::min(result.min_crossing_time, out.min_time);
     result.step_crossing_time = std::min(result.step_crossing_time, out.step_time);
     result.block_changed = result.block_changed || out.changed;
+    result.rigid_left_grid = result.rigid_left_grid || out.rigid_outside;
     first_outside = std::min(first_outside, out.first_outside);
     result.gravity_work += out.gravity_work;
     result.internal_work += out.internal_work;

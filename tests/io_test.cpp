@@ -283,6 +283,89 @@ TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
   EXPECT_NE(err.str().find("is complete; nothing to continue"), std::string::npos) << err.str();
 }
 
+TEST(RunCommand, ARigidBodyLeavingTheGridDropsItsParticlesAndTheRunGoesOn) {
+  // A rigid block lifted out through the top of the grid: its particles only mark the nodes it
+  // occupies, so those that leave are dropped (the run stopped at the first one before). A run
+  // stopped after some have gone restarts from its checkpoint bitwise as if never stopped.
+  const auto directory = fresh_directory("rigid_leaving");
+  const std::string text = R"(title = "rigid block leaving"
+geometry = "plane_strain"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 10 }]
+y = [{ start = 0.0, end = 1.0, cells = 10 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 1e7
+poisson_ratio = 0.3
+density = 1800.0
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 2e11
+poisson_ratio = 0.3
+density = 7850.0
+[[bodies]]
+name = "soil"
+material = "soil"
+region = { r = [0.0, 1.0], y = [0.0, 0.5] }
+[[bodies]]
+name = "block"
+material = "steel"
+region = { r = [0.3, 0.5], y = [0.7, 0.95] }
+[bodies.rigid]
+velocity_y = 2.0
+[[contact]]
+structure = "block"
+friction = 0.3
+[boundaries]
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+[[phases]]
+name = "lift"
+duration = 0.2
+local_damping = 0.1
+[output]
+checkpoint_interval = 0.05
+)";
+  const std::string path = (directory / "case.toml").string();
+  std::ofstream(path) << text;
+  std::ostringstream out, err;
+  RunOptions whole;
+  whole.case_path = path;
+  whole.output_directory = (directory / "whole").string();
+  ASSERT_EQ(run_case(whole, out, err), exit_success) << err.str();
+  EXPECT_NE(out.str().find("particles of rigid body 'block' left the grid and were dropped"),
+            std::string::npos)
+      << out.str();
+  Hdf5File a((directory / "whole" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  // 1 m by 0.5 m of soil with 4 particles per 0.1 m cell: only the soil's 200 are left of 220 (the
+  // block's 20 sub-cell centres, 4 by 5).
+  EXPECT_EQ(a.read_doubles("/particles/r").size(), 200u);
+  // The block moved on by its DOFs: 2 m/s for 0.2 s.
+  const auto u_y = Hdf5File((directory / "whole" / "history.h5").string(), Hdf5File::Mode::read)
+                       .read_doubles("/bodies/block/u_y");
+  EXPECT_NEAR(u_y.back(), 0.4, 1e-9);
+
+  // Stopped once part of the block has left (it starts 0.05 m below the top, 2 m/s).
+  RunOptions first = whole;
+  first.output_directory = (directory / "split").string();
+  first.stop_after_steps = 100;
+  ASSERT_EQ(run_case(first, out, err), exit_interrupted) << err.str();
+  Hdf5File stopped((directory / "split" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  const std::size_t at_stop = stopped.read_doubles("/particles/r").size();
+  EXPECT_LT(at_stop, 220u) << "no particle had left yet: the restart would test nothing";
+  EXPECT_GT(at_stop, 200u) << "every particle had left: the restart would test less";
+  RunOptions second = first;
+  second.stop_after_steps = 0;
+  std::filesystem::copy_file(directory / "split" / "checkpoint.h5", directory / "stopped.h5");
+  second.restart = (directory / "stopped.h5").string();
+  ASSERT_EQ(run_case(second, out, err), exit_success) << err.str();
+  Hdf5File b((directory / "split" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  for (const std::string& name : particle_datasets()) {
+    EXPECT_EQ(a.read_doubles("/particles/" + name), b.read_doubles("/particles/" + name)) << name;
+  }
+}
+
 TEST(RunCommand, RestartWithContactAndAFreeRigidBodyIsBitwiseIdentical) {
   // The seed's torsion case, coarse, with the pile free to sink under its weight and a torque:
   // the rigid body's state, the outline and the contact sums must all come back from the
