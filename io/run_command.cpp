@@ -282,6 +282,20 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     ProgressReporter reporter(err, isatty(fileno(stderr)) != 0);
     StopOnSignals signals;
     long steps_this_run = 0;
+    auto stop_due = [&] {
+      return stop_requested != 0 ||
+             (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps);
+    };
+    auto interrupt = [&] {
+      const double t = solver->time();
+      reporter.finish();
+      save_state();
+      history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
+                    residual_summary());
+      err << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint " << checkpoint_path
+          << " (continue with --restart " << checkpoint_path << ")\n";
+      return exit_interrupted;
+    };
     long recorded_step = -1;
     try {
       while (progress.phase < spec.phases.size()) {
@@ -296,6 +310,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             limit = std::min(limit, listed[progress.next_listed_snapshot] - solver->time());
           }
           solver->step(landing_step(limit, solver->stable_time_step()));
+          ++steps_this_run; // every step counts, the one that ends a phase too
           const double t = solver->time();
           const double dt = solver->last_time_step();
           if (output.history_interval == 0.0 || reached(t, progress.next_history_time, dt)) {
@@ -361,16 +376,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             }
           }
           reporter.update(phase.name, solver->step_count(), goal);
-          ++steps_this_run;
-          if (stop_requested != 0 ||
-              (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps)) {
-            reporter.finish();
-            save_state();
-            history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
-                          residual_summary());
-            err << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint "
-                << checkpoint_path << " (continue with --restart " << checkpoint_path << ")\n";
-            return exit_interrupted;
+          if (stop_due()) {
+            return interrupt();
           }
         }
         reporter.finish();
@@ -391,6 +398,10 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             solver->account_for_stress_reset(elastic_before);
           }
           solver->change_settings(phase_settings(spec, spec.phases[progress.phase]));
+          // A stop due on the step that ended the phase comes here, with the next phase set up.
+          if (stop_due()) {
+            return interrupt();
+          }
         }
       }
     } catch (const SimulationError& e) {

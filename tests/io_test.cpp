@@ -283,6 +283,39 @@ TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
   EXPECT_NE(err.str().find("is complete; nothing to continue"), std::string::npos) << err.str();
 }
 
+TEST(RunCommand, StopAfterCountsTheStepThatEndsAPhase) {
+  // The settle phase ends at equilibrium on step N; --stop-after N stops there, with the shake
+  // phase set up (it stopped a step late, inside the next phase), and the restart continues to
+  // the same end, bit for bit.
+  const auto directory = fresh_directory("stop_after_phase_end");
+  const std::string path = write_case(directory);
+  std::ostringstream out, err;
+  RunOptions probe;
+  probe.case_path = path;
+  probe.output_directory = (directory / "probe").string();
+  ASSERT_EQ(run_case(probe, out, err), exit_success) << err.str();
+  const std::string marker = "phase settle ended at";
+  const auto at = out.str().find(marker);
+  ASSERT_NE(at, std::string::npos) << out.str();
+  const auto line_end = out.str().find('\n', at);
+  const std::string line = out.str().substr(at, line_end - at);
+  const auto so_far = line.rfind(" steps so far");
+  const auto number = line.rfind(", ", so_far);
+  const long settle_steps = std::stol(line.substr(number + 2, so_far - number - 2));
+  ASSERT_GT(settle_steps, 0) << line;
+
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_split(path, directory, settle_steps));
+  Hdf5File stopped((directory / "interrupted.h5").string(), Hdf5File::Mode::read);
+  // Stopped after exactly N steps, at the boundary: the shake phase has begun but taken no step.
+  EXPECT_EQ(stopped.read_doubles("/solver/state").at(1), static_cast<double>(settle_steps));
+  EXPECT_EQ(stopped.read_doubles("/run/phase_starts").size(), 2u);
+  Hdf5File a((directory / "whole" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  Hdf5File b((directory / "split" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  for (const std::string& name : particle_datasets()) {
+    EXPECT_EQ(a.read_doubles("/particles/" + name), b.read_doubles("/particles/" + name)) << name;
+  }
+}
+
 TEST(RunCommand, ARigidBodyLeavingTheGridDropsItsParticlesAndTheRunGoesOn) {
   // A rigid block lifted out through the top of the grid: its particles only mark the nodes it
   // occupies, so those that leave are dropped (the run stopped at the first one before). A run
