@@ -102,7 +102,7 @@ public:
   /// node's own momentum balance, decides the soil's motion.
   bool structure_occupies(std::size_t node, double mass_floor) const {
     for (const NodeField& field : structure_fields) {
-      if (!field.reach.empty() && field.nodes[node].mass > mass_floor) {
+      if (field.nodes[node].mass > mass_floor) {
         return true;
       }
     }

@@ -25,25 +25,29 @@ template <class Term> double deterministic_sum(std::size_t n, Term term) {
       [](double a, double b) { return a + b; }, true, grain);
 }
 
+/// Per material, whether it is a rigid body's: such particles carry no kinetic energy of their
+/// own (a rigid body's energy is that of its DOFs with its whole mass).
+std::vector<char> rigid_materials(const Scene& scene) {
+  std::vector<char> rigid;
+  for (const auto& material : scene.materials) {
+    rigid.push_back(material->is_rigid() ? 1 : 0);
+  }
+  return rigid;
+}
+
+double speed_squared(const Particles& p, std::size_t i, bool theta) {
+  const double v2 = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
+  return theta ? v2 + p.v_theta[i] * p.v_theta[i] : v2;
+}
+
 } // namespace
 
 double kinetic_energy(const Scene& scene) {
   const Particles& p = scene.particles;
   const bool theta = has_theta(scene.mode);
-  // A rigid body's energy is that of its DOFs with its whole mass, not of its meshed particles.
-  std::vector<char> rigid;
-  for (const auto& material : scene.materials) {
-    rigid.push_back(material->is_rigid() ? 1 : 0);
-  }
+  const std::vector<char> rigid = rigid_materials(scene);
   double energy = deterministic_sum(p.size(), [&](std::size_t i) {
-    if (rigid[p.material[i]] != 0) {
-      return 0.0;
-    }
-    double v2 = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
-    if (theta) {
-      v2 += p.v_theta[i] * p.v_theta[i];
-    }
-    return 0.5 * p.mass[i] * v2;
+    return rigid[p.material[i]] != 0 ? 0.0 : 0.5 * p.mass[i] * speed_squared(p, i, theta);
   });
   for (const RigidBody& body : scene.rigid_bodies) {
     energy += body.kinetic_energy();
@@ -66,19 +70,13 @@ KineticHotspot kinetic_hotspot(const Scene& scene) {
   const bool theta = has_theta(scene.mode);
   KineticHotspot hot;
   hot.body_energy.assign(scene.body_names.size(), 0.0);
-  std::vector<char> rigid;
-  for (const auto& material : scene.materials) {
-    rigid.push_back(material->is_rigid() ? 1 : 0);
-  }
+  const std::vector<char> rigid = rigid_materials(scene);
   // Serial: this runs once, when a guard reports, and the sums then come in index order.
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (rigid[p.material[i]] != 0) {
       continue;
     }
-    double v2 = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
-    if (theta) {
-      v2 += p.v_theta[i] * p.v_theta[i];
-    }
+    const double v2 = speed_squared(p, i, theta);
     const double energy = 0.5 * p.mass[i] * v2;
     if (p.body[i] < hot.body_energy.size()) {
       hot.body_energy[p.body[i]] += energy;
