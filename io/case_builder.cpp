@@ -425,6 +425,9 @@ SolverSettings phase_settings(const CaseSpec& spec, const PhaseSpec& phase) {
   if (phase.flip_fraction) {
     s.flip_fraction = *phase.flip_fraction;
   }
+  if (phase.xpic_order) {
+    s.xpic_order = *phase.xpic_order;
+  }
   if (phase.mass_scaling) {
     s.mass_scaling = *phase.mass_scaling;
   }

@@ -562,6 +562,16 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     s.max_time_step = table->positive("max_time_step");
   }
   s.flip_fraction = table->number_or("flip_fraction", s.flip_fraction);
+  if (table->has("xpic_order")) {
+    // Checked as read: a value past int's range would wrap into the valid one when narrowed.
+    const long order = table->integer("xpic_order");
+    if (order < 0 || order > SolverSettings::max_xpic_order) {
+      table->fail("xpic_order", "must lie between 0 (off) and " +
+                                    std::to_string(SolverSettings::max_xpic_order) + ", got " +
+                                    std::to_string(order));
+    }
+    s.xpic_order = static_cast<int>(order);
+  }
   s.bbar = table->boolean_or("bbar", s.bbar);
   if (table->has("scheme")) {
     const std::string scheme = table->string("scheme");
@@ -611,9 +621,9 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     s.validate();
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
-    for (const char* key :
-         {"courant_number", "max_time_step", "flip_fraction", "mass_scaling", "gravity",
-          "block_cells", "min_time_step", "energy_residual_warning", "energy_residual_limit"}) {
+    for (const char* key : {"courant_number", "max_time_step", "flip_fraction", "xpic_order",
+                            "mass_scaling", "gravity", "block_cells", "min_time_step",
+                            "energy_residual_warning", "energy_residual_limit"}) {
       if (message.rfind(key, 0) == 0) {
         table->fail(key, message);
       }
@@ -644,6 +654,27 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
       phase.flip_fraction = table.number("flip_fraction");
       if (*phase.flip_fraction < 0.0 || *phase.flip_fraction > 1.0) {
         table.fail("flip_fraction", "must lie in [0, 1]");
+      }
+    }
+    if (table.has("xpic_order")) {
+      const long order = table.integer("xpic_order");
+      if (order < 0 || order > SolverSettings::max_xpic_order) {
+        table.fail("xpic_order", "must lie between 0 (off) and " +
+                                     std::to_string(SolverSettings::max_xpic_order) + ", got " +
+                                     std::to_string(order));
+      }
+      phase.xpic_order = static_cast<int>(order);
+    }
+    {
+      // XPIC replaces the FLIP/PIC blend: the phase may not end up with both.
+      const int order = phase.xpic_order.value_or(spec.solver.xpic_order);
+      const double flip = phase.flip_fraction.value_or(spec.solver.flip_fraction);
+      if (order > 0 && flip != 1.0) {
+        table.fail(phase.flip_fraction ? "flip_fraction" : "xpic_order",
+                   "the phase would run XPIC(" + std::to_string(order) + ") with flip_fraction " +
+                       format_number(flip) +
+                       ": XPIC replaces the FLIP/PIC blend, so set xpic_order = 0 for a blend or "
+                       "leave flip_fraction at 1");
       }
     }
     if (table.has("mass_scaling")) {

@@ -117,6 +117,7 @@ struct PhaseSpec {
   bool gravity = true;
   std::optional<double> equilibrium_tolerance;
   std::optional<double> flip_fraction;
+  std::optional<int> xpic_order;
   std::optional<double> mass_scaling;
   std::optional<double> courant_number;
   std::vector<K0Spec> k0;

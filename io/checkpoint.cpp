@@ -98,8 +98,9 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     const EnergyLedger& e = solver.energy;
     file.write("/solver/energy",
                std::vector<double>{e.external_work, e.internal_work, e.damping, e.contact,
-                                   e.kinetic_reference, e.elastic_reference},
-               "external work, internal work, damping, contact, kinetic and elastic references");
+                                   e.kinetic_reference, e.elastic_reference, e.transfer},
+               "external work, internal work, damping, contact, kinetic and elastic references, "
+               "transfer");
     file.write("/run/counters",
                std::vector<double>{static_cast<double>(progress.phase),
                                    static_cast<double>(progress.history_rows),
@@ -195,9 +196,15 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
   Checkpoint checkpoint;
   const auto s = file.read_doubles("/solver/state");
   const auto e = file.read_doubles("/solver/energy");
-  checkpoint.solver = {s.at(0), static_cast<long>(s.at(1)),
-                       s.at(2), s.at(3),
-                       s.at(4), EnergyLedger{e.at(0), e.at(1), e.at(2), e.at(3), e.at(4), e.at(5)}};
+  checkpoint.solver = {s.at(0),
+                       static_cast<long>(s.at(1)),
+                       s.at(2),
+                       s.at(3),
+                       s.at(4),
+                       EnergyLedger{e.at(0), e.at(1), e.at(2), e.at(3), e.at(4), e.at(5),
+                                    // A checkpoint written before the transfer term
+                                    // was kept had none to keep (pure FLIP runs).
+                                    e.size() > 6 ? e[6] : 0.0}};
   const auto c = file.read_doubles("/run/counters");
   RunProgress& progress = checkpoint.progress;
   progress.phase = static_cast<std::size_t>(c.at(0));

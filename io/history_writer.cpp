@@ -53,7 +53,7 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
   series("/phase", "index into the case's [[phases]]");
   for (const char* name :
        {"/energy/external_work", "/energy/kinetic", "/energy/elastic", "/energy/plastic",
-        "/energy/damping", "/energy/contact", "/energy/residual"}) {
+        "/energy/damping", "/energy/contact", "/energy/transfer", "/energy/residual"}) {
     series(name, u.energy);
   }
   series("/energy/relative_residual", "-");
@@ -167,6 +167,7 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
   series_.at("/energy/plastic").append(energy.plastic);
   series_.at("/energy/damping").append(energy.damping);
   series_.at("/energy/contact").append(energy.contact);
+  series_.at("/energy/transfer").append(energy.transfer);
   series_.at("/energy/residual").append(energy.residual);
   series_.at("/energy/relative_residual").append(energy.relative_residual);
   for (const NodeConstraint& c : scene.boundaries.constraints) {

@@ -2,6 +2,7 @@
 #include "io/element_test.hpp"
 #include "io/run_command.hpp"
 #include "io/verify_command.hpp"
+#include "solver/solver_settings.hpp"
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
@@ -58,6 +59,10 @@ int main(int argc, char** argv) {
   verify->add_option("--bbar", options.bbar, "B-bar on (1) or off (0); default on");
   verify->add_option("--flip", options.flip_fraction, "FLIP fraction in [0, 1]")
       ->check(CLI::Range(0.0, 1.0));
+  verify
+      ->add_option("--xpic", options.xpic_order,
+                   "XPIC order m (1 = PIC; replaces the FLIP/PIC blend)")
+      ->check(CLI::Range(1, mpile::SolverSettings::max_xpic_order));
   verify->add_option("--poisson", options.poisson_ratio, "Poisson ratio for V3 and V5")
       ->check(CLI::Range(-0.99, 0.4999));
   verify->add_option("--courant", options.courant_number, "Courant number");

@@ -270,8 +270,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       }
       s << "): external work " << energy.external_work << ", kinetic " << energy.kinetic
         << ", elastic " << energy.elastic << ", plastic " << energy.plastic << ", damping "
-        << energy.damping << ", contact " << energy.contact << "; "
-        << describe_kinetic_hotspot(*scene, settings.mass_scaling);
+        << energy.damping << ", contact " << energy.contact << ", transfer " << energy.transfer
+        << "; " << describe_kinetic_hotspot(*scene, settings.mass_scaling);
       if (blown_up) {
         throw SimulationError("step " + std::to_string(solver->step_count()) + ", " + s.str() +
                               ": the run went unstable");

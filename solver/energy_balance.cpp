@@ -23,11 +23,12 @@ EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, dou
   b.plastic = ledger.internal_work - (b.elastic - ledger.elastic_reference);
   b.damping = ledger.damping;
   b.contact = ledger.contact;
+  b.transfer = ledger.transfer;
   b.residual = b.external_work - (b.kinetic - ledger.kinetic_reference) - ledger.internal_work -
-               b.damping - b.contact;
+               b.damping - b.contact - b.transfer;
   const double scale =
       std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference, b.elastic,
-                std::abs(ledger.internal_work), std::abs(b.damping + b.contact)});
+                std::abs(ledger.internal_work), std::abs(b.damping + b.contact + b.transfer)});
   b.relative_residual = scale > 0.0 ? std::abs(b.residual) / scale : 0.0;
   return b;
 }

@@ -4,6 +4,7 @@
 #include "solver/contact_passes.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/passes.hpp"
+#include "solver/xpic.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -430,7 +431,14 @@ void ExplicitSolver::step_in_mode(double dt) {
   }
   {
     PassTimer timer(timings_.grid_to_particle);
-    passes::grid_to_particle<mode, contact, shape>(scene_, bins_, settings_, step);
+    const passes::XpicFields* xpic = nullptr;
+    if (settings_.xpic_order > 0) {
+      passes::extrapolate_xpic<mode, contact, shape>(scene_, bins_, settings_.xpic_order, step,
+                                                     xpic_);
+      xpic = &xpic_;
+    }
+    energy_.transfer += settings_.mass_scaling * passes::grid_to_particle<mode, contact, shape>(
+                                                     scene_, bins_, settings_, step, xpic);
   }
   if (settings_.musl) {
     PassTimer timer(timings_.momentum_remap);

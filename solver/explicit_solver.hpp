@@ -5,6 +5,7 @@
 #include "solver/energy_balance.hpp"
 #include "solver/run_log.hpp"
 #include "solver/solver_settings.hpp"
+#include "solver/xpic.hpp"
 
 #include <stdexcept>
 #include <vector>
@@ -113,6 +114,7 @@ private:
   RunLog& log_;
   ParticleBins bins_;
   PassTimings timings_;
+  passes::XpicFields xpic_;
   double time_ = 0.0;
   double stable_dt_ = 0.0;
   double mass_floor_ = 0.0;

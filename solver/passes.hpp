@@ -51,9 +51,14 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
 /// Work of the nodal loads over the step, from the updated nodal velocities.
 double nodal_load_work(const Scene& scene, const StepParameters& step);
 
+struct XpicFields;
+
+/// With xpic, the XPIC velocity update from its corrections (solver/xpic.hpp); without, the
+/// FLIP/PIC blend of the settings. Returns the kinetic energy the update took against what FLIP
+/// would have kept (the velocity update's numerical dissipation; 0 for pure FLIP).
 template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
-void grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
-                      const StepParameters& step);
+double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                      const StepParameters& step, const XpicFields* xpic = nullptr);
 
 template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step);

@@ -20,6 +20,13 @@ void SolverSettings::validate() const {
   require(max_time_step > 0.0, "max_time_step must be positive");
   require(flip_fraction >= 0.0 && flip_fraction <= 1.0,
           "flip_fraction must lie in [0, 1], got " + std::to_string(flip_fraction));
+  require(xpic_order >= 0 && xpic_order <= max_xpic_order,
+          "xpic_order must lie in [0, " + std::to_string(max_xpic_order) + "], got " +
+              std::to_string(xpic_order));
+  require(xpic_order == 0 || flip_fraction == 1.0, "xpic_order " + std::to_string(xpic_order) +
+                                                       " replaces the FLIP/PIC blend: leave "
+                                                       "flip_fraction at 1 (got " +
+                                                       std::to_string(flip_fraction) + ")");
   require(local_damping >= 0.0 && local_damping < 1.0,
           "local_damping must lie in [0, 1), got " + std::to_string(local_damping));
   require(mass_scaling >= 1.0,

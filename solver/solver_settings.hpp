@@ -15,6 +15,13 @@ struct SolverSettings {
   double max_time_step = std::numeric_limits<double>::infinity();
   /// Particle velocity update: 1 = FLIP (no numerical dissipation), 0 = PIC, between: a blend.
   double flip_fraction = 1.0;
+  /// 0: the FLIP/PIC blend above. m >= 1: XPIC(m) (Hammerquist and Nairn 2017), which takes the
+  /// particle velocities from the grid after removing, to order m, the part of their old field the
+  /// grid cannot represent (the cell-crossing noise FLIP keeps) while keeping the part it can
+  /// (which PIC smears). XPIC(1) is PIC; as m grows the update tends to the particles' velocity
+  /// field projected onto the grid's. Excludes a flip_fraction below 1.
+  int xpic_order = 0;
+  static constexpr int max_xpic_order = 16;
   /// MUSL (true): the strain increment uses nodal velocities remapped from the updated particle
   /// momenta; USL (false): it uses the grid's updated velocities directly, one scatter less.
   bool musl = true;

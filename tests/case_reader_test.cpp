@@ -135,6 +135,17 @@ std::vector<BadInput> bad_inputs() {
       {"block size past int's range",
        edited("courant_number = 0.5", "courant_number = 0.5\nblock_cells = 4294967304"),
        "solver.block_cells: must lie between 1 and 16, got 4294967304", "block_cells ="},
+      {"XPIC order out of range",
+       edited("courant_number = 0.5", "courant_number = 0.5\nxpic_order = 17"),
+       "solver.xpic_order: must lie between 0 (off) and 16, got 17", "xpic_order ="},
+      {"XPIC with a FLIP/PIC blend",
+       edited("courant_number = 0.5", "courant_number = 0.5\nxpic_order = 3\nflip_fraction = 0.98"),
+       "solver.xpic_order: xpic_order 3 replaces the FLIP/PIC blend", "xpic_order ="},
+      {"a phase's blend under the solver's XPIC",
+       edited_text(edited("courant_number = 0.5", "courant_number = 0.5\nxpic_order = 3"),
+                   "local_damping = 0.7\n", "local_damping = 0.7\nflip_fraction = 0.98\n"),
+       "phases[0].flip_fraction: the phase would run XPIC(3) with flip_fraction 0.98",
+       "flip_fraction ="},
       {"unknown shape functions",
        edited("courant_number = 0.5", "courant_number = 0.5\nshape_functions = \"cubic\""),
        "solver.shape_functions: must be \"linear\" or \"gimp\", got \"cubic\"",
@@ -811,6 +822,16 @@ TEST(CaseReader, OnlyARegularFileOfBoundedSizeIsReadAsACase) {
                      " bytes; a case file is at most " + std::to_string(max_case_file_bytes) +
                      " bytes");
   std::filesystem::remove_all(directory);
+}
+
+TEST(CaseReader, XpicOrderIsReadForTheRunAndForAPhase) {
+  const CaseSpec spec = read_case_text(
+      edited_text(edited("courant_number = 0.5", "courant_number = 0.5\nxpic_order = 4"),
+                  "local_damping = 0.7\n", "local_damping = 0.7\nxpic_order = 2\n"),
+      "case.toml");
+  EXPECT_EQ(spec.solver.xpic_order, 4);
+  EXPECT_EQ(phase_settings(spec, spec.phases.at(0)).xpic_order, 2);
+  EXPECT_EQ(read_case_text(valid_case, "case.toml").solver.xpic_order, 0); // off unless asked
 }
 
 } // namespace

@@ -170,7 +170,8 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   Hdf5File history((directory / "out" / "history.h5").string(), Hdf5File::Mode::read);
   // The energy residual the run ended with, and its peak past the first 100 steps (the start-up,
   // whose residual is a fraction of almost nothing), are in the root's attributes; this coarse
-  // column shaken with free sides peaks above the 5 % warning, so the status says so and the
+  // column shaken with free sides peaks above the 5 % warning (its FLIP/PIC blend's dissipation
+  // booked as transfer, not residual), so the status says so and the
   // log's last line too.
   const auto residual = history.read_doubles("/energy/relative_residual");
   const auto steps = history.read_doubles("/step");
@@ -189,7 +190,7 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   ASSERT_GT(peak, 0.05);
   const std::string status = history.string_attribute("/", "status");
   EXPECT_EQ(status.rfind("complete, but the energy residual ", 0), 0u) << status;
-  EXPECT_NE(status.find("peak 10.3 %"), std::string::npos) << status;
+  EXPECT_NE(status.find("peak 8.09 %"), std::string::npos) << status;
   EXPECT_NE(out.str().find("done, but with a doubtful: "), std::string::npos) << out.str();
   EXPECT_EQ(history.string_attribute("/time", "unit"), "s");
   EXPECT_EQ(history.string_attribute("/boundaries/base/M_theta", "unit"), "N m/rad");

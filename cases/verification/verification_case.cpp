@@ -54,6 +54,11 @@ SolverSettings apply_options(SolverSettings settings, const Options& options) {
   if (options.flip_fraction) {
     settings.flip_fraction = *options.flip_fraction;
   }
+  if (options.xpic_order) {
+    // XPIC replaces the case's FLIP/PIC blend.
+    settings.xpic_order = *options.xpic_order;
+    settings.flip_fraction = options.flip_fraction.value_or(1.0);
+  }
   if (options.courant_number) {
     settings.courant_number = *options.courant_number;
   }

@@ -36,6 +36,7 @@ struct Options {
   int particles_per_direction = 2;     // particles per cell = this squared
   std::optional<bool> bbar;            // default: on
   std::optional<double> flip_fraction; // default: per case
+  std::optional<int> xpic_order;       // default: off (the case's FLIP/PIC blend)
   std::optional<double> poisson_ratio; // for the cases with a nu-dependent closed form
   std::optional<double> courant_number;
   std::optional<bool> musl; // default: MUSL; false: USL
