@@ -42,6 +42,8 @@ STUDIES = {
             "MUSL, C = 0.8, 2x2 ppc": [],
             "MUSL, C = 0.4, 2x2 ppc": ["--courant", "0.4"],
             "MUSL, C = 0.8, FLIP 0.99": ["--flip", "0.99"],
+            "MUSL, C = 0.8, XPIC(2)": ["--xpic", "2"],
+            "MUSL, C = 0.8, XPIC(4)": ["--xpic", "4"],
             "USL, C = 0.8, 2x2 ppc": ["--scheme", "usl"],
             "MUSL, C = 0.8, 3x3 ppc": ["--ppc", "3"],
         },
@@ -68,6 +70,7 @@ STUDIES = {
             "MUSL, C = 0.8": [],
             "USL, C = 0.8": ["--scheme", "usl"],
             "MUSL, C = 0.4": ["--courant", "0.4"],
+            "MUSL, C = 0.8, XPIC(2)": ["--xpic", "2"],
         },
     },
     "VHS": {
@@ -79,6 +82,7 @@ STUDIES = {
             "MUSL, C = 0.8": [],
             "MUSL, C = 0.4": ["--courant", "0.4"],
             "USL, C = 0.8": ["--scheme", "usl"],
+            "MUSL, C = 0.8, XPIC(2)": ["--xpic", "2"],
         },
     },
     "V9": {
@@ -89,6 +93,7 @@ STUDIES = {
         "options": {
             "MUSL, C = 0.8": [],
             "MUSL, C = 0.4": ["courant_number = 0.4"],
+            "MUSL, C = 0.8, XPIC(2)": ["xpic_order = 2"],
         },
     },
 }
