@@ -260,6 +260,14 @@ Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, std::size_t r
   dataset_ = Hdf5Handle(check(H5Dopen2(file.id(), dataset.c_str(), H5P_DEFAULT),
                               "no dataset " + dataset + " in " + file.path()),
                         H5Dclose);
+  // Fewer rows in the file than asked for would be filled with zeros: refuse instead.
+  Hdf5Handle space(H5Dget_space(dataset_.get()), H5Sclose);
+  hsize_t held = 0;
+  H5Sget_simple_extent_dims(space.get(), &held, nullptr);
+  if (held < rows) {
+    fail(file.path() + ": " + dataset + " holds " + std::to_string(held) + " rows, not the " +
+         std::to_string(rows) + " the checkpoint counts (the history was not written up to it)");
+  }
   written_ = static_cast<hsize_t>(rows);
   if (H5Dset_extent(dataset_.get(), &written_) < 0) {
     fail("cannot resize " + dataset + " in " + file.path());

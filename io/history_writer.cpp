@@ -226,15 +226,17 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
 }
 
 void HistoryWriter::flush_if_due() {
-  const auto now = std::chrono::steady_clock::now();
-  if (now - last_flush_ < std::chrono::seconds(2)) {
-    return;
+  if (std::chrono::steady_clock::now() - last_flush_ >= std::chrono::seconds(2)) {
+    flush();
   }
+}
+
+void HistoryWriter::flush() {
   for (const std::string& name : order_) {
     series_.at(name).flush();
   }
   file_->flush();
-  last_flush_ = now;
+  last_flush_ = std::chrono::steady_clock::now();
 }
 
 void HistoryWriter::close(double wall_seconds, const std::string& status,

@@ -27,6 +27,8 @@ public:
   EnergyBalance record(const ExplicitSolver& solver, std::size_t phase);
   std::size_t rows() const { return rows_; }
   void flush_if_due();
+  /// Writes every buffered row to the file now (before a checkpoint counts them).
+  void flush();
   /// Writes the closing attributes: wall time, status ("complete", "interrupted", ...) and the
   /// energy residual the run ended with and its peak past the start-up (with its time).
   struct ResidualSummary {

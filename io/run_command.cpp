@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
@@ -199,8 +200,26 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   skip_reached_depths();
   const std::string checkpoint_path = directory + "/checkpoint.h5";
   try {
-    HistoryWriter history(directory + "/history.h5", spec, *scene, options.threads,
-                          restarting ? progress.history_rows : 0);
+    std::unique_ptr<HistoryWriter> history_file;
+    try {
+      history_file =
+          std::make_unique<HistoryWriter>(directory + "/history.h5", spec, *scene, options.threads,
+                                          restarting ? progress.history_rows : 0);
+    } catch (const std::runtime_error& e) {
+      if (!restarting) {
+        throw;
+      }
+      // The checkpoint and the history it continues do not fit together: bad input.
+      err << "mpile: " << options.restart << ": cannot continue the history in " << directory;
+      if (!std::filesystem::exists(directory + "/history.h5")) {
+        err << ": it has no history.h5; restart into the output directory of the run that wrote "
+               "the checkpoint (--out)\n";
+      } else {
+        err << ": " << e.what() << '\n';
+      }
+      return exit_bad_input;
+    }
+    HistoryWriter& history = *history_file;
     SnapshotWriter snapshots(directory, output.grid_snapshots);
     if (restarting) {
       snapshots.restore(progress.snapshots);
@@ -220,7 +239,9 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       }
     }
     auto save_state = [&] {
-      history.flush_if_due();
+      // The checkpoint counts the history's rows: they must be in the file before it does, or a
+      // run killed after the checkpoint restarts from rows the file never got.
+      history.flush();
       progress.snapshots = snapshots.entries();
       progress.history_rows = history.rows();
       write_checkpoint(checkpoint_path, spec, *scene, solver->state(), progress);

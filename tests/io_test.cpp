@@ -483,5 +483,39 @@ TEST(RunCommand, RefusesACheckpointOfAnotherCase) {
   EXPECT_NE(err.str().find("belongs to another case"), std::string::npos) << err.str();
 }
 
+TEST(RunCommand, ARestartThatCannotContinueItsHistoryIsRefused) {
+  const auto directory = fresh_directory("restart_history");
+  const std::string path = write_case(directory);
+  std::ostringstream out, err;
+  RunOptions first;
+  first.case_path = path;
+  first.output_directory = (directory / "out").string();
+  first.stop_after_steps = 137;
+  ASSERT_EQ(run_case(first, out, err), exit_interrupted) << err.str();
+  std::filesystem::copy_file(directory / "out" / "checkpoint.h5", directory / "stopped.h5");
+
+  // Into a directory that holds no history: the checkpoint continues a history it cannot find.
+  RunOptions elsewhere = first;
+  elsewhere.stop_after_steps = 0;
+  elsewhere.output_directory = (directory / "elsewhere").string();
+  elsewhere.restart = (directory / "stopped.h5").string();
+  EXPECT_EQ(run_case(elsewhere, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("it has no history.h5; restart into the output directory"),
+            std::string::npos)
+      << err.str();
+
+  // A history with fewer rows than the checkpoint counts (a run killed before its rows reached
+  // the file) would continue from rows of zeros: refused, naming the dataset.
+  {
+    Hdf5File history((directory / "out" / "history.h5").string(), Hdf5File::Mode::append);
+    Hdf5Series time(history, "/time", 1);
+  }
+  RunOptions truncated = elsewhere;
+  truncated.output_directory = (directory / "out").string();
+  err.str("");
+  EXPECT_EQ(run_case(truncated, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("/time holds 1 rows, not the"), std::string::npos) << err.str();
+}
+
 } // namespace
 } // namespace mpile
