@@ -4,6 +4,7 @@
 #include "io/case_error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history_writer.hpp"
+#include "io/output_directory.hpp"
 #include "io/plausibility.hpp"
 #include "io/progress_reporter.hpp"
 #include "io/vtk_writer.hpp"
@@ -19,6 +20,7 @@
 #include <iomanip>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -97,6 +99,9 @@ std::string format_time(double t) {
 } // namespace
 
 int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  // First of all, so that a SIGINT or SIGTERM while the case is read and built (seconds for a
+  // large one) stops the run cleanly instead of killing it.
+  StopOnSignals signals;
   const auto wall_start = std::chrono::steady_clock::now();
   CaseSpec spec;
   std::unique_ptr<Scene> scene;
@@ -146,6 +151,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     return exit_bad_input;
   }
 
+  if (stop_requested != 0) {
+    err << "mpile: interrupted before the run started; nothing was written\n";
+    return exit_interrupted;
+  }
+
   // Nothing is written before the case has been read, built and judged runnable.
   const std::string directory = output_directory(options, spec);
   std::error_code error;
@@ -156,28 +166,21 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     return exit_failure;
   }
 
-  if (!restarting) {
-    // A fresh run replaces the outputs of an earlier run in the same directory, so that no stale
-    // snapshot or checkpoint is taken for part of this one.
-    for (const auto& entry : std::filesystem::directory_iterator(directory, error)) {
-      const std::string name = entry.path().filename().string();
-      const bool ours = name.rfind("particles_", 0) == 0 || name.rfind("grid_", 0) == 0 ||
-                        name == "particles.pvd" || name == "grid.pvd" || name == "checkpoint.h5" ||
-                        name == "history.h5";
-      if (ours && entry.is_regular_file()) {
-        std::filesystem::remove(entry.path(), error);
-        if (error) {
-          err << "mpile: cannot remove the earlier run's " << entry.path().string() << ": "
-              << error.message() << '\n';
-          return exit_failure;
-        }
-      }
+  // One run at a time in a directory; the lock lasts as long as this run.
+  std::optional<OutputLock> lock;
+  try {
+    lock.emplace(directory);
+    if (!restarting) {
+      // A fresh run replaces the outputs of an earlier run in the same directory, so that no
+      // stale snapshot or checkpoint is taken for part of this one.
+      remove_earlier_outputs(directory);
     }
-    if (error) {
-      err << "mpile: cannot list the output directory " << directory << ": " << error.message()
-          << '\n';
-      return exit_failure;
-    }
+  } catch (const OutputBusy& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const std::runtime_error& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_failure;
   }
 
   const OutputSpec& output = spec.output;
@@ -301,7 +304,6 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       log.warn(s.str() + " (see /energy in history.h5)");
     };
     ProgressReporter reporter(err, isatty(fileno(stderr)) != 0);
-    StopOnSignals signals;
     long steps_this_run = 0;
     auto stop_due = [&] {
       return stop_requested != 0 ||

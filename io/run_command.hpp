@@ -19,7 +19,8 @@ enum ExitStatus : int {
   exit_success = 0,
   exit_failure = 1,      // a run that went wrong (unstable, particle out of the grid, I/O error)
   exit_bad_input = 2,    // the case file or the command line is wrong
-  exit_interrupted = 130 // stopped by SIGINT or SIGTERM, after writing a checkpoint
+  exit_interrupted = 130 // stopped by SIGINT or SIGTERM, after writing a checkpoint (or before
+                         // writing anything, when the signal came while the case was built)
 };
 
 /// `mpile run`: reads the case, runs its phases, writes history.h5, VTK snapshots and

@@ -4,6 +4,7 @@
 #include "engine/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/output_directory.hpp"
 #include "io/run_command.hpp"
 #include "io/vtk_writer.hpp"
 
@@ -14,10 +15,17 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
+#include <thread>
+
+#include <signal.h>
+#include <unistd.h>
 
 namespace mpile {
 namespace {
@@ -515,6 +523,81 @@ TEST(RunCommand, ARestartThatCannotContinueItsHistoryIsRefused) {
   err.str("");
   EXPECT_EQ(run_case(truncated, out, err), exit_bad_input);
   EXPECT_NE(err.str().find("/time holds 1 rows, not the"), std::string::npos) << err.str();
+}
+
+TEST(RunCommand, ASignalWhileTheCaseIsBuiltStopsItBeforeAnythingIsWritten) {
+  // The quick monopile case takes tens of milliseconds to read, seed and set to K0; a SIGINT 2 ms
+  // after the start falls in there. Without the handler installed first, the default action
+  // would kill this test process.
+  const auto directory = fresh_directory("early_signal");
+  RunOptions options;
+  options.case_path = std::string(MPILE_SOURCE_DIR) + "/cases/monopile/gdp_quick.toml";
+  options.output_directory = (directory / "out").string();
+  std::thread signal([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    kill(getpid(), SIGINT);
+  });
+  std::ostringstream out, err;
+  const int status = run_case(options, out, err);
+  signal.join();
+  EXPECT_EQ(status, exit_interrupted);
+  EXPECT_NE(err.str().find("interrupted before the run started; nothing was written"),
+            std::string::npos)
+      << err.str();
+  EXPECT_FALSE(std::filesystem::exists(directory / "out"));
+}
+
+TEST(RunCommand, OneRunAtATimeWritesToADirectory) {
+  const auto directory = fresh_directory("locked");
+  const std::string path = write_case(directory);
+  std::filesystem::create_directories(directory / "out");
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  options.stop_after_steps = 5;
+  std::ostringstream out, err;
+  {
+    const OutputLock other(options.output_directory); // a run already writing there
+    EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+    EXPECT_NE(err.str().find("another run is writing to " + options.output_directory),
+              std::string::npos)
+        << err.str();
+    EXPECT_FALSE(std::filesystem::exists(directory / "out" / "history.h5"));
+  }
+  EXPECT_EQ(run_case(options, out, err), exit_interrupted) << err.str(); // released
+}
+
+TEST(RunCommand, AFreshRunRemovesOnlyWhatTheEarlierRunWrote) {
+  const auto directory = fresh_directory("manifest");
+  const std::string path = write_case(directory);
+  const auto out_dir = directory / "out";
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = out_dir.string();
+  std::ostringstream out, err;
+  ASSERT_EQ(run_case(options, out, err), exit_success) << err.str();
+  const auto snapshots = [&] {
+    std::set<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(out_dir)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("particles_", 0) == 0 && entry.path().extension() == ".vtu") {
+        names.insert(name);
+      }
+    }
+    return names;
+  };
+  const std::set<std::string> first = snapshots();
+  ASSERT_GT(first.size(), 2u);
+  // Files of the user's that only look like outputs stay.
+  std::ofstream(out_dir / "particles_notes.txt") << "mine";
+  std::ofstream(out_dir / "grid_sketch.png") << "mine";
+  // A second run stopped early writes fewer snapshots: the first run's others must be gone.
+  options.stop_after_steps = 5;
+  ASSERT_EQ(run_case(options, out, err), exit_interrupted) << err.str();
+  const std::set<std::string> second = snapshots();
+  EXPECT_LT(second.size(), first.size());
+  EXPECT_TRUE(std::filesystem::exists(out_dir / "particles_notes.txt"));
+  EXPECT_TRUE(std::filesystem::exists(out_dir / "grid_sketch.png"));
 }
 
 } // namespace
