@@ -108,3 +108,23 @@ add_test(NAME Convergence.RecoversTheLimitAndOrderOfAKnownSeries
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/convergence_test.py)
 set_tests_properties(Convergence.RecoversTheLimitAndOrderOfAKnownSeries PROPERTIES
                      PASS_REGULAR_EXPRESSION "\nall ok\n")
+
+# Mutants of every shipped case file through `mpile check`: each accepted (exit 0) or refused with
+# a message naming the file (exit 2), none crashing, hanging or growing past the memory bound
+# (tools/fuzz_cases.py; docs/reliability.md). A fixed seed, so a failure replays. Under
+# AddressSanitizer fewer mutants and no address-space bound (ASan reserves terabytes of it);
+# ThreadSanitizer adds nothing to a single-threaded reader.
+if(MPILE_SANITIZE STREQUAL "")
+  add_test(NAME Fuzz.ShippedCaseMutantsAreAcceptedOrRefusedCleanly
+           COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/fuzz_cases.py
+                   --mpile $<TARGET_FILE:mpile> --mutants 300 --seed 1 --jobs 1)
+elseif(MPILE_SANITIZE STREQUAL "address")
+  add_test(NAME Fuzz.ShippedCaseMutantsAreAcceptedOrRefusedCleanly
+           COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/fuzz_cases.py
+                   --mpile $<TARGET_FILE:mpile> --mutants 120 --seed 1 --jobs 1 --memory 0
+                   --timeout 120)
+endif()
+if(TEST Fuzz.ShippedCaseMutantsAreAcceptedOrRefusedCleanly)
+  set_tests_properties(Fuzz.ShippedCaseMutantsAreAcceptedOrRefusedCleanly PROPERTIES TIMEOUT 600
+                       PASS_REGULAR_EXPRESSION " 0 failures\n")
+endif()

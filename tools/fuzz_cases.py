@@ -1,0 +1,189 @@
+#!/usr/bin/env python3
+"""Mutates the shipped case files and checks that `mpile check` either accepts each mutant (exit 0)
+or refuses it cleanly (exit 2 with one message that names the file), within a time and memory
+bound, and never crashes, hangs or reports an internal error.
+
+  tools/fuzz_cases.py --mutants 300                 # a seeded run, as the test suite does
+  tools/fuzz_cases.py --mutants 100000 --seed 7     # a long run; failures are kept for replay
+
+Each mutant applies one to three edits to a case file chosen at random: a number replaced by an
+extreme or invalid one, a line deleted, duplicated or swapped, a key misspelt, a string value
+replaced, bytes inserted, the file truncated, a deeply nested or very long value inserted. A
+failing mutant is written to --keep with the command that shows it.
+"""
+
+import argparse
+import concurrent.futures
+import os
+import random
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# Cases whose check takes more than about half a second are left out of the default set: they add
+# time, not kinds of input (their tables are those of the quick cases).
+SLOW = {"cpt_r6.toml", "cpt_r8.toml"}
+
+NUMBERS = ["0", "-0.0", "-1", "1e308", "-1e308", "1e-308", "5e-324", "nan", "inf", "-inf",
+           "4294967304", "9223372036854775807", "-9223372036854775808", "1e9", "1e-9", "2", "0.5",
+           "100000", "1e5", "0x10", "1_000", "+1", ".5", "1."]
+STRINGS = ['""', '"x"', '"linear"', '"gimp"', '"axisymmetric"', '"plane_strain"', '"sand"', '"pile"',
+           '"\\u0000"', '"' + "a" * 300 + '"', "true", "[]", "{}", "[1, 2, 3]", "{ a = 1 }"]
+NUMBER = re.compile(r"(?<![\w.\"])[-+]?(?:\d+\.?\d*(?:[eE][-+]?\d+)?|\.\d+)(?![\w.\"])")
+KEY = re.compile(r"^(\s*)([A-Za-z_][A-Za-z0-9_]*)(\s*=)", re.MULTILINE)
+STRING = re.compile(r'"[^"\n]*"')
+
+
+def mutate(text, rng):
+    lines = text.split("\n")
+    kind = rng.choice(["number", "number", "number", "delete", "duplicate", "swap", "key", "string",
+                       "bytes", "truncate", "nest", "long"])
+    if kind == "number":
+        spans = [m.span() for m in NUMBER.finditer(text)]
+        if spans:
+            a, b = rng.choice(spans)
+            return text[:a] + rng.choice(NUMBERS) + text[b:], kind
+    if kind == "delete" and lines:
+        del lines[rng.randrange(len(lines))]
+        return "\n".join(lines), kind
+    if kind == "duplicate" and lines:
+        k = rng.randrange(len(lines))
+        lines.insert(k, lines[k])
+        return "\n".join(lines), kind
+    if kind == "swap" and len(lines) > 1:
+        a, b = rng.randrange(len(lines)), rng.randrange(len(lines))
+        lines[a], lines[b] = lines[b], lines[a]
+        return "\n".join(lines), kind
+    if kind == "key":
+        spans = [m.span(2) for m in KEY.finditer(text)]
+        if spans:
+            a, b = rng.choice(spans)
+            key = text[a:b]
+            k = rng.randrange(len(key))
+            edit = rng.choice([key[:k] + key[k + 1:], key[:k] + rng.choice("abcxyz_") + key[k:],
+                               key + "s", key.upper()])
+            return text[:a] + edit + text[b:], kind
+    if kind == "string":
+        spans = [m.span() for m in STRING.finditer(text)]
+        if spans:
+            a, b = rng.choice(spans)
+            return text[:a] + rng.choice(STRINGS) + text[b:], kind
+    if kind == "bytes":
+        k = rng.randrange(len(text) + 1)
+        junk = "".join(chr(rng.choice([0, 1, 9, 10, 13, 34, 39, 61, 91, 93, 123, 125, 0xFF, 0x7F,
+                                       0xE9, 0x2028])) for _ in range(rng.randint(1, 4)))
+        return text[:k] + junk + text[k:], kind
+    if kind == "truncate":
+        return text[:rng.randrange(len(text) + 1)], kind
+    if kind == "nest":
+        depth = rng.choice([10, 70, 1000])
+        k = rng.randrange(len(lines) + 1)
+        lines.insert(k, "nested = " + "[" * depth + "1" + "]" * depth)
+        return "\n".join(lines), kind
+    if kind == "long":
+        k = rng.randrange(len(lines) + 1)
+        lines.insert(k, "snapshot_times = [" + ", ".join(["0.1"] * rng.choice([10, 5000])) + "]")
+        return "\n".join(lines), kind
+    return text, "none"
+
+
+def limits(memory_mib, cpu_seconds):
+    def apply():
+        if memory_mib > 0:
+            resource.setrlimit(resource.RLIMIT_AS, (memory_mib << 20, memory_mib << 20))
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu_seconds, cpu_seconds))
+    return apply
+
+
+def check(mpile, path, timeout, memory_mib):
+    """`mpile check` on one file: ("accepted" | "refused", None), or ("failed", what went wrong)."""
+    try:
+        done = subprocess.run([mpile, "check", path], capture_output=True, timeout=timeout,
+                              preexec_fn=limits(memory_mib, int(timeout) + 1))
+    except subprocess.TimeoutExpired:
+        return "failed", f"no answer within {timeout} s"
+    err = done.stderr.decode("utf-8", "replace")
+    if done.returncode < 0:
+        return "failed", f"killed by signal {-done.returncode}: {err.strip()[-300:]}"
+    if done.returncode == 0:
+        return "accepted", None
+    if done.returncode != 2:
+        return "failed", f"exit {done.returncode}: {err.strip()[-300:]}"
+    lines = [line for line in err.splitlines() if line.strip()]
+    # The message's first line names the file (a TOML syntax error then shows the line with a caret).
+    if not lines or not lines[0].startswith("mpile: ") or "internal error" in err:
+        return "failed", f"exit 2 without a message: {err.strip()[-300:]}"
+    if os.path.basename(path) not in lines[0]:
+        return "failed", f"exit 2 without naming the file: {lines[0][:300]}"
+    return "refused", None
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--mpile", default=os.path.join(ROOT, "build/release/bin/mpile"))
+    parser.add_argument("--mutants", type=int, default=300)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--timeout", type=float, default=20.0, help="seconds one check may take")
+    parser.add_argument("--memory", type=int, default=2048,
+                        help="MiB of address space per check (0: no limit, for sanitizer builds)")
+    parser.add_argument("--all-cases", action="store_true", help="include the slow case files")
+    parser.add_argument("--keep", default=os.path.join(tempfile.gettempdir(), "mpile-fuzz-failures"))
+    args = parser.parse_args()
+
+    cases = []
+    for directory, _, files in os.walk(os.path.join(ROOT, "cases")):
+        if os.path.basename(directory) == "element_tests":
+            continue  # element-test files, not cases
+        for name in sorted(files):
+            if name.endswith(".toml") and (args.all_cases or name not in SLOW):
+                with open(os.path.join(directory, name), encoding="utf-8") as f:
+                    cases.append((name, f.read()))
+    cases.sort()
+    rng = random.Random(args.seed)
+    work = tempfile.mkdtemp(prefix="mpile-fuzz-")
+    jobs = []
+    for i in range(args.mutants):
+        name, text = rng.choice(cases)
+        edits = []
+        for _ in range(rng.randint(1, 3)):
+            text, kind = mutate(text, rng)
+            edits.append(kind)
+        path = os.path.join(work, f"m{i:06d}_{name}")
+        with open(path, "w", encoding="utf-8", errors="surrogatepass") as f:
+            f.write(text)
+        jobs.append((path, name, edits))
+
+    start = time.monotonic()
+    failures = []
+    counts = {"accepted": 0, "refused": 0, "failed": 0}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        outcomes = pool.map(lambda job: check(args.mpile, job[0], args.timeout, args.memory), jobs)
+        for (path, name, edits), (outcome, problem) in zip(jobs, outcomes):
+            counts[outcome] += 1
+            if problem is not None:
+                failures.append((path, name, edits, problem))
+    if failures:
+        os.makedirs(args.keep, exist_ok=True)
+        for path, name, edits, problem in failures:
+            kept = os.path.join(args.keep, os.path.basename(path))
+            os.replace(path, kept)
+            print(f"FAIL {kept} ({name}; {', '.join(edits)}): {problem}")
+            print(f"     replay: {args.mpile} check {kept}")
+    elapsed = time.monotonic() - start
+    print(f"{len(jobs)} mutants of {len(cases)} case files (seed {args.seed}) in {elapsed:.0f} s: "
+          f"{counts['accepted']} accepted, {counts['refused']} refused, {len(failures)} failures")
+    for path, _, _ in jobs:
+        if os.path.exists(path):
+            os.remove(path)
+    os.rmdir(work)
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
