@@ -256,4 +256,31 @@ TEST(Guards, EnergyResidualPastTheLimitStopsTheRun) {
 }
 
 } // namespace
+
+TEST(Guards, TheEnergyGuardLooksBetweenHistoryRowsToo) {
+  // The same column with one history row at the start and none after: the guard looks every 20
+  // steps, so the run stops 100 steps after its first look past the limit (at step 20), on step
+  // 120, and the history ends on that step.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_sparse";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const auto path = directory / "energy.toml";
+  std::ofstream(path) << replaced(
+      replaced(
+          replaced(column, "duration = 0.05", "duration = 0.5"), "courant_number = 0.8",
+          "courant_number = 0.8\nenergy_residual_warning = 5e-10\nenergy_residual_limit = 1e-9"),
+      "history_interval = 0.0", "history_interval = 100.0");
+  RunOptions options;
+  options.case_path = path.string();
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_failure);
+  EXPECT_NE(err.str().find("step 120, t = "), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("(energy_residual_limit 1e-07 % since step 20)"), std::string::npos)
+      << err.str();
+  Hdf5File history((directory / "out" / "history.h5").string(), Hdf5File::Mode::read);
+  const std::vector<double> step = history.read_doubles("/step");
+  ASSERT_EQ(step.size(), 2u); // the start, and the step that stopped the run
+  EXPECT_EQ(step.back(), 120.0);
+}
 } // namespace mpile
