@@ -50,6 +50,25 @@ void permute_array(std::vector<T>& values, std::span<const std::int32_t> order, 
 
 } // namespace
 
+std::size_t Particles::duplicate(std::size_t i) {
+  for (auto* field : {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &half_r,
+                      &half_y, &du_r, &du_y}) {
+    if (!field->empty()) {
+      field->push_back((*field)[i]);
+    }
+  }
+  stress.push_back(stress[i]);
+  const auto stride = static_cast<std::size_t>(state_stride);
+  for (std::size_t k = 0; k < stride; ++k) {
+    state.push_back(state[i * stride + k]);
+  }
+  material.push_back(material[i]);
+  body.push_back(body[i]);
+  cell_r.push_back(cell_r[i]);
+  cell_y.push_back(cell_y[i]);
+  return r.size() - 1;
+}
+
 void Particles::permute(std::span<const std::int32_t> order) {
   for (auto* field : {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &half_r,
                       &half_y, &du_r, &du_y}) {

@@ -47,6 +47,8 @@ struct Particles {
            double half_r_size, double half_y_size, std::uint16_t material_index,
            std::uint16_t body_index);
 
+  /// Appends a copy of particle i (every field) and returns its index.
+  std::size_t duplicate(std::size_t i);
   /// Reorders every per-particle array so that new index k holds old particle order[k]; particles
   /// the order leaves out are removed.
   void permute(std::span<const std::int32_t> order);

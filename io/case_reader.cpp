@@ -581,6 +581,7 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     s.musl = scheme == "musl";
   }
   s.jaumann_rate = table->boolean_or("jaumann_rate", s.jaumann_rate);
+  s.split_particles = table->boolean_or("split_particles", s.split_particles);
   s.mass_scaling = table->number_or("mass_scaling", s.mass_scaling);
   if (table->has("gravity")) {
     const auto g = table->numbers("gravity", 2);

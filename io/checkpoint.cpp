@@ -145,15 +145,18 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
   Particles& p = scene.particles;
   const std::size_t n = file.read_doubles("/particles/r").size();
   // A run drops the particles of a rigid body that leave the grid, so a checkpoint may hold fewer
-  // than the case makes, by at most the rigid bodies' particles.
+  // than the case makes, by at most the rigid bodies' particles; and it splits particles that grow
+  // larger than their cells, so it may hold more (bounded here, before anything is read).
   std::size_t rigid = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     rigid += scene.materials[p.material[i]]->is_rigid() ? 1 : 0;
   }
-  if (n > p.size() || n + rigid < p.size()) {
+  constexpr std::size_t most_halves = 64;
+  if (n > most_halves * p.size() || n + rigid < p.size()) {
     refuse("it holds " + std::to_string(n) + " particles, the case makes " +
            std::to_string(p.size()) + " (of which " + std::to_string(rigid) +
-           " of rigid bodies, which a run may drop)");
+           " of rigid bodies, which a run may drop; a run may split particles, but not into " +
+           std::to_string(most_halves) + " times as many)");
   }
   p.stress.resize(n);
   for (const auto& [name, field] : double_fields(p)) {

@@ -13,20 +13,29 @@ namespace mpile {
 
 namespace {
 
-/// The particle whose own crossing time h / c_p is shortest (the step's limit at rest).
-std::size_t stiffest_particle(const Scene& scene) {
+/// The particle of a case's own material whose crossing time h / c_p is shortest (the step's
+/// limit at rest). A rigid body's particles are left out: their material is the one the scene
+/// gives the body (it has no entry among the case's materials) and sets no step.
+std::size_t stiffest_particle(const CaseSpec& spec, const Scene& scene) {
   const Particles& p = scene.particles;
   std::size_t found = 0;
+  bool eligible = false;
   double shortest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Material& material = *scene.materials[p.material[i]];
+    if (material.is_rigid() || p.material[i] >= spec.materials.size()) {
+      continue;
+    }
     const double modulus = material.constrained_modulus(
         p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
     const double speed = std::sqrt(modulus * p.volume[i] / p.mass[i]);
     const double time = scene.grid.cell_min_size(p.cell_r[i], p.cell_y[i]) / speed;
-    if (time < shortest || (std::isnan(time) && !std::isnan(shortest))) {
+    // The first eligible particle stands until a shorter time is found (a modulus so small that
+    // every time is infinite still names one of the case's particles).
+    if (!eligible || time < shortest || (std::isnan(time) && !std::isnan(shortest))) {
       shortest = time;
       found = i;
+      eligible = true;
     }
   }
   return found;
@@ -43,7 +52,7 @@ void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double fir
     return;
   }
   const Particles& p = scene.particles;
-  const std::size_t i = stiffest_particle(scene);
+  const std::size_t i = stiffest_particle(spec, scene);
   const MaterialSpec& material = spec.materials[p.material[i]];
   std::ostringstream s;
   s << spec.file << ": the first stable time step is " << first_step << " s";

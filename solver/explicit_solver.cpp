@@ -1,6 +1,7 @@
 #include "solver/explicit_solver.hpp"
 
 #include "engine/parallel.hpp"
+#include "engine/particle_split.hpp"
 #include "solver/contact_passes.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/passes.hpp"
@@ -274,6 +275,41 @@ void ExplicitSolver::drop_rigid_particles_outside() {
   }
 }
 
+bool ExplicitSolver::split_oversized() {
+  Particles& p = scene_.particles;
+  const Grid& grid = scene_.grid;
+  const bool any = parallel_reduce(
+      p.size(), false,
+      [&](std::size_t begin, std::size_t end, bool found) {
+        for (std::size_t i = begin; i != end && !found; ++i) {
+          found = oversized(p, grid, i);
+        }
+        return found;
+      },
+      [](bool a, bool b) { return a || b; });
+  if (!any) {
+    return false;
+  }
+  const std::size_t before = p.size();
+  const std::vector<std::int32_t> parents = split_oversized_particles(p, grid, scene_.mode);
+  if (parents.empty()) {
+    return false;
+  }
+  if (!signal_speed_.empty()) {
+    for (const std::int32_t parent : parents) {
+      signal_speed_.push_back(signal_speed_[static_cast<std::size_t>(parent)]);
+    }
+  }
+  std::ostringstream s;
+  const auto first = static_cast<std::size_t>(parents.front());
+  s << "step " << steps_ + 1 << ": " << parents.size()
+    << " particle halves made where particles grew longer than their cells (now " << p.size()
+    << " particles, " << before << " before; the first: body '" << scene_.body_names[p.body[first]]
+    << "' near (r, y) = (" << p.r[first] << ", " << p.y[first] << "))";
+  log_.info(s.str());
+  return true;
+}
+
 void ExplicitSolver::sort_particles_by_cell() {
   const auto order = bins_.cell_sorted_order(scene_.particles.cell_r, scene_.particles.cell_y);
   scene_.particles.permute(order);
@@ -468,6 +504,17 @@ void ExplicitSolver::step_in_mode(double dt) {
   if (scene_.moving_mesh) {
     PassTimer timer(timings_.binning);
     moved_crossing_time = move_mesh();
+  }
+  if (settings_.split_particles && (result.cell_changed || scene_.moving_mesh) &&
+      result.particle_nonfinite < 0 && result.particle_outside < 0) {
+    PassTimer timer(timings_.binning);
+    if (split_oversized()) {
+      // The bins index the particles (move_mesh rebinned before the split).
+      result.block_changed = true;
+      if (scene_.moving_mesh) {
+        rebin();
+      }
+    }
   }
   time_ += dt;
   last_dt_ = dt;

@@ -107,6 +107,9 @@ private:
   void sort_particles_by_cell();
   /// Removes the rigid bodies' particles the stress pass found outside the grid (cell_r = -1).
   void drop_rigid_particles_outside();
+  /// Splits the particles that have grown larger than their cells (SolverSettings::
+  /// split_particles); returns whether any was.
+  bool split_oversized();
   void report_settings();
 
   Scene& scene_;

@@ -58,7 +58,7 @@ struct XpicFields;
 /// would have kept (the velocity update's numerical dissipation; 0 for pure FLIP).
 template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
-                      const StepParameters& step, const XpicFields* xpic = nullptr);
+                        const StepParameters& step, const XpicFields* xpic = nullptr);
 
 template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 void remap_momentum(Scene& scene, const ParticleBins& bins, const StepParameters& step);
@@ -67,6 +67,7 @@ struct StressPassResult {
   double min_crossing_time = 0.0;       // min over particles of h_cell / (c_p + |v_p|)
   double step_crossing_time = 0.0;      // the same in the cells the step was computed in
   bool block_changed = false;           // a particle moved into another scatter block
+  bool cell_changed = false;            // a particle moved into another cell
   bool rigid_left_grid = false;         // a rigid body's particle left the grid (cell_r = -1)
   std::int64_t particle_outside = -1;   // lowest index of a particle that left the grid, or -1
   double gravity_work = 0.0;            // sum of m g . du over the particles

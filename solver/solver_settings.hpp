@@ -46,6 +46,9 @@ struct SolverSettings {
   /// Cells per side of a scatter block (colored scatter); at least 3 with GIMP, whose particles
   /// reach one cell beyond their own.
   int block_cells = 8;
+  /// Split a particle whose domain has grown longer than its cell (it moved into finer cells) into
+  /// halves that fit, so that no fine cell inside a body is left empty (engine/particle_split.hpp).
+  bool split_particles = true;
   /// How particles reach the grid: bilinear at their centre, or GIMP over their domain.
   ShapeFunctions shape_functions = ShapeFunctions::linear;
 

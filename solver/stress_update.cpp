@@ -75,6 +75,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
     double min_time = std::numeric_limits<double>::infinity();
     double step_time = std::numeric_limits<double>::infinity();
     bool changed = false;
+    bool cell_changed = false;
     bool rigid_outside = false;
     std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
     double gravity_work = 0.0;
@@ -234,6 +235,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
         continue;
       }
       out.changed = out.changed || bins.block_of(cr, cy) != block;
+      out.cell_changed = out.cell_changed || cr != p.cell_r[i] || cy != p.cell_y[i];
       p.cell_r[i] = cr;
       p.cell_y[i] = cy;
       const double density = p.mass[i] / p.volume[i];
@@ -261,6 +263,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
     result.min_crossing_time = std::min(result.min_crossing_time, out.min_time);
     result.step_crossing_time = std::min(result.step_crossing_time, out.step_time);
     result.block_changed = result.block_changed || out.changed;
+    result.cell_changed = result.cell_changed || out.cell_changed;
     result.rigid_left_grid = result.rigid_left_grid || out.rigid_outside;
     first_outside = std::min(first_outside, out.first_outside);
     result.gravity_work += out.gravity_work;

@@ -729,6 +729,27 @@ TEST(CaseReader, ARunThatWouldStepForEverOrNotAtAllIsRefusedBeforeAnythingIsWrit
   }
 }
 
+TEST(CaseReader, AnImplausibleRunBesideARigidBodyNamesTheCasesOwnMaterial) {
+  // Found by tools/fuzz_cases.py: V7's block at young_modulus = 5e-324 beside its rigid incline.
+  // Every crossing time is infinite, and the message looked up the rigid body's material (the
+  // scene's, with no entry among the case's materials): SIGSEGV. It names the block now.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_implausible_rigid_test";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const std::string path = (directory / "v7.toml").string();
+  std::ofstream(path) << replaced(
+      read_text(source / "cases/verification/v7_block_on_incline.toml"),
+      "[materials.block]\ntype = \"linear_elastic\"\nyoung_modulus = 10e6",
+      "[materials.block]\ntype = \"linear_elastic\"\nyoung_modulus = 5e-324");
+  RunOptions options;
+  options.case_path = path;
+  std::ostringstream out, err;
+  EXPECT_EQ(check_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("longer than the whole run"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("of body 'block'"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("check materials.block"), std::string::npos) << err.str();
+}
+
 TEST(CaseReader, DeepNestingAndOverlongLinesAreRefusedBeforeTheParserSeesThem) {
   // 200 000 nested arrays or 20 000 nested inline tables overflowed the parser's stack (SIGSEGV);
   // a 435 kB line took 11 s (the parser is quadratic in a line's length).
