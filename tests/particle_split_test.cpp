@@ -5,6 +5,7 @@
 #include "engine/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "engine/particle_split.hpp"
+#include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
@@ -172,6 +173,21 @@ TEST(ParticleSplit, ABarCrossingAGradingStepHitsTheWallWithTheImpulseOfTheClosed
   // Without splitting the bar's energy is not accounted for (measured: 110 % of it): the run
   // guard would stop it as unstable.
   EXPECT_GT(starved.peak_residual, 0.5);
+}
+
+TEST(ParticleSplit, ResultsAreBitwiseIdenticalOnOneAndTwoThreads) {
+  const auto particles_after = [](int threads) {
+    Particles result;
+    with_threads(threads, [&] {
+      CaseRun run(bar);
+      run.run([] {});
+      result = run.scene->particles;
+    });
+    return result;
+  };
+  const Particles one = particles_after(1);
+  ASSERT_EQ(one.size(), 48u);
+  expect_particles_identical(one, particles_after(2));
 }
 
 } // namespace
