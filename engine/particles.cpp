@@ -23,6 +23,7 @@ void Particles::add(double r_pos, double y_pos, double particle_mass, double par
   half_y.push_back(half_y_size);
   stress.push_back(Stress{});
   state.resize(state.size() + static_cast<std::size_t>(state_stride), 0.0);
+  id.push_back(next_id++);
   material.push_back(material_index);
   body.push_back(body_index);
   cell_r.push_back(-1);
@@ -62,6 +63,7 @@ std::size_t Particles::duplicate(std::size_t i) {
   for (std::size_t k = 0; k < stride; ++k) {
     state.push_back(state[i * stride + k]);
   }
+  id.push_back(next_id++);
   material.push_back(material[i]);
   body.push_back(body[i]);
   cell_r.push_back(cell_r[i]);
@@ -76,6 +78,7 @@ void Particles::permute(std::span<const std::int32_t> order) {
   }
   permute_array(stress, order, 1);
   permute_array(state, order, static_cast<std::size_t>(state_stride));
+  permute_array(id, order, 1);
   permute_array(material, order, 1);
   permute_array(body, order, 1);
   permute_array(cell_r, order, 1);
@@ -90,7 +93,7 @@ std::size_t Particles::bytes() const {
   }
   total += stress.capacity() * sizeof(Stress);
   total += (material.capacity() + body.capacity()) * sizeof(std::uint16_t);
-  total += (cell_r.capacity() + cell_y.capacity()) * sizeof(std::int32_t);
+  total += (id.capacity() + cell_r.capacity() + cell_y.capacity()) * sizeof(std::int32_t);
   return total;
 }
 

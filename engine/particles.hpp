@@ -30,6 +30,10 @@ struct Particles {
   std::vector<double> state;  // material state variables, state_stride per particle
   int state_stride = 0;
   // Identity.
+  /// A particle's number for life: it follows the particle through every re-sort, so that a
+  /// snapshot's particle can be found in the next. A split's new half takes the next unused one.
+  std::vector<std::int32_t> id;
+  std::int32_t next_id = 0;
   std::vector<std::uint16_t> material; // index into the scene's materials
   std::vector<std::uint16_t> body;     // index into the scene's bodies
   // Location: the cell holding the particle, found in O(1) from the graded axes.

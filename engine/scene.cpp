@@ -6,12 +6,14 @@
 
 namespace mpile {
 
-std::uint16_t Scene::add_material(std::unique_ptr<Material> material) {
+std::uint16_t Scene::add_material(std::unique_ptr<Material> material, std::string name) {
   if (!particles.r.empty() && static_cast<int>(material->state_size()) > particles.state_stride) {
     throw std::logic_error("materials with state must be added before particles");
   }
   particles.state_stride =
       std::max(particles.state_stride, static_cast<int>(material->state_size()));
+  material_names.push_back(name.empty() ? "material " + std::to_string(materials.size())
+                                        : std::move(name));
   materials.push_back(std::move(material));
   return static_cast<std::uint16_t>(materials.size() - 1);
 }
@@ -51,7 +53,8 @@ RigidBody& Scene::make_rigid(std::uint16_t body, double density, double mass, do
   if (pair == nullptr) {
     throw std::logic_error("a rigid body must be a contact structure: " + body_names[body]);
   }
-  const std::uint16_t material = add_material(std::make_unique<RigidMaterial>(density));
+  const std::uint16_t material =
+      add_material(std::make_unique<RigidMaterial>(density), body_names[body] + " (rigid)");
   RigidBody rigid;
   rigid.name = body_names[body];
   rigid.body = body;

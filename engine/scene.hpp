@@ -32,6 +32,8 @@ struct Scene {
   Grid grid;
   Particles particles;
   std::vector<std::unique_ptr<Material>> materials;
+  /// The materials' names (the case's, or "<body> (rigid)" for a rigid body's), for outputs.
+  std::vector<std::string> material_names;
   std::vector<std::string> body_names;
   Boundaries boundaries;
   VelocityField velocity_field;
@@ -47,7 +49,8 @@ struct Scene {
   int field_of(std::uint16_t body) const { return field_of_body.empty() ? 0 : field_of_body[body]; }
 
   /// Adds a material and returns its index; widens the per-particle state to what it needs.
-  std::uint16_t add_material(std::unique_ptr<Material> material);
+  /// Without a name it is called "material <index>".
+  std::uint16_t add_material(std::unique_ptr<Material> material, std::string name = "");
   std::uint16_t add_body(std::string name);
   /// Gives a body its own velocity field in contact with the soil (field 0) and returns the pair
   /// to be filled in (friction, adhesion, surfaces, outline).

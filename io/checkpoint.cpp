@@ -1,5 +1,7 @@
 #include "io/checkpoint.hpp"
+
 #include "io/replace_file.hpp"
+#include <algorithm>
 
 #include "io/case_error.hpp"
 #include "io/hdf5_file.hpp"
@@ -62,6 +64,7 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     const std::vector<double> stress(p.stress.front().data(),
                                      p.stress.front().data() + 6 * p.size());
     file.write("/particles/stress", stress, "Pa", {p.size(), 6});
+    file.write("/particles/id", p.id);
     file.write("/particles/material", p.material);
     file.write("/particles/body", p.body);
     file.write("/particles/cell_r", p.cell_r);
@@ -168,6 +171,16 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
       p.stress[i][c] = stress[6 * i + c];
     }
   }
+  if (file.exists("/particles/id")) {
+    p.id = file.read_int32("/particles/id");
+  } else {
+    // A checkpoint written before particles had ids: number them as they stand.
+    p.id.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      p.id[i] = static_cast<std::int32_t>(i);
+    }
+  }
+  p.next_id = p.id.empty() ? 0 : *std::max_element(p.id.begin(), p.id.end()) + 1;
   p.material = file.read_uint16("/particles/material");
   p.body = file.read_uint16("/particles/body");
   p.cell_r = file.read_int32("/particles/cell_r");

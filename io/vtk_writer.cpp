@@ -1,17 +1,21 @@
 #include "io/vtk_writer.hpp"
+
 #include "io/replace_file.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkRectilinearGrid.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLRectilinearGridWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -86,7 +90,11 @@ void write_particles_vtu(const Scene& scene, const std::string& path) {
   auto density = scalar_array("density", n);
   auto velocity = vector_array("velocity", n);
   auto displacement = vector_array("displacement", n);
-  vtkNew<vtkIntArray> body, material;
+  auto mass = scalar_array("mass", n);
+  auto volume = scalar_array("volume", n);
+  vtkNew<vtkIntArray> id, body, material;
+  id->SetName("id");
+  id->SetNumberOfTuples(n);
   body->SetName("body");
   body->SetNumberOfTuples(n);
   material->SetName("material");
@@ -98,27 +106,60 @@ void write_particles_vtu(const Scene& scene, const std::string& path) {
     density->SetValue(k, p.mass[i] / p.volume[i]);
     velocity->SetTuple3(k, p.v_r[i], p.v_y[i], theta ? p.v_theta[i] : 0.0);
     displacement->SetTuple3(k, p.r[i] - p.r0[i], p.y[i] - p.y0[i], theta ? p.u_theta[i] : 0.0);
+    mass->SetValue(k, p.mass[i]);
+    volume->SetValue(k, p.volume[i]);
+    id->SetValue(k, p.id[i]);
     body->SetValue(k, p.body[i]);
     material->SetValue(k, p.material[i]);
   }
   for (vtkAbstractArray* array : std::initializer_list<vtkAbstractArray*>{
-           mean, deviatoric, density, velocity, displacement, body, material}) {
+           mean, deviatoric, density, velocity, displacement, mass, volume, id, body, material}) {
     grid->GetPointData()->AddArray(array);
   }
-  // State variables, named by their material; zero for particles of other materials.
+  // State variables by name, one array per name whichever materials have it (two Hardening Soil
+  // sands share gamma_p and p_p; one array per material overwrote the first with the second's
+  // zeros); zero for particles whose material has no such variable.
+  std::vector<std::string> state_names;
+  std::vector<std::vector<int>> slot(scene.materials.size()); // [material][name] -> state index
   for (std::size_t m = 0; m < scene.materials.size(); ++m) {
     const auto names = scene.materials[m]->state_names();
     for (std::size_t s = 0; s < names.size(); ++s) {
-      auto array = scalar_array(names[s].c_str(), n);
-      for (vtkIdType k = 0; k < n; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        array->SetValue(k, p.material[i] == m
-                               ? p.state[i * static_cast<std::size_t>(p.state_stride) + s]
-                               : 0.0);
+      const auto at = std::find(state_names.begin(), state_names.end(), names[s]);
+      const auto index = static_cast<std::size_t>(at - state_names.begin());
+      if (at == state_names.end()) {
+        state_names.push_back(names[s]);
       }
-      grid->GetPointData()->AddArray(array);
+      slot[m].resize(state_names.size(), -1);
+      slot[m][index] = static_cast<int>(s);
     }
   }
+  for (std::size_t name = 0; name < state_names.size(); ++name) {
+    auto array = scalar_array(state_names[name].c_str(), n);
+    for (vtkIdType k = 0; k < n; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      const std::vector<int>& of = slot[p.material[i]];
+      const int s = name < of.size() ? of[name] : -1;
+      array->SetValue(
+          k,
+          s >= 0
+              ? p.state[i * static_cast<std::size_t>(p.state_stride) + static_cast<std::size_t>(s)]
+              : 0.0);
+    }
+    grid->GetPointData()->AddArray(array);
+  }
+  // The names behind the body and material numbers, as field data (ParaView's spreadsheet view
+  // lists them; index k is number k).
+  vtkNew<vtkStringArray> body_names, material_names;
+  body_names->SetName("body_names");
+  for (const std::string& name : scene.body_names) {
+    body_names->InsertNextValue(name);
+  }
+  material_names->SetName("material_names");
+  for (const std::string& name : scene.material_names) {
+    material_names->InsertNextValue(name);
+  }
+  grid->GetFieldData()->AddArray(body_names);
+  grid->GetFieldData()->AddArray(material_names);
 
   write_xml<vtkXMLUnstructuredGridWriter>(grid, path);
 }

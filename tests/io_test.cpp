@@ -2,6 +2,7 @@
 // case file, and bitwise-identical restart from a checkpoint.
 #include "cases/verification/verification_case.hpp"
 #include "engine/linear_elastic.hpp"
+#include "engine/mohr_coulomb.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/output_directory.hpp"
@@ -10,8 +11,10 @@
 
 #include <gtest/gtest.h>
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
@@ -19,6 +22,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -86,7 +90,49 @@ TEST(VtkOutput, ParticleSnapshotReadsBackWithEveryArrayExact) {
     ASSERT_EQ(array("displacement")->GetComponent(k, 2), p.u_theta[i]);
     ASSERT_EQ(array("body")->GetTuple1(k), p.body[i]);
     ASSERT_EQ(array("material")->GetTuple1(k), p.material[i]);
+    ASSERT_EQ(array("mass")->GetTuple1(k), p.mass[i]);
+    ASSERT_EQ(array("volume")->GetTuple1(k), p.volume[i]);
+    ASSERT_EQ(array("id")->GetTuple1(k), p.id[i]);
   }
+  auto* names = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("body_names"));
+  ASSERT_NE(names, nullptr);
+  ASSERT_EQ(names->GetNumberOfValues(), 1);
+  EXPECT_EQ(names->GetValue(0), "block");
+}
+
+TEST(VtkOutput, TwoMaterialsWithTheSameStateVariablesShareOneArray) {
+  // Two Mohr-Coulomb sands: their particles' state goes to one array per name (one array per
+  // material overwrote the first sand's values with the second's zeros).
+  Scene scene(GeometryMode::axisymmetric, verification::uniform_grid(0.0, 1.0, 4, 0.0, 1.0, 4));
+  const auto loose = scene.add_material(
+      std::make_unique<MohrCoulomb>(1e7, 0.3, 1800.0, 0.0, 30.0, 0.0, 0.0), "loose");
+  const auto dense = scene.add_material(
+      std::make_unique<MohrCoulomb>(1e7, 0.3, 1800.0, 0.0, 40.0, 0.0, 0.0), "dense");
+  fill_rectangle(scene, {0.0, 1.0, 0.0, 0.5}, 2, loose, scene.add_body("lower"));
+  fill_rectangle(scene, {0.0, 1.0, 0.5, 1.0}, 2, dense, scene.add_body("upper"));
+  Particles& p = scene.particles;
+  ASSERT_GT(p.state_stride, 0);
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.state[i * stride] = 1.0 + static_cast<double>(i); // every particle its own value
+  }
+  const auto path = (fresh_directory("vtk_states") / "particles.vtu").string();
+  write_particles_vtu(scene, path);
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  const std::string first = std::string(scene.materials[loose]->state_names()[0]);
+  vtkDataArray* state = grid->GetPointData()->GetArray(first.c_str());
+  ASSERT_NE(state, nullptr);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_EQ(state->GetTuple1(static_cast<vtkIdType>(i)), p.state[i * stride]) << i;
+  }
+  auto* names =
+      vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("material_names"));
+  ASSERT_NE(names, nullptr);
+  EXPECT_EQ(names->GetValue(0), "loose");
+  EXPECT_EQ(names->GetValue(1), "dense");
 }
 
 TEST(Hdf5Output, SeriesAndArraysReadBackWithUnits) {
@@ -598,6 +644,88 @@ TEST(RunCommand, AFreshRunRemovesOnlyWhatTheEarlierRunWrote) {
   EXPECT_LT(second.size(), first.size());
   EXPECT_TRUE(std::filesystem::exists(out_dir / "particles_notes.txt"));
   EXPECT_TRUE(std::filesystem::exists(out_dir / "grid_sketch.png"));
+}
+
+TEST(RunCommand, ASnapshotsParticleIsFoundInTheNextByItsId) {
+  // A bar sliding 1.2 m across 0.2 m cells changes scatter blocks, and its particles are
+  // re-sorted between snapshots; each id keeps its particle (its mass and its reference position,
+  // x - displacement, do not change).
+  const auto directory = fresh_directory("ids");
+  const std::string path = (directory / "bar.toml").string();
+  std::ofstream(path) << R"(title = "sliding bar"
+geometry = "plane_strain"
+[grid]
+r = [{ start = 0.0, end = 3.0, cells = 15 }]
+y = [{ start = 0.0, end = 0.4, cells = 2 }]
+[materials.bar]
+type = "linear_elastic"
+young_modulus = 100.0
+poisson_ratio = 0.0
+density = 1.0
+[[bodies]]
+name = "bar"
+material = "bar"
+region = { r = [0.4, 1.0], y = [0.0, 0.4] }
+velocity = [1.0, 0.0, 0.0]
+[boundaries]
+y_min = "roller"
+y_max = "roller"
+[solver]
+courant_number = 0.5
+block_cells = 2
+[[phases]]
+name = "slide"
+duration = 1.2
+[output]
+snapshot_interval = 0.6
+)";
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  ASSERT_EQ(run_case(options, out, err), exit_success) << err.str();
+  struct Seen {
+    double mass, r0, y0;
+  };
+  auto read = [&](const std::string& name, std::vector<int>* order) {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName((directory / "out" / name).string().c_str());
+    reader->Update();
+    vtkUnstructuredGrid* grid = reader->GetOutput();
+    std::map<int, Seen> by_id;
+    vtkDataArray* id = grid->GetPointData()->GetArray("id");
+    vtkDataArray* mass = grid->GetPointData()->GetArray("mass");
+    vtkDataArray* displacement = grid->GetPointData()->GetArray("displacement");
+    for (vtkIdType k = 0; k < grid->GetNumberOfPoints(); ++k) {
+      double x[3];
+      grid->GetPoint(k, x);
+      const int i = static_cast<int>(id->GetTuple1(k));
+      order->push_back(i);
+      by_id[i] = {mass->GetTuple1(k), x[0] - displacement->GetComponent(k, 0),
+                  x[1] - displacement->GetComponent(k, 1)};
+    }
+    return by_id;
+  };
+  std::vector<int> first_order, last_order;
+  const auto first = read("particles_000000.vtu", &first_order);
+  std::string last_name;
+  for (const auto& entry : std::filesystem::directory_iterator(directory / "out")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("particles_", 0) == 0 && name.size() > 4 &&
+        name.substr(name.size() - 4) == ".vtu" && name > last_name) {
+      last_name = name;
+    }
+  }
+  const auto last = read(last_name, &last_order);
+  ASSERT_EQ(first.size(), first_order.size()); // ids unique
+  ASSERT_EQ(first.size(), last.size());
+  EXPECT_NE(first_order, last_order) << "the particles were not re-sorted: the test shows nothing";
+  for (const auto& [id, seen] : first) {
+    ASSERT_EQ(last.count(id), 1u) << id;
+    EXPECT_EQ(last.at(id).mass, seen.mass) << id;
+    EXPECT_NEAR(last.at(id).r0, seen.r0, 1e-12) << id;
+    EXPECT_NEAR(last.at(id).y0, seen.y0, 1e-12) << id;
+  }
 }
 
 } // namespace

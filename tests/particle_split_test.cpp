@@ -74,6 +74,7 @@ void split_and_check(GeometryMode mode) {
   }
   const Sums before = sums(p);
   const std::size_t count = p.size();
+  const std::vector<std::int32_t> ids_before = p.id;
   const auto parents = split_oversized_particles(p, fine, mode);
   // The 0.2 m particles in the 0.1 m columns halve along r once (their 0.2 and 0.4 m rows hold
   // them along y); none elsewhere.
@@ -89,6 +90,14 @@ void split_and_check(GeometryMode mode) {
     EXPECT_EQ(p.cell_y[i], fine.y_axis().locate(p.y[i]));
   }
   expect_same(before, sums(p));
+  // A particle keeps its id; each new half takes a new one.
+  for (std::size_t i = 0; i < count; ++i) {
+    EXPECT_EQ(p.id[i], ids_before[i]);
+  }
+  for (std::size_t i = count; i < p.size(); ++i) {
+    EXPECT_EQ(p.id[i], static_cast<std::int32_t>(i));
+  }
+  EXPECT_EQ(p.next_id, static_cast<std::int32_t>(p.size()));
 }
 
 TEST(ParticleSplit, KeepsMassVolumeMomentumStressAndDisplacementAxisymmetric) {
