@@ -88,7 +88,7 @@ void remove_earlier_outputs(const std::string& directory) {
     }
     remove_file(collection);
   }
-  for (const char* name : {"history.h5", "checkpoint.h5"}) {
+  for (const char* name : {"history.h5", "checkpoint.h5", "run.log"}) {
     if (std::filesystem::is_regular_file(dir / name)) {
       remove_file(dir / name);
     }

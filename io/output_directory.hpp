@@ -29,7 +29,8 @@ private:
 };
 
 /// Removes the outputs of an earlier run from `directory`: the snapshot files its `particles.pvd`
-/// and `grid.pvd` list (plain file names only), those indexes, `history.h5` and `checkpoint.h5`.
+/// and `grid.pvd` list (plain file names only), those indexes, `history.h5`, `checkpoint.h5` and
+/// `run.log`.
 /// Any other file, a user's `particles_notes.txt` included, stays. Throws std::runtime_error
 /// naming the file and the system's reason when one cannot be removed.
 void remove_earlier_outputs(const std::string& directory);

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -183,6 +184,21 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     return exit_failure;
   }
 
+  // The run's log beside its outputs (appended to by a restart), flushed line by line.
+  std::ofstream log_file(directory + "/run.log", restarting ? std::ios::app : std::ios::trunc);
+  auto to_log_file = [&](const std::string& line) {
+    if (log_file) {
+      log_file << line << std::endl;
+    }
+  };
+  if (log_file) {
+    log.also_to(&log_file);
+    to_log_file(std::string("mpile ") + MPILE_VERSION + ": " +
+                (restarting ? "continuing " + spec.file + " from " + options.restart
+                            : "running " + spec.file) +
+                " on " + std::to_string(options.threads) + " threads");
+  }
+
   const OutputSpec& output = spec.output;
   const double never = std::numeric_limits<double>::infinity();
   std::vector<double> listed = output.snapshot_times;
@@ -322,14 +338,25 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       return stop_requested != 0 ||
              (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps);
     };
+    // A snapshot of the state a run stops or a phase ends in, unless one was just written.
+    auto snapshot_now = [&] {
+      const double t = solver->time();
+      if (snapshots.entries().empty() || snapshots.entries().back().first < t) {
+        snapshots.write(*scene, t);
+      }
+    };
     auto interrupt = [&] {
       const double t = solver->time();
       reporter.finish();
+      snapshot_now();
       save_state();
       history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
                     residual_summary());
-      err << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint " << checkpoint_path
-          << " (continue with --restart " << checkpoint_path << ")\n";
+      std::ostringstream line;
+      line << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint " << checkpoint_path
+           << " (continue with --restart " << checkpoint_path << ")";
+      err << line.str() << '\n';
+      to_log_file(line.str());
       return exit_interrupted;
     };
     try {
@@ -423,6 +450,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           final_residual = history.record(*solver, progress.phase).relative_residual;
           recorded_step = solver->step_count();
         }
+        snapshot_now();
         log.info("phase " + phase.name + " ended at t = " + format_time(solver->time()) + " s " +
                  ended + ", " + std::to_string(solver->step_count()) + " steps so far");
         ++progress.phase;
@@ -446,13 +474,14 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       save_state();
       history.close(seconds_since(wall_start), std::string("failed: ") + e.what(),
                     residual_summary());
-      err << "mpile: " << e.what() << " (outputs so far are in " << directory << ")\n";
+      const std::string line =
+          std::string("mpile: ") + e.what() + " (outputs so far are in " + directory + ")";
+      err << line << '\n';
+      to_log_file(line);
       return exit_failure;
     }
     const double t = solver->time();
-    if (snapshots.entries().empty() || snapshots.entries().back().first < t) {
-      snapshots.write(*scene, t);
-    }
+    snapshot_now();
     save_state();
     const double wall = seconds_since(wall_start);
     // A run that completes with energy unaccounted for says so where it is read first: the
@@ -468,10 +497,13 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
     history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
                   residual_summary());
-    out << "mpile: " << spec.title << (doubtful ? " done, but with a doubtful" : " done")
-        << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
-        << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
-        << "; outputs in " << directory << "\n";
+    std::ostringstream done;
+    done << "mpile: " << spec.title << (doubtful ? " done, but with a doubtful" : " done")
+         << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
+         << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
+         << "; outputs in " << directory;
+    out << done.str() << "\n";
+    to_log_file(done.str());
   } catch (const std::runtime_error& e) {
     err << "mpile: " << e.what() << '\n';
     return exit_failure;

@@ -4,17 +4,22 @@
 
 namespace mpile {
 
-void RunLog::info(const std::string& message) {
+void RunLog::write(const std::string& line) {
   if (stream_ != nullptr) {
-    *stream_ << message << '\n';
+    *stream_ << line << '\n';
   }
+  if (file_ != nullptr) {
+    *file_ << line << std::endl;
+  }
+}
+
+void RunLog::info(const std::string& message) {
+  write(message);
 }
 
 void RunLog::warn(const std::string& message) {
   warnings_.push_back(message);
-  if (stream_ != nullptr) {
-    *stream_ << "warning: " << message << '\n';
-  }
+  write("warning: " + message);
 }
 
 } // namespace mpile

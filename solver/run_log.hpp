@@ -11,12 +11,18 @@ namespace mpile {
 class RunLog {
 public:
   explicit RunLog(std::ostream* stream = nullptr) : stream_(stream) {}
+  /// Every later message also goes to `file` (flushed line by line, so that a run killed keeps
+  /// what it said), for a run's log in its output directory.
+  void also_to(std::ostream* file) { file_ = file; }
   void info(const std::string& message);
   void warn(const std::string& message);
   const std::vector<std::string>& warnings() const { return warnings_; }
 
 private:
+  void write(const std::string& line);
+
   std::ostream* stream_;
+  std::ostream* file_ = nullptr;
   std::vector<std::string> warnings_;
 };
 

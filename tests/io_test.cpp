@@ -8,6 +8,7 @@
 #include "io/output_directory.hpp"
 #include "io/run_command.hpp"
 #include "io/vtk_writer.hpp"
+#include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
 #include <vtkDataArray.h>
@@ -22,6 +23,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <random>
 #include <set>
@@ -726,6 +728,47 @@ snapshot_interval = 0.6
     EXPECT_NEAR(last.at(id).r0, seen.r0, 1e-12) << id;
     EXPECT_NEAR(last.at(id).y0, seen.y0, 1e-12) << id;
   }
+}
+
+TEST(RunCommand, TheLogIsKeptBesideTheOutputsAndEveryPhaseEndIsASnapshot) {
+  // The settle phase ends at equilibrium between snapshot times: its end is a snapshot too, and
+  // run.log holds what the terminal was told, a restart's lines after the first run's.
+  const auto directory = fresh_directory("run_log");
+  const std::string path = write_case(directory);
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  options.stop_after_steps = 137; // inside the settle phase
+  std::ostringstream out, err;
+  ASSERT_EQ(run_case(options, out, err), exit_interrupted) << err.str();
+  options.stop_after_steps = 0;
+  options.restart = (directory / "stopped.h5").string();
+  std::filesystem::copy_file(directory / "out" / "checkpoint.h5", directory / "stopped.h5");
+  ASSERT_EQ(run_case(options, out, err), exit_success) << err.str();
+
+  const std::string log = read_text(directory / "out" / "run.log");
+  const auto at = [&](const std::string& text) { return log.find(text); };
+  ASSERT_NE(at("running " + path), std::string::npos) << log;
+  ASSERT_NE(at("mpile: interrupted at t = "), std::string::npos) << log;
+  ASSERT_NE(at("continuing " + path), std::string::npos) << log;
+  ASSERT_NE(at("phase settle ended at t = "), std::string::npos) << log;
+  ASSERT_NE(at("mpile: shaking column done"), std::string::npos) << log;
+  EXPECT_LT(at("mpile: interrupted at t = "), at("continuing " + path));
+  EXPECT_LT(at("continuing " + path), at("mpile: shaking column done"));
+
+  // The settle phase's end time, from the log, is in the snapshot index.
+  const std::string marker = "phase settle ended at t = ";
+  const double settled = std::stod(log.substr(at(marker) + marker.size()));
+  const std::string index = read_text(directory / "out" / "particles.pvd");
+  std::ostringstream timestep;
+  timestep << "timestep=\"" << std::setprecision(17) << settled;
+  bool found = false;
+  for (std::size_t k = index.find("timestep=\""); k != std::string::npos;
+       k = index.find("timestep=\"", k + 1)) {
+    const double t = std::stod(index.substr(k + 10));
+    found = found || std::abs(t - settled) <= 1e-6 * settled;
+  }
+  EXPECT_TRUE(found) << "no snapshot at t = " << settled << ":\n" << index;
 }
 
 } // namespace
