@@ -551,6 +551,22 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
 }
 
+/// An integer key within [low, high], checked as read: a value past int's range would wrap into
+/// the valid one when narrowed. `low_text` is how the message names the low end.
+int bounded_integer(TomlTable& table, const std::string& key, long low, const std::string& low_text,
+                    long high) {
+  const long value = table.integer(key);
+  if (value < low || value > high) {
+    table.fail(key, "must lie between " + low_text + " and " + std::to_string(high) + ", got " +
+                        std::to_string(value));
+  }
+  return static_cast<int>(value);
+}
+
+int xpic_order(TomlTable& table) {
+  return bounded_integer(table, "xpic_order", 0, "0 (off)", SolverSettings::max_xpic_order);
+}
+
 void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   SolverSettings& s = spec.solver;
   std::optional<TomlTable> table = top.optional_table("solver");
@@ -563,14 +579,7 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
   s.flip_fraction = table->number_or("flip_fraction", s.flip_fraction);
   if (table->has("xpic_order")) {
-    // Checked as read: a value past int's range would wrap into the valid one when narrowed.
-    const long order = table->integer("xpic_order");
-    if (order < 0 || order > SolverSettings::max_xpic_order) {
-      table->fail("xpic_order", "must lie between 0 (off) and " +
-                                    std::to_string(SolverSettings::max_xpic_order) + ", got " +
-                                    std::to_string(order));
-    }
-    s.xpic_order = static_cast<int>(order);
+    s.xpic_order = xpic_order(*table);
   }
   s.bbar = table->boolean_or("bbar", s.bbar);
   if (table->has("scheme")) {
@@ -588,14 +597,7 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     s.gravity = {g[0], g[1]};
   }
   if (table->has("block_cells")) {
-    // Checked as read: a value past int's range would wrap into the valid one when narrowed.
-    const long cells = table->integer("block_cells");
-    if (cells < 1 || cells > ParticleBins::max_block_cells) {
-      table->fail("block_cells", "must lie between 1 and " +
-                                     std::to_string(ParticleBins::max_block_cells) + ", got " +
-                                     std::to_string(cells));
-    }
-    s.block_cells = static_cast<int>(cells);
+    s.block_cells = bounded_integer(*table, "block_cells", 1, "1", ParticleBins::max_block_cells);
   }
   if (table->has("shape_functions")) {
     const std::string shape = table->string("shape_functions");
@@ -658,13 +660,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
       }
     }
     if (table.has("xpic_order")) {
-      const long order = table.integer("xpic_order");
-      if (order < 0 || order > SolverSettings::max_xpic_order) {
-        table.fail("xpic_order", "must lie between 0 (off) and " +
-                                     std::to_string(SolverSettings::max_xpic_order) + ", got " +
-                                     std::to_string(order));
-      }
-      phase.xpic_order = static_cast<int>(order);
+      phase.xpic_order = xpic_order(table);
     }
     {
       // XPIC replaces the FLIP/PIC blend: the phase may not end up with both.
