@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <limits>
+#include <stdexcept>
 
 namespace mpile {
 
@@ -44,6 +45,10 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
                              ? "axisymmetric: extensive quantities per radian"
                              : "plane strain: extensive quantities per metre");
     file_->set_attribute("/", "status", "running");
+  } else if (file_->string_attribute("/", "case_text") != spec.text) {
+    // A restart continues its own case's history, never one another run left in the directory.
+    throw std::runtime_error(path + " is the history of another case (or " + spec.file +
+                             " was edited since it was written)");
   }
   file_->set_attribute("/", "threads", static_cast<double>(threads));
   const Units u = units_of(scene.mode);

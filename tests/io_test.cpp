@@ -571,6 +571,22 @@ TEST(RunCommand, ARestartThatCannotContinueItsHistoryIsRefused) {
   err.str("");
   EXPECT_EQ(run_case(truncated, out, err), exit_bad_input);
   EXPECT_NE(err.str().find("/time holds 1 rows, not the"), std::string::npos) << err.str();
+
+  // Another case's history in the directory: the checkpoint is this case's, the history is not.
+  const auto other = directory / "other";
+  std::filesystem::create_directories(other);
+  const std::string other_path = (other / "case.toml").string();
+  std::ofstream(other_path) << replaced(read_text(path), "shaking column", "another column");
+  RunOptions other_run = first;
+  other_run.case_path = other_path;
+  other_run.output_directory = (other / "out").string();
+  ASSERT_EQ(run_case(other_run, out, err), exit_interrupted) << err.str();
+  std::filesystem::copy_file(other / "out" / "history.h5", directory / "out" / "history.h5",
+                             std::filesystem::copy_options::overwrite_existing);
+  err.str("");
+  EXPECT_EQ(run_case(truncated, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("history.h5 is the history of another case"), std::string::npos)
+      << err.str();
 }
 
 TEST(RunCommand, ASignalWhileTheCaseIsBuiltStopsItBeforeAnythingIsWritten) {

@@ -129,8 +129,8 @@ def main():
     parser.add_argument("--mutants", type=int, default=300)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
-    parser.add_argument("--timeout", type=float, default=20.0, help="seconds one check may take")
-    parser.add_argument("--memory", type=int, default=2048,
+    parser.add_argument("--timeout", type=float, default=5.0, help="seconds one check may take")
+    parser.add_argument("--memory", type=int, default=1024,
                         help="MiB of address space per check (0: no limit, for sanitizer builds)")
     parser.add_argument("--all-cases", action="store_true", help="include the slow case files")
     parser.add_argument("--keep", default=os.path.join(tempfile.gettempdir(), "mpile-fuzz-failures"))
