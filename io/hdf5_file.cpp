@@ -243,14 +243,16 @@ void Hdf5File::flush() {
   H5Fflush(file_.get(), H5F_SCOPE_GLOBAL);
 }
 
-Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, const std::string& unit) {
+Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, const std::string& unit,
+                       Stored stored) {
   file.parent_group(dataset);
   const hsize_t initial = 0, unlimited = H5S_UNLIMITED, chunk = 4096;
   Hdf5Handle space(H5Screate_simple(1, &initial, &unlimited), H5Sclose);
   Hdf5Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   H5Pset_chunk(properties.get(), 1, &chunk);
-  dataset_ = Hdf5Handle(check(H5Dcreate2(file.id(), dataset.c_str(), H5T_NATIVE_DOUBLE, space.get(),
-                                         H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+  const hid_t type = stored == Stored::integer ? H5T_STD_I64LE : H5T_NATIVE_DOUBLE;
+  dataset_ = Hdf5Handle(check(H5Dcreate2(file.id(), dataset.c_str(), type, space.get(), H5P_DEFAULT,
+                                         properties.get(), H5P_DEFAULT),
                               "cannot create " + dataset + " in " + file.path()),
                         H5Dclose);
   file.set_attribute(dataset, "unit", unit);

@@ -68,10 +68,14 @@ private:
   Hdf5Handle file_;
 };
 
-/// A 1-D double dataset that grows: values are buffered and written in chunks on flush.
+/// A 1-D dataset that grows: values are buffered and written in chunks on flush. Stored as doubles,
+/// or as 64-bit integers for counts and indices (the values given are then whole numbers, which
+/// HDF5 converts exactly below 2^53).
 class Hdf5Series {
 public:
-  Hdf5Series(Hdf5File& file, const std::string& dataset, const std::string& unit);
+  enum class Stored { real, integer };
+  Hdf5Series(Hdf5File& file, const std::string& dataset, const std::string& unit,
+             Stored stored = Stored::real);
   /// Opens an existing series and keeps its first `rows` values (for a restart).
   Hdf5Series(Hdf5File& file, const std::string& dataset, std::size_t rows);
   void append(double value) { buffer_.push_back(value); }

@@ -54,8 +54,8 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
   const Units u = units_of(scene.mode);
   series("/time", "s");
   series("/dt", "s");
-  series("/step", "-");
-  series("/phase", "index into the case's [[phases]]");
+  series("/step", "-", Hdf5Series::Stored::integer);
+  series("/phase", "index into the case's [[phases]] and /phases", Hdf5Series::Stored::integer);
   for (const char* name :
        {"/energy/external_work", "/energy/kinetic", "/energy/elastic", "/energy/plastic",
         "/energy/damping", "/energy/contact", "/energy/transfer", "/energy/residual"}) {
@@ -149,11 +149,12 @@ double HistoryWriter::UnitResistance::of(const Scene& scene) const {
   return scene.contacts[pair].surface_force[surface][1] / area;
 }
 
-Hdf5Series& HistoryWriter::series(const std::string& name, const std::string& unit) {
+Hdf5Series& HistoryWriter::series(const std::string& name, const std::string& unit,
+                                  Hdf5Series::Stored stored) {
   auto found = series_.find(name);
   if (found == series_.end()) {
     found = reopened_ ? series_.emplace(name, Hdf5Series(*file_, name, rows_)).first
-                      : series_.emplace(name, Hdf5Series(*file_, name, unit)).first;
+                      : series_.emplace(name, Hdf5Series(*file_, name, unit, stored)).first;
     order_.push_back(name);
   }
   return found->second;
@@ -228,6 +229,20 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
   ++rows_;
   flush_if_due();
   return energy;
+}
+
+void HistoryWriter::phase_started(std::size_t index, const std::string& name, double start) {
+  const std::string group = "/phases/" + std::to_string(index);
+  file_->parent_group(group + "/name");
+  file_->set_attribute(group, "name", name);
+  file_->set_attribute(group, "start", start);
+}
+
+void HistoryWriter::phase_ended(std::size_t index, double end, const std::string& why) {
+  const std::string group = "/phases/" + std::to_string(index);
+  file_->parent_group(group + "/name");
+  file_->set_attribute(group, "end", end);
+  file_->set_attribute(group, "ended", why);
 }
 
 void HistoryWriter::flush_if_due() {

@@ -25,6 +25,10 @@ public:
 
   /// Appends a row; returns the energy balance it recorded.
   EnergyBalance record(const ExplicitSolver& solver, std::size_t phase);
+  /// The table of phases, /phases/<index> with attributes name and start (s), and once the phase
+  /// has ended end (s) and ended (why it ended).
+  void phase_started(std::size_t index, const std::string& name, double start);
+  void phase_ended(std::size_t index, double end, const std::string& why);
   std::size_t rows() const { return rows_; }
   void flush_if_due();
   /// Writes every buffered row to the file now (before a checkpoint counts them).
@@ -42,7 +46,8 @@ private:
   /// Every outlined surface's plan and side areas as attributes and its vertical force over its
   /// plan area (where it has one) as unit_end_resistance; the CPT's series when asked.
   void add_unit_resistances(const CaseSpec& spec, const Scene& scene);
-  Hdf5Series& series(const std::string& name, const std::string& unit);
+  Hdf5Series& series(const std::string& name, const std::string& unit,
+                     Hdf5Series::Stored stored = Hdf5Series::Stored::real);
 
   /// A surface's vertical force over one of its areas (Pa): a unit resistance.
   struct UnitResistance {

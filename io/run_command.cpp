@@ -364,6 +364,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         const PhaseSpec& phase = spec.phases[progress.phase];
         const double phase_end = progress.phase_starts[progress.phase] + phase.duration;
         log.info("phase " + phase.name + " from t = " + format_time(solver->time()) + " s");
+        history.phase_started(progress.phase, phase.name, progress.phase_starts[progress.phase]);
         std::string ended = "after its duration";
         while (!reached(solver->time(), phase_end, solver->stable_time_step())) {
           // Steps land exactly on the phase end and on snapshot times, without a sliver step.
@@ -451,6 +452,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
           recorded_step = solver->step_count();
         }
         snapshot_now();
+        history.phase_ended(progress.phase, solver->time(), ended);
         log.info("phase " + phase.name + " ended at t = " + format_time(solver->time()) + " s " +
                  ended + ", " + std::to_string(solver->step_count()) + " steps so far");
         ++progress.phase;

@@ -249,6 +249,22 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   EXPECT_NE(status.find("peak 8.09 %"), std::string::npos) << status;
   EXPECT_NE(out.str().find("done, but with a doubtful: "), std::string::npos) << out.str();
   EXPECT_EQ(history.string_attribute("/time", "unit"), "s");
+  // Counts and indices are integers; the phases are a table of their own.
+  for (const char* name : {"/step", "/phase"}) {
+    const hid_t dataset = H5Dopen2(history.id(), name, H5P_DEFAULT);
+    const hid_t type = H5Dget_type(dataset);
+    EXPECT_EQ(H5Tget_class(type), H5T_INTEGER) << name;
+    H5Tclose(type);
+    H5Dclose(dataset);
+  }
+  EXPECT_EQ(history.string_attribute("/phases/0", "name"), "settle");
+  EXPECT_EQ(history.number_attribute("/phases/0", "start"), 0.0);
+  EXPECT_NE(history.string_attribute("/phases/0", "ended").find("at equilibrium"),
+            std::string::npos);
+  EXPECT_EQ(history.string_attribute("/phases/1", "name"), "shake");
+  EXPECT_EQ(history.number_attribute("/phases/1", "start"),
+            history.number_attribute("/phases/0", "end"));
+  EXPECT_EQ(history.string_attribute("/phases/1", "ended"), "after its duration");
   EXPECT_EQ(history.string_attribute("/boundaries/base/M_theta", "unit"), "N m/rad");
   EXPECT_NE(history.string_attribute("/", "case_text").find("shaking column"), std::string::npos);
   const auto time = history.read_doubles("/time");
