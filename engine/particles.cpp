@@ -2,6 +2,8 @@
 
 #include "engine/parallel.hpp"
 
+#include <array>
+
 namespace mpile {
 
 void Particles::add(double r_pos, double y_pos, double particle_mass, double particle_volume,
@@ -34,6 +36,13 @@ void Particles::add(double r_pos, double y_pos, double particle_mass, double par
 
 namespace {
 
+/// Every per-particle array of doubles with one value per particle (theta ones empty in plane
+/// strain), so that copying, reordering and counting cannot miss one.
+template <class P> auto scalar_fields(P& p) {
+  return std::array{&p.r,       &p.y,    &p.r0,     &p.y0,     &p.v_r,    &p.v_y,  &p.v_theta,
+                    &p.u_theta, &p.mass, &p.volume, &p.half_r, &p.half_y, &p.du_r, &p.du_y};
+}
+
 template <class T>
 void permute_array(std::vector<T>& values, std::span<const std::int32_t> order, std::size_t width) {
   if (values.empty()) {
@@ -52,8 +61,7 @@ void permute_array(std::vector<T>& values, std::span<const std::int32_t> order, 
 } // namespace
 
 std::size_t Particles::duplicate(std::size_t i) {
-  for (auto* field : {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &half_r,
-                      &half_y, &du_r, &du_y}) {
+  for (std::vector<double>* field : scalar_fields(*this)) {
     if (!field->empty()) {
       field->push_back((*field)[i]);
     }
@@ -72,8 +80,7 @@ std::size_t Particles::duplicate(std::size_t i) {
 }
 
 void Particles::permute(std::span<const std::int32_t> order) {
-  for (auto* field : {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume, &half_r,
-                      &half_y, &du_r, &du_y}) {
+  for (std::vector<double>* field : scalar_fields(*this)) {
     permute_array(*field, order, 1);
   }
   permute_array(stress, order, 1);
@@ -87,10 +94,10 @@ void Particles::permute(std::span<const std::int32_t> order) {
 
 std::size_t Particles::bytes() const {
   std::size_t total = 0;
-  for (const auto* field : {&r, &y, &r0, &y0, &v_r, &v_y, &v_theta, &u_theta, &mass, &volume,
-                            &half_r, &half_y, &du_r, &du_y, &state}) {
+  for (const std::vector<double>* field : scalar_fields(*this)) {
     total += field->capacity() * sizeof(double);
   }
+  total += state.capacity() * sizeof(double);
   total += stress.capacity() * sizeof(Stress);
   total += (material.capacity() + body.capacity()) * sizeof(std::uint16_t);
   total += (id.capacity() + cell_r.capacity() + cell_y.capacity()) * sizeof(std::int32_t);

@@ -18,6 +18,15 @@ std::uint16_t Scene::add_material(std::unique_ptr<Material> material, std::strin
   return static_cast<std::uint16_t>(materials.size() - 1);
 }
 
+std::vector<char> Scene::rigid_materials() const {
+  std::vector<char> rigid;
+  rigid.reserve(materials.size());
+  for (const auto& material : materials) {
+    rigid.push_back(material->is_rigid() ? 1 : 0);
+  }
+  return rigid;
+}
+
 std::uint16_t Scene::add_body(std::string name) {
   body_names.push_back(std::move(name));
   return static_cast<std::uint16_t>(body_names.size() - 1);

@@ -46,6 +46,9 @@ struct Scene {
   std::optional<MovingMesh> moving_mesh;
 
   bool has_contact() const { return !contacts.empty(); }
+  /// Per material, 1 where it is a rigid body's: such particles only mark the nodes their body
+  /// occupies, carry no kinetic energy of their own and feel no gravity (the body's DOFs do).
+  std::vector<char> rigid_materials() const;
   int field_of(std::uint16_t body) const { return field_of_body.empty() ? 0 : field_of_body[body]; }
 
   /// Adds a material and returns its index; widens the per-particle state to what it needs.

@@ -22,10 +22,10 @@ std::size_t stiffest_particle(const CaseSpec& spec, const Scene& scene) {
   bool eligible = false;
   double shortest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const Material& material = *scene.materials[p.material[i]];
-    if (material.is_rigid() || p.material[i] >= spec.materials.size()) {
-      continue;
+    if (p.material[i] >= spec.materials.size()) {
+      continue; // a rigid body's material, which the scene adds after the case's
     }
+    const Material& material = *scene.materials[p.material[i]];
     const double modulus = material.constrained_modulus(
         p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
     const double speed = std::sqrt(modulus * p.volume[i] / p.mass[i]);

@@ -25,16 +25,6 @@ template <class Term> double deterministic_sum(std::size_t n, Term term) {
       [](double a, double b) { return a + b; }, true, grain);
 }
 
-/// Per material, whether it is a rigid body's: such particles carry no kinetic energy of their
-/// own (a rigid body's energy is that of its DOFs with its whole mass).
-std::vector<char> rigid_materials(const Scene& scene) {
-  std::vector<char> rigid;
-  for (const auto& material : scene.materials) {
-    rigid.push_back(material->is_rigid() ? 1 : 0);
-  }
-  return rigid;
-}
-
 double speed_squared(const Particles& p, std::size_t i, bool theta) {
   const double v2 = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
   return theta ? v2 + p.v_theta[i] * p.v_theta[i] : v2;
@@ -45,7 +35,7 @@ double speed_squared(const Particles& p, std::size_t i, bool theta) {
 double kinetic_energy(const Scene& scene) {
   const Particles& p = scene.particles;
   const bool theta = has_theta(scene.mode);
-  const std::vector<char> rigid = rigid_materials(scene);
+  const std::vector<char> rigid = scene.rigid_materials();
   double energy = deterministic_sum(p.size(), [&](std::size_t i) {
     return rigid[p.material[i]] != 0 ? 0.0 : 0.5 * p.mass[i] * speed_squared(p, i, theta);
   });
@@ -70,7 +60,7 @@ KineticHotspot kinetic_hotspot(const Scene& scene) {
   const bool theta = has_theta(scene.mode);
   KineticHotspot hot;
   hot.body_energy.assign(scene.body_names.size(), 0.0);
-  const std::vector<char> rigid = rigid_materials(scene);
+  const std::vector<char> rigid = scene.rigid_materials();
   // Serial: this runs once, when a guard reports, and the sums then come in index order.
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (rigid[p.material[i]] != 0) {

@@ -29,10 +29,7 @@ double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSett
   [[maybe_unused]] const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   // A rigid body's particles carry no kinetic energy of their own (kinetic_energy).
-  std::vector<char> rigid_material;
-  for (const auto& material : scene.materials) {
-    rigid_material.push_back(material->is_rigid() ? 1 : 0);
-  }
+  const std::vector<char> rigid_material = scene.rigid_materials();
   // One sum per block, added in block order afterwards: the same for any thread count.
   std::vector<double> block_loss(dissipative ? static_cast<std::size_t>(bins.block_count()) : 0);
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {

@@ -63,12 +63,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   [[maybe_unused]] const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   // Gravity on a rigid body acts on its DOFs (RigidBody), not on its particles.
-  std::vector<char> rigid_material;
-  if constexpr (contact) {
-    for (const auto& material : scene.materials) {
-      rigid_material.push_back(material->is_rigid() ? 1 : 0);
-    }
-  }
+  const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
 
   // One result per block, reduced serially afterwards: no shared writes, and a fixed order.
   struct BlockResult {
