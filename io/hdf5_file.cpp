@@ -1,5 +1,7 @@
 #include "io/hdf5_file.hpp"
 
+#include <hdf5_hl.h>
+
 #include <stdexcept>
 #include <utility>
 
@@ -55,11 +57,13 @@ Hdf5Handle::~Hdf5Handle() {
 }
 
 Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
+  Hdf5Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  H5Pset_file_locking(access.get(), false, true);
   hid_t id = -1;
   if (mode == Mode::create) {
-    id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get());
   } else {
-    id = H5Fopen(path.c_str(), mode == Mode::read ? H5F_ACC_RDONLY : H5F_ACC_RDWR, H5P_DEFAULT);
+    id = H5Fopen(path.c_str(), mode == Mode::read ? H5F_ACC_RDONLY : H5F_ACC_RDWR, access.get());
   }
   if (id < 0) {
     fail("cannot " + std::string(mode == Mode::create ? "create " : "open ") + path);
@@ -137,7 +141,7 @@ void Hdf5File::write_raw(const std::string& dataset, hid_t type, const void* dat
 void Hdf5File::write(const std::string& dataset, std::span<const double> values,
                      const std::string& unit, std::vector<hsize_t> dims) {
   write_raw(dataset, H5T_NATIVE_DOUBLE, values.data(), values.size(), std::move(dims));
-  set_attribute(dataset, "unit", unit);
+  set_attribute(dataset, "units", unit);
 }
 
 void Hdf5File::write(const std::string& dataset, std::span<const std::int32_t> values,
@@ -243,27 +247,50 @@ void Hdf5File::flush() {
   H5Fflush(file_.get(), H5F_SCOPE_GLOBAL);
 }
 
+void Hdf5File::make_dimension_scale(const std::string& dataset, const std::string& name) {
+  Hdf5Handle set(check(H5Dopen2(file_.get(), dataset.c_str(), H5P_DEFAULT),
+                       "no dataset " + dataset + " in " + path_),
+                 H5Dclose);
+  if (H5DSset_scale(set.get(), name.c_str()) < 0) {
+    fail("cannot make " + dataset + " a dimension scale in " + path_);
+  }
+}
+
+void Hdf5File::attach_dimension_scale(const std::string& dataset, const std::string& scale) {
+  Hdf5Handle set(check(H5Dopen2(file_.get(), dataset.c_str(), H5P_DEFAULT),
+                       "no dataset " + dataset + " in " + path_),
+                 H5Dclose);
+  Hdf5Handle scale_set(check(H5Dopen2(file_.get(), scale.c_str(), H5P_DEFAULT),
+                             "no dataset " + scale + " in " + path_),
+                       H5Dclose);
+  if (H5DSattach_scale(set.get(), scale_set.get(), 0) < 0) {
+    fail("cannot attach the dimension scale " + scale + " to " + dataset + " in " + path_);
+  }
+}
+
 Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, const std::string& unit,
-                       Stored stored) {
+                       Stored stored)
+    : dataset_(dataset) {
   file.parent_group(dataset);
   const hsize_t initial = 0, unlimited = H5S_UNLIMITED, chunk = 4096;
   Hdf5Handle space(H5Screate_simple(1, &initial, &unlimited), H5Sclose);
   Hdf5Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   H5Pset_chunk(properties.get(), 1, &chunk);
   const hid_t type = stored == Stored::integer ? H5T_STD_I64LE : H5T_NATIVE_DOUBLE;
-  dataset_ = Hdf5Handle(check(H5Dcreate2(file.id(), dataset.c_str(), type, space.get(), H5P_DEFAULT,
-                                         properties.get(), H5P_DEFAULT),
-                              "cannot create " + dataset + " in " + file.path()),
-                        H5Dclose);
-  file.set_attribute(dataset, "unit", unit);
+  Hdf5Handle set(check(H5Dcreate2(file.id(), dataset.c_str(), type, space.get(), H5P_DEFAULT,
+                                  properties.get(), H5P_DEFAULT),
+                       "cannot create " + dataset + " in " + file.path()),
+                 H5Dclose);
+  file.set_attribute(dataset, "units", unit);
 }
 
-Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, std::size_t rows) {
-  dataset_ = Hdf5Handle(check(H5Dopen2(file.id(), dataset.c_str(), H5P_DEFAULT),
-                              "no dataset " + dataset + " in " + file.path()),
-                        H5Dclose);
+Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, std::size_t rows)
+    : dataset_(dataset) {
+  Hdf5Handle set(check(H5Dopen2(file.id(), dataset.c_str(), H5P_DEFAULT),
+                       "no dataset " + dataset + " in " + file.path()),
+                 H5Dclose);
   // Fewer rows in the file than asked for would be filled with zeros: refuse instead.
-  Hdf5Handle space(H5Dget_space(dataset_.get()), H5Sclose);
+  Hdf5Handle space(H5Dget_space(set.get()), H5Sclose);
   hsize_t held = 0;
   H5Sget_simple_extent_dims(space.get(), &held, nullptr);
   if (held < rows) {
@@ -271,26 +298,29 @@ Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, std::size_t r
          std::to_string(rows) + " the checkpoint counts (the history was not written up to it)");
   }
   written_ = static_cast<hsize_t>(rows);
-  if (H5Dset_extent(dataset_.get(), &written_) < 0) {
+  if (H5Dset_extent(set.get(), &written_) < 0) {
     fail("cannot resize " + dataset + " in " + file.path());
   }
 }
 
-void Hdf5Series::flush() {
+void Hdf5Series::flush(Hdf5File& file) {
   if (buffer_.empty()) {
     return;
   }
+  Hdf5Handle set(check(H5Dopen2(file.id(), dataset_.c_str(), H5P_DEFAULT),
+                       "no dataset " + dataset_ + " in " + file.path()),
+                 H5Dclose);
   const hsize_t total = written_ + buffer_.size();
   const hsize_t count = buffer_.size();
-  if (H5Dset_extent(dataset_.get(), &total) < 0) {
-    fail("cannot extend a series");
+  if (H5Dset_extent(set.get(), &total) < 0) {
+    fail("cannot extend " + dataset_ + " in " + file.path());
   }
-  Hdf5Handle file_space(H5Dget_space(dataset_.get()), H5Sclose);
+  Hdf5Handle file_space(H5Dget_space(set.get()), H5Sclose);
   H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &written_, nullptr, &count, nullptr);
   Hdf5Handle memory_space(H5Screate_simple(1, &count, nullptr), H5Sclose);
-  if (H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
+  if (H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
                buffer_.data()) < 0) {
-    fail("cannot append to a series");
+    fail("cannot append to " + dataset_ + " in " + file.path());
   }
   written_ = total;
   buffer_.clear();

@@ -1,7 +1,10 @@
 #pragma once
 
 // A small RAII layer over the HDF5 C library: files, groups made on demand, whole arrays with a
-// unit attribute, string and number attributes, and extendible 1-D series for histories.
+// units attribute, string and number attributes, dimension scales, and extendible 1-D series for
+// histories. Files are opened without HDF5's file locks: mpile's output directory has its own lock
+// (one run per directory), and a reader (h5py, HDFView) holding a history open must not stop the
+// run that appends to it.
 
 #include <hdf5.h>
 
@@ -55,6 +58,10 @@ public:
   double number_attribute(const std::string& object, const std::string& name) const;
 
   void flush();
+  /// Makes a 1-D dataset a dimension scale called `name`, and attaches it to the first dimension
+  /// of another dataset, so netCDF readers (xarray) see them share a dimension.
+  void make_dimension_scale(const std::string& dataset, const std::string& name);
+  void attach_dimension_scale(const std::string& dataset, const std::string& scale);
   /// Opens (or makes, with its parents) the group holding an object path like /a/b/c.
   Hdf5Handle parent_group(const std::string& object);
 
@@ -70,7 +77,8 @@ private:
 
 /// A 1-D dataset that grows: values are buffered and written in chunks on flush. Stored as doubles,
 /// or as 64-bit integers for counts and indices (the values given are then whole numbers, which
-/// HDF5 converts exactly below 2^53).
+/// HDF5 converts exactly below 2^53). It holds no HDF5 handle between flushes, so the file it
+/// lives in can be closed between them.
 class Hdf5Series {
 public:
   enum class Stored { real, integer };
@@ -79,11 +87,13 @@ public:
   /// Opens an existing series and keeps its first `rows` values (for a restart).
   Hdf5Series(Hdf5File& file, const std::string& dataset, std::size_t rows);
   void append(double value) { buffer_.push_back(value); }
-  void flush();
+  /// Appends the buffered values to the dataset in `file` (open for writing).
+  void flush(Hdf5File& file);
   std::size_t size() const { return written_ + buffer_.size(); }
+  const std::string& dataset() const { return dataset_; }
 
 private:
-  Hdf5Handle dataset_;
+  std::string dataset_;
   std::vector<double> buffer_;
   hsize_t written_ = 0;
 };

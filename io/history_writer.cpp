@@ -32,43 +32,43 @@ Units units_of(GeometryMode mode) {
 
 HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, const Scene& scene,
                              int threads, std::size_t rows)
-    : rows_(rows), reopened_(rows > 0), last_flush_(std::chrono::steady_clock::now()) {
-  file_ =
-      std::make_unique<Hdf5File>(path, reopened_ ? Hdf5File::Mode::append : Hdf5File::Mode::create);
+    : path_(path), rows_(rows), reopened_(rows > 0), last_flush_(std::chrono::steady_clock::now()) {
+  Hdf5File file(path, reopened_ ? Hdf5File::Mode::append : Hdf5File::Mode::create);
   if (!reopened_) {
-    file_->set_attribute("/", "case_file", spec.file);
-    file_->set_attribute("/", "case_text", spec.text);
-    file_->set_attribute("/", "title", spec.title);
-    file_->set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
-    file_->set_attribute("/", "geometry",
-                         spec.mode == GeometryMode::axisymmetric
-                             ? "axisymmetric: extensive quantities per radian"
-                             : "plane strain: extensive quantities per metre");
-    file_->set_attribute("/", "status", "running");
-  } else if (file_->string_attribute("/", "case_text") != spec.text) {
+    file.set_attribute("/", "case_file", spec.file);
+    file.set_attribute("/", "case_text", spec.text);
+    file.set_attribute("/", "title", spec.title);
+    file.set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
+    file.set_attribute("/", "geometry",
+                       spec.mode == GeometryMode::axisymmetric
+                           ? "axisymmetric: extensive quantities per radian"
+                           : "plane strain: extensive quantities per metre");
+    file.set_attribute("/", "status", "running");
+  } else if (file.string_attribute("/", "case_text") != spec.text) {
     // A restart continues its own case's history, never one another run left in the directory.
     throw std::runtime_error(path + " is the history of another case (or " + spec.file +
                              " was edited since it was written)");
   }
-  file_->set_attribute("/", "threads", static_cast<double>(threads));
+  file.set_attribute("/", "threads", static_cast<double>(threads));
   const Units u = units_of(scene.mode);
-  series("/time", "s");
-  series("/dt", "s");
-  series("/step", "-", Hdf5Series::Stored::integer);
-  series("/phase", "index into the case's [[phases]] and /phases", Hdf5Series::Stored::integer);
+  series(file, "/time", "s");
+  series(file, "/dt", "s");
+  series(file, "/step", "-", Hdf5Series::Stored::integer);
+  series(file, "/phase", "index into the case's [[phases]] and /phases",
+         Hdf5Series::Stored::integer);
   for (const char* name :
        {"/energy/external_work", "/energy/kinetic", "/energy/elastic", "/energy/plastic",
         "/energy/damping", "/energy/contact", "/energy/transfer", "/energy/residual"}) {
-    series(name, u.energy);
+    series(file, name, u.energy);
   }
-  series("/energy/relative_residual", "-");
+  series(file, "/energy/relative_residual", "-");
   for (const NodeConstraint& c : scene.boundaries.constraints) {
     const std::string base = "/boundaries/" + dataset_name(c.name);
-    series(base + "/F_r", u.force);
-    series(base + "/F_y", u.force);
+    series(file, base + "/F_r", u.force);
+    series(file, base + "/F_y", u.force);
     if (has_theta(scene.mode)) {
-      series(base + "/F_theta", u.force);
-      series(base + "/M_theta", u.moment);
+      series(file, base + "/F_theta", u.force);
+      series(file, base + "/M_theta", u.moment);
     }
   }
   // Contact: the force of the soil on each surface of each structure, and the rigid DOFs.
@@ -77,36 +77,37 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
     for (const std::string& surface : pair.surfaces) {
       const std::string base =
           "/reactions/" + dataset_name(pair.name) + "/" + dataset_name(surface);
-      series(base + "/F_r", u.force);
-      series(base + "/F_y", u.force);
+      series(file, base + "/F_r", u.force);
+      series(file, base + "/F_y", u.force);
       if (theta) {
-        series(base + "/F_theta", u.force);
-        series(base + "/M_theta", u.moment);
+        series(file, base + "/F_theta", u.force);
+        series(file, base + "/M_theta", u.moment);
       }
     }
   }
-  add_unit_resistances(spec, scene);
+  add_unit_resistances(file, spec, scene);
   for (const RigidBody& body : scene.rigid_bodies) {
     const std::string base = "/bodies/" + dataset_name(body.name);
     if (!theta) {
-      series(base + "/u_r", "m");
-      series(base + "/v_r", "m/s");
-      series(base + "/contact_F_r", u.force);
-      series(base + "/driving_F_r", u.force);
+      series(file, base + "/u_r", "m");
+      series(file, base + "/v_r", "m/s");
+      series(file, base + "/contact_F_r", u.force);
+      series(file, base + "/driving_F_r", u.force);
     }
-    series(base + "/u_y", "m");
-    series(base + "/v_y", "m/s");
-    series(base + "/rotation", "rad");
-    series(base + "/angular_velocity", "rad/s");
-    series(base + "/contact_F_y", u.force);
-    series(base + "/contact_torque", u.moment);
-    series(base + "/driving_F_y", u.force);
-    series(base + "/driving_torque", u.moment);
+    series(file, base + "/u_y", "m");
+    // What stop criteria and snapshot_penetrations count: the body's total downward displacement.
+    series(file, base + "/penetration", "m");
+    series(file, base + "/v_y", "m/s");
+    series(file, base + "/rotation", "rad");
+    series(file, base + "/angular_velocity", "rad/s");
+    series(file, base + "/contact_F_y", u.force);
+    series(file, base + "/contact_torque", u.moment);
+    series(file, base + "/driving_F_y", u.force);
+    series(file, base + "/driving_torque", u.moment);
   }
-  file_->flush();
 }
 
-void HistoryWriter::add_unit_resistances(const CaseSpec& spec, const Scene& scene) {
+void HistoryWriter::add_unit_resistances(Hdf5File& file, const CaseSpec& spec, const Scene& scene) {
   const std::string area_unit = scene.mode == GeometryMode::axisymmetric ? "m^2/rad" : "m^2/m";
   for (std::size_t p = 0; p < scene.contacts.size(); ++p) {
     const ContactPair& pair = scene.contacts[p];
@@ -119,13 +120,13 @@ void HistoryWriter::add_unit_resistances(const CaseSpec& spec, const Scene& scen
       const std::string base =
           "/reactions/" + dataset_name(pair.name) + "/" + dataset_name(pair.surfaces[q]);
       if (!reopened_) {
-        file_->set_attribute(base, "plan_area", areas[q].plan);
-        file_->set_attribute(base, "side_area", areas[q].side);
-        file_->set_attribute(base, "area_unit", area_unit);
+        file.set_attribute(base, "plan_area", areas[q].plan);
+        file.set_attribute(base, "side_area", areas[q].side);
+        file.set_attribute(base, "area_unit", area_unit);
       }
       if (areas[q].plan > 0.0) {
         end_resistances_.push_back({base + "/unit_end_resistance", p, q, areas[q].plan});
-        series(end_resistances_.back().dataset, "Pa");
+        series(file, end_resistances_.back().dataset, "Pa");
       }
     }
     if (spec.output.cpt && spec.output.cpt->body == pair.name) {
@@ -138,9 +139,9 @@ void HistoryWriter::add_unit_resistances(const CaseSpec& spec, const Scene& scen
       const std::size_t sleeve = index(spec.output.cpt->sleeve);
       cpt_ = {UnitResistance{"/cpt/q_c", p, cone, areas[cone].plan},
               UnitResistance{"/cpt/f_s", p, sleeve, areas[sleeve].side}};
-      series("/cpt/q_c", "Pa");
-      series("/cpt/f_s", "Pa");
-      series("/cpt/R_f", "-");
+      series(file, "/cpt/q_c", "Pa");
+      series(file, "/cpt/f_s", "Pa");
+      series(file, "/cpt/R_f", "-");
     }
   }
 }
@@ -149,12 +150,21 @@ double HistoryWriter::UnitResistance::of(const Scene& scene) const {
   return scene.contacts[pair].surface_force[surface][1] / area;
 }
 
-Hdf5Series& HistoryWriter::series(const std::string& name, const std::string& unit,
+Hdf5Series& HistoryWriter::series(Hdf5File& file, const std::string& name, const std::string& unit,
                                   Hdf5Series::Stored stored) {
   auto found = series_.find(name);
   if (found == series_.end()) {
-    found = reopened_ ? series_.emplace(name, Hdf5Series(*file_, name, rows_)).first
-                      : series_.emplace(name, Hdf5Series(*file_, name, unit, stored)).first;
+    if (reopened_) {
+      found = series_.emplace(name, Hdf5Series(file, name, rows_)).first;
+    } else {
+      found = series_.emplace(name, Hdf5Series(file, name, unit, stored)).first;
+      // Every series runs along /time: xarray and netCDF readers see one shared dimension.
+      if (name == "/time") {
+        file.make_dimension_scale(name, "time");
+      } else {
+        file.attach_dimension_scale(name, "/time");
+      }
+    }
     order_.push_back(name);
   }
   return found->second;
@@ -218,6 +228,7 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
       series_.at(base + "/driving_F_r").append(body.driving[RIGID_X]);
     }
     series_.at(base + "/u_y").append(body.displacement[RIGID_Y]);
+    series_.at(base + "/penetration").append(-body.displacement[RIGID_Y]);
     series_.at(base + "/v_y").append(body.velocity[RIGID_Y]);
     series_.at(base + "/rotation").append(body.displacement[RIGID_ROTATION]);
     series_.at(base + "/angular_velocity").append(body.velocity[RIGID_ROTATION]);
@@ -233,16 +244,18 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
 
 void HistoryWriter::phase_started(std::size_t index, const std::string& name, double start) {
   const std::string group = "/phases/" + std::to_string(index);
-  file_->parent_group(group + "/name");
-  file_->set_attribute(group, "name", name);
-  file_->set_attribute(group, "start", start);
+  Hdf5File file = open();
+  file.parent_group(group + "/name");
+  file.set_attribute(group, "name", name);
+  file.set_attribute(group, "start", start);
 }
 
 void HistoryWriter::phase_ended(std::size_t index, double end, const std::string& why) {
   const std::string group = "/phases/" + std::to_string(index);
-  file_->parent_group(group + "/name");
-  file_->set_attribute(group, "end", end);
-  file_->set_attribute(group, "ended", why);
+  Hdf5File file = open();
+  file.parent_group(group + "/name");
+  file.set_attribute(group, "end", end);
+  file.set_attribute(group, "ended", why);
 }
 
 void HistoryWriter::flush_if_due() {
@@ -252,24 +265,24 @@ void HistoryWriter::flush_if_due() {
 }
 
 void HistoryWriter::flush() {
+  Hdf5File file = open();
   for (const std::string& name : order_) {
-    series_.at(name).flush();
+    series_.at(name).flush(file);
   }
-  file_->flush();
   last_flush_ = std::chrono::steady_clock::now();
 }
 
 void HistoryWriter::close(double wall_seconds, const std::string& status,
                           const ResidualSummary& residual) {
+  Hdf5File file = open();
   for (const std::string& name : order_) {
-    series_.at(name).flush();
+    series_.at(name).flush(file);
   }
-  file_->set_attribute("/", "wall_time", wall_seconds);
-  file_->set_attribute("/", "status", status);
-  file_->set_attribute("/", "energy_residual_final", residual.final);
-  file_->set_attribute("/", "energy_residual_peak", residual.peak);
-  file_->set_attribute("/", "energy_residual_peak_time", residual.peak_time);
-  file_->flush();
+  file.set_attribute("/", "wall_time", wall_seconds);
+  file.set_attribute("/", "status", status);
+  file.set_attribute("/", "energy_residual_final", residual.final);
+  file.set_attribute("/", "energy_residual_peak", residual.peak);
+  file.set_attribute("/", "energy_residual_peak_time", residual.peak_time);
 }
 
 } // namespace mpile

@@ -14,9 +14,10 @@ namespace mpile {
 
 /// history.h5 of a run: extendible series of time, step size, energies and the reactions of every
 /// named boundary condition and contact surface (with end resistances, and a CPT's q_c, f_s and
-/// R_f), each with a unit attribute; the root carries the case text, program
-/// version, thread count, wall time and how the run ended. Flushed at least every two seconds of
-/// wall time, so an interrupted run leaves a readable file.
+/// R_f), each with a units attribute and /time as their shared dimension scale; the root carries
+/// the case text, program version, thread count, wall time and how the run ended. Rows are written
+/// at least every two seconds of wall time, and the file is open only while they are written: an
+/// interrupted run leaves a readable file, and a reader can open it while the run goes on.
 class HistoryWriter {
 public:
   /// A new history; with rows > 0, an existing one is reopened and cut to its first rows (restart).
@@ -45,9 +46,10 @@ public:
 private:
   /// Every outlined surface's plan and side areas as attributes and its vertical force over its
   /// plan area (where it has one) as unit_end_resistance; the CPT's series when asked.
-  void add_unit_resistances(const CaseSpec& spec, const Scene& scene);
-  Hdf5Series& series(const std::string& name, const std::string& unit,
+  void add_unit_resistances(Hdf5File& file, const CaseSpec& spec, const Scene& scene);
+  Hdf5Series& series(Hdf5File& file, const std::string& name, const std::string& unit,
                      Hdf5Series::Stored stored = Hdf5Series::Stored::real);
+  Hdf5File open() const { return Hdf5File(path_, Hdf5File::Mode::append); }
 
   /// A surface's vertical force over one of its areas (Pa): a unit resistance.
   struct UnitResistance {
@@ -60,7 +62,7 @@ private:
   std::vector<UnitResistance> end_resistances_;
   std::optional<std::array<UnitResistance, 2>> cpt_; // q_c, f_s
 
-  std::unique_ptr<Hdf5File> file_;
+  std::string path_;
   std::map<std::string, Hdf5Series> series_;
   std::vector<std::string> order_;
   std::size_t rows_ = 0;

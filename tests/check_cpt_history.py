@@ -38,7 +38,7 @@ def main(path):
         bearing = q_c > 0.0
         ok &= close("R_f", r_f[bearing], f_s[bearing] / q_c[bearing])
         ok &= bool(np.all(np.isnan(r_f[~bearing])))
-        ok &= f["/cpt/q_c"].attrs["unit"] == "Pa" and q_c.size == f["/time"].size > 10
+        ok &= f["/cpt/q_c"].attrs["units"] == "Pa" and q_c.size == f["/time"].size > 10
     print("ok" if ok else "FAILED")
     return 0 if ok else 1
 

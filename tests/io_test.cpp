@@ -145,10 +145,10 @@ TEST(Hdf5Output, SeriesAndArraysReadBackWithUnits) {
     for (int i = 0; i < 10000; ++i) {
       series.append(0.5 * i);
       if (i % 3000 == 0) {
-        series.flush();
+        series.flush(file);
       }
     }
-    series.flush();
+    series.flush(file);
     file.write("/array", std::vector<double>{1.0, 2.0, 3.0}, "m");
     file.set_attribute("/", "note", std::string("a multi-line\nstring"));
   }
@@ -158,7 +158,7 @@ TEST(Hdf5Output, SeriesAndArraysReadBackWithUnits) {
   for (int i = 0; i < 10000; ++i) {
     ASSERT_EQ(values[static_cast<std::size_t>(i)], 0.5 * i);
   }
-  EXPECT_EQ(file.string_attribute("/group/inner/series", "unit"), "N/rad");
+  EXPECT_EQ(file.string_attribute("/group/inner/series", "units"), "N/rad");
   EXPECT_EQ(file.read_doubles("/array"), (std::vector<double>{1.0, 2.0, 3.0}));
   EXPECT_EQ(file.string_attribute("/", "note"), "a multi-line\nstring");
 }
@@ -248,7 +248,7 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   EXPECT_EQ(status.rfind("complete, but the energy residual ", 0), 0u) << status;
   EXPECT_NE(status.find("peak 8.09 %"), std::string::npos) << status;
   EXPECT_NE(out.str().find("done, but with a doubtful: "), std::string::npos) << out.str();
-  EXPECT_EQ(history.string_attribute("/time", "unit"), "s");
+  EXPECT_EQ(history.string_attribute("/time", "units"), "s");
   // Counts and indices are integers; the phases are a table of their own.
   for (const char* name : {"/step", "/phase"}) {
     const hid_t dataset = H5Dopen2(history.id(), name, H5P_DEFAULT);
@@ -265,7 +265,7 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   EXPECT_EQ(history.number_attribute("/phases/1", "start"),
             history.number_attribute("/phases/0", "end"));
   EXPECT_EQ(history.string_attribute("/phases/1", "ended"), "after its duration");
-  EXPECT_EQ(history.string_attribute("/boundaries/base/M_theta", "unit"), "N m/rad");
+  EXPECT_EQ(history.string_attribute("/boundaries/base/M_theta", "units"), "N m/rad");
   EXPECT_NE(history.string_attribute("/", "case_text").find("shaking column"), std::string::npos);
   const auto time = history.read_doubles("/time");
   const auto phase = history.read_doubles("/phase");
