@@ -1,0 +1,47 @@
+"""Read the outputs of mpile runs (the Material Point Method engine of monopile installation).
+
+    import mpile
+    ds = mpile.open_history("out/jacked_quick")          # xarray Dataset on time
+    df = mpile.open_history("out/jacked_quick", form="pandas")
+    mpile.phases("out/jacked_quick")                      # name, start, end, ended
+    snaps = mpile.open_snapshots("out/jacked_quick")      # particles.pvd
+    mpile.follow_particle(snaps, 1234)                    # one particle through time
+    run = mpile.installation("out/jacked_quick")          # the seed's figures 3 to 7
+
+The names are imported on first use, so that `import mpile` is quick and the snapshot and display
+modules work where only numpy and VTK are (ParaView's Python). The reference is docs/python.md.
+"""
+import importlib
+
+__version__ = "0.1.0"
+
+_EXPORTS = {
+    "open_history": "history",
+    "list_datasets": "history",
+    "read_series": "history",
+    "attributes": "history",
+    "case": "history",
+    "phases": "phases",
+    "open_snapshots": "snapshots",
+    "follow_particle": "snapshots",
+    "Snapshot": "snapshots",
+    "Snapshots": "snapshots",
+    "installation": "monopile",
+    "Installation": "monopile",
+    "shaft_ratios": "monopile",
+    "RunFileError": "files",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name):
+    if name in _EXPORTS:
+        value = getattr(importlib.import_module(f".{_EXPORTS[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'mpile' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -1,0 +1,204 @@
+"""The particle snapshots of a run (particles.pvd and its particles_NNNNNN.vtu files).
+
+`open_snapshots` gives a sequence of `Snapshot`s in time order, each read from its .vtu only when
+its data is first asked for (a long run has many large snapshots). A snapshot's particles are in
+the solver's order of that moment: particles are re-sorted between snapshots, so a particle is
+followed by its `id` (stable; a split particle keeps its id for one half and the other half gets a
+new one), never by its position in the arrays. `follow_particle` does that; `Snapshots.to_xarray`
+lays chosen arrays on dims (time, id).
+
+Needs numpy and VTK (`vtkmodules`, Debian's python3-vtk9 or ParaView's own); pandas and xarray
+only for the tables.
+"""
+import os
+import xml.etree.ElementTree as ElementTree
+from pathlib import Path
+
+import numpy as np
+
+from .files import RunFileError, snapshots_path
+
+# Vector point arrays (velocity, displacement) have three components in this order.
+COMPONENTS = ("r", "y", "theta")
+
+
+def read_pvd(path):
+    """(time, .vtu path) of every data set a .pvd collection lists, in time order."""
+    path = Path(path)
+    try:
+        tree = ElementTree.parse(path)
+    except (ElementTree.ParseError, OSError) as error:
+        raise RunFileError(f"{path} is not a readable .pvd collection ({error})") from None
+    entries = [(float(d.get("timestep", "nan")), path.parent / d.get("file", ""))
+               for d in tree.iter("DataSet")]
+    if tree.getroot().get("type") != "Collection":
+        raise RunFileError(f"{path} is not a .pvd collection (VTKFile type is not Collection)")
+    return sorted(entries, key=lambda entry: entry[0])
+
+
+def read_vtu(path):
+    """(r-y positions as an (n, 2) array, {name: point array}, {name: field data strings}) of one
+    .vtu, arrays in the file's order."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+    if not os.path.isfile(path):
+        raise RunFileError(f"{path}: no such file")
+    reader = vtkXMLUnstructuredGridReader()
+    if not reader.CanReadFile(str(path)):
+        raise RunFileError(f"{path} is not a VTK XML unstructured grid (.vtu)")
+    reader.SetFileName(str(path))
+    reader.Update()
+    grid = reader.GetOutput()
+    data = grid.GetPointData()
+    arrays = {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
+    fields = {}
+    field_data = grid.GetFieldData()
+    for i in range(field_data.GetNumberOfArrays()):
+        array = field_data.GetAbstractArray(i)
+        if array.IsA("vtkStringArray"):
+            fields[array.GetName()] = [array.GetValue(j) for j in range(array.GetNumberOfValues())]
+    points = grid.GetPoints()
+    positions = vtk_to_numpy(points.GetData())[:, :2] if points is not None else np.zeros((0, 2))
+    return positions, arrays, fields
+
+
+class Snapshot:
+    """One particle snapshot: `time` (s), `path`, and once read, `positions` ((n, 2): r, y in m),
+    `arrays` ({name: array}, stresses in Pa, compression negative), `body_names`, `material_names`."""
+
+    def __init__(self, time, path):
+        self.time = time
+        self.path = Path(path)
+        self._data = None
+
+    def _load(self):
+        if self._data is None:
+            self._data = read_vtu(self.path)
+        return self._data
+
+    @property
+    def positions(self):
+        return self._load()[0]
+
+    @property
+    def arrays(self):
+        return self._load()[1]
+
+    @property
+    def body_names(self):
+        """Names of the body indices of the array `body` (index k is body k); [] for files without."""
+        return self._load()[2].get("body_names", [])
+
+    @property
+    def material_names(self):
+        """Names of the material indices; a rigid body's material is called "<body> (rigid)"."""
+        return self._load()[2].get("material_names", [])
+
+    def scalars(self):
+        """Names of the one-component point arrays, in the file's order."""
+        return [name for name, values in self.arrays.items() if values.ndim == 1]
+
+    def to_frame(self):
+        """The snapshot as a pandas DataFrame, one row per particle: r, y, every scalar array, and
+        each vector array as <name>_r, <name>_y, <name>_theta. Indexed by id where the file has it."""
+        import pandas as pd
+
+        columns = {"r": self.positions[:, 0], "y": self.positions[:, 1]}
+        for name, values in self.arrays.items():
+            if values.ndim == 1:
+                columns[name] = values
+            else:
+                for k in range(values.shape[1]):
+                    columns[f"{name}_{COMPONENTS[k] if k < len(COMPONENTS) else k}"] = values[:, k]
+        frame = pd.DataFrame(columns)
+        if "id" in frame:
+            frame = frame.set_index("id")
+        return frame
+
+    def __repr__(self):
+        return f"Snapshot(time={self.time:g}, path={str(self.path)!r})"
+
+
+class Snapshots(list):
+    """The snapshots of a run in time order (a list of `Snapshot`), with `times` and the tables below."""
+
+    @property
+    def times(self):
+        return np.array([snapshot.time for snapshot in self])
+
+    def at(self, time):
+        """The snapshot whose time is closest to `time` (s)."""
+        if not self:
+            raise IndexError("no snapshots")
+        return min(self, key=lambda snapshot: abs(snapshot.time - time))
+
+    def to_xarray(self, arrays=("sigma_rr", "sigma_yy", "sigma_ry")):
+        """The chosen scalar arrays and the positions r, y as an xarray Dataset on dims (time, id):
+        NaN where a particle does not exist yet (made by a split later). Reads every snapshot."""
+        import xarray as xr
+
+        ids = np.unique(np.concatenate([_ids(snapshot) for snapshot in self])) if self else np.zeros(0, int)
+        names = ["r", "y", *arrays]
+        table = {name: np.full((len(self), len(ids)), np.nan) for name in names}
+        for row, snapshot in enumerate(self):
+            columns = np.searchsorted(ids, _ids(snapshot))
+            table["r"][row, columns] = snapshot.positions[:, 0]
+            table["y"][row, columns] = snapshot.positions[:, 1]
+            for name in arrays:
+                if name not in snapshot.arrays:
+                    raise KeyError(f"{snapshot.path} has no point array {name}; it has: "
+                                   + ", ".join(snapshot.scalars()))
+                table[name][row, columns] = snapshot.arrays[name]
+        units = {"r": "m", "y": "m"}
+        return xr.Dataset({name: (("time", "id"), values, {"units": units.get(name, _units(name))})
+                           for name, values in table.items()},
+                          coords={"time": ("time", self.times, {"units": "s"}), "id": ids})
+
+
+def _ids(snapshot):
+    if "id" not in snapshot.arrays:
+        raise KeyError(f"{snapshot.path} has no point array id (written by mpile since particle ids exist)")
+    return snapshot.arrays["id"].astype(np.int64)
+
+
+def _units(name):
+    if name.startswith("sigma_") or name in ("p", "q"):
+        return "Pa"
+    return {"density": "kg/m^3"}.get(name, "")
+
+
+def open_snapshots(path):
+    """The particle snapshots of a run: its directory, its particles.pvd, or a single .vtu (then
+    one snapshot of time NaN). Nothing is read from the .vtu files until asked for."""
+    path = snapshots_path(path)
+    if path.suffix == ".vtu":
+        return Snapshots([Snapshot(float("nan"), path)])
+    return Snapshots(Snapshot(time, file) for time, file in read_pvd(path))
+
+
+def follow_particle(snapshots, particle_id, arrays=None):
+    """One particle through the snapshots, as a pandas DataFrame indexed by time: r, y and the
+    scalar arrays (`arrays`, default all). Snapshots in which the particle does not exist (before a
+    split made it) are left out."""
+    import pandas as pd
+
+    if not isinstance(snapshots, list):
+        snapshots = open_snapshots(snapshots)
+    rows, times = [], []
+    for snapshot in snapshots:
+        where = np.flatnonzero(_ids(snapshot) == particle_id)
+        if where.size == 0:
+            continue
+        i = where[0]
+        names = arrays if arrays is not None else [n for n in snapshot.scalars() if n != "id"]
+        row = {"r": snapshot.positions[i, 0], "y": snapshot.positions[i, 1]}
+        for name in names:
+            if name not in snapshot.arrays:
+                raise KeyError(f"{snapshot.path} has no point array {name}; it has: " + ", ".join(snapshot.scalars()))
+            row[name] = snapshot.arrays[name][i]
+        rows.append(row)
+        times.append(snapshot.time)
+    if not rows:
+        raise KeyError(f"no snapshot holds a particle with id {particle_id}")
+    return pd.DataFrame(rows, index=pd.Index(times, name="time"))
