@@ -5,27 +5,21 @@
   tools/plot_history.py out/case/history.h5 /energy/kinetic /energy/elastic
   tools/plot_history.py out/case/history.h5 /boundaries/top_cap/M_theta --x /time --out torque.png
 
-Uses Debian's python3-h5py and python3-matplotlib (installed by tools/setup.sh).
+Reads the history with the mpile package (python/mpile); uses Debian's python3-h5py and
+python3-matplotlib (installed by tools/setup.sh).
 """
 import argparse
 import sys
+from pathlib import Path
 
-import h5py
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-def datasets(history):
-    names = []
-    history.visititems(lambda name, obj: names.append("/" + name) if isinstance(obj, h5py.Dataset) else None)
-    return names
-
-
-def unit(history, name):
-    value = history[name].attrs.get("unit", "")
-    return value.decode() if isinstance(value, bytes) else str(value)
+# The mpile package of this repository (python/mpile), so the tool runs without installing it.
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+import mpile  # noqa: E402
 
 
 def main():
@@ -37,35 +31,40 @@ def main():
     parser.add_argument("--list", action="store_true", help="list the datasets with their units and exit")
     args = parser.parse_args()
 
-    with h5py.File(args.history, "r") as history:
-        names = datasets(history)
+    try:
+        listed = {name: (units, length) for name, units, length in mpile.list_datasets(args.history)}
         if args.list or not args.datasets:
-            for name in names:
-                print(f"{name} [{unit(history, name)}] ({history[name].shape[0]} values)")
+            for name, (units, length) in listed.items():
+                print(f"{name} [{units}] ({length} values)")
             return 0
         for name in [args.x] + args.datasets:
-            if name not in names:
+            if name not in listed:
                 print(f"plot_history: {args.history} has no dataset {name} (see --list)", file=sys.stderr)
                 return 2
-        x = history[args.x][:]
-        figure, axes = plt.subplots(figsize=(8, 5))
         for name in args.datasets:
-            y = history[name][:]
-            if len(y) != len(x):
-                print(f"plot_history: {name} has {len(y)} values, {args.x} has {len(x)}", file=sys.stderr)
+            if listed[name][1] != listed[args.x][1]:
+                print(f"plot_history: {name} has {listed[name][1]} values, {args.x} has {listed[args.x][1]}",
+                      file=sys.stderr)
                 return 2
-            axes.plot(x, y, label=f"{name} [{unit(history, name)}]")
-        axes.set_xlabel(f"{args.x} [{unit(history, args.x)}]")
-        units = {unit(history, name) for name in args.datasets}
-        axes.set_ylabel(", ".join(sorted(units)))
-        title = history.attrs.get("title", "")
-        axes.set_title(title.decode() if isinstance(title, bytes) else title)
-        axes.grid(True, alpha=0.3)
-        axes.legend()
-        out = args.out or args.history.rsplit("/", 1)[0] + "/" + args.datasets[0].strip("/").replace("/", "_") + ".png"
-        figure.tight_layout()
-        figure.savefig(out, dpi=120)
-        print(out)
+        series = mpile.read_series(args.history, [args.x] + args.datasets)
+        title = mpile.attributes(args.history).get("title", "")
+    except mpile.RunFileError as error:
+        print(f"plot_history: {error}", file=sys.stderr)
+        return 2
+    x = series[args.x]
+    figure, axes = plt.subplots(figsize=(8, 5))
+    for name in args.datasets:
+        axes.plot(x, series[name], label=f"{name} [{listed[name][0]}]")
+    axes.set_xlabel(f"{args.x} [{listed[args.x][0]}]")
+    units = {listed[name][0] for name in args.datasets}
+    axes.set_ylabel(", ".join(sorted(units)))
+    axes.set_title(title)
+    axes.grid(True, alpha=0.3)
+    axes.legend()
+    out = args.out or args.history.rsplit("/", 1)[0] + "/" + args.datasets[0].strip("/").replace("/", "_") + ".png"
+    figure.tight_layout()
+    figure.savefig(out, dpi=120)
+    print(out)
     return 0
 
 

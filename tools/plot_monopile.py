@@ -18,108 +18,35 @@ installation. --table prints, at the first row at or beyond each penetration, th
 Ft = F_theta) on the tip, external and internal shaft in kN/rad and the ratios Fy/Fr = |F_y| / |F_r|
 and Fyt/Fr = sqrt(F_y^2 + F_theta^2) / |F_r| on both shafts, one line per run and penetration.
 
-Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (installed by tools/setup.sh).
+The runs are read by the mpile package (python/mpile/monopile.py), which users share;
+uses Debian's python3-h5py, python3-numpy and python3-matplotlib (installed by tools/setup.sh).
 """
 import argparse
 import os
 import sys
-import tomllib
-from dataclasses import dataclass
+from pathlib import Path
 
-import h5py
 import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COMPONENTS = ("F_r", "F_y", "F_theta")
+# The mpile package of this repository (python/mpile), so the tool runs without installing it.
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+from mpile.files import RunFileError  # noqa: E402
+from mpile.monopile import COMPONENTS, installation, shaft_ratios, smoothed_ratios  # noqa: E402
+
 CONVENTION = "force of the soil on the pile, per radian;\nr outward, y up"
-# Penetrations are differences of recorded displacements: a row meant to be at 0.3 m may hold
-# 0.29999999999999993 m, which still counts as reaching 0.3 m.
-REACHED_TOLERANCE = 1e-9  # m
-
-
-@dataclass
-class Run:
-    label: str
-    time: np.ndarray  # s since the start of the installation
-    penetration: np.ndarray  # m
-    forces: dict  # surface -> component -> kN/rad
-
-
-def text(value):
-    return value.decode() if isinstance(value, bytes) else str(value)
-
-
-def blow_interval(case):
-    """The interval of a pulse-train drive (impact blows) in the case, or None."""
-    for key in ("force_y", "velocity_y"):
-        drive = case.get("monopile", {}).get("drive", {}).get(key)
-        if isinstance(drive, dict) and drive.get("type") == "pulse_train":
-            return float(drive["interval"])
-    return None
-
-
-def on_blow_clock(time, simulated, real):
-    """Maps times of blows `simulated` s apart onto blows `real` s apart: blow k starts at k real.
-    Valid when the pile and soil are at rest before each blow, so the wait adds nothing else."""
-    blow = np.floor(time / simulated + 1e-9)
-    return time + blow * (real - simulated)
 
 
 def load(spec, body, surfaces, real_blow_interval=None):
+    """The installation of the run named by RUN_DIR[:LABEL] (the label defaults to its title)."""
     directory, _, label = spec.partition(":")
-    path = directory if directory.endswith(".h5") else os.path.join(directory, "history.h5")
-    names = ["/time", "/phase", f"/bodies/{body}/u_y"] + [
-        f"/reactions/{body}/{surface}/{component}" for surface in surfaces for component in COMPONENTS]
-    with h5py.File(path, "r") as history:
-        for name in names:
-            if name not in history:
-                sys.exit(f"plot_monopile: {path} has no dataset {name}")
-        phase = history["/phase"][:]
-        # The case file recorded with the history says how many phases there are, so that a run stopped
-        # before its installation is not taken for one.
-        case = tomllib.loads(text(history.attrs["case_text"])) if "case_text" in history.attrs else {}
-        last = len(case["phases"]) - 1 if case.get("phases") else phase.max(initial=0.0)
-        rows = phase == last
-        if not rows.any():
-            sys.exit(f"plot_monopile: {path} has no rows of its last phase (index {last:g}), the installation")
-        time = history["/time"][rows]
-        # The installation starts where the phase before it ended (its last row), or at 0.
-        before = np.flatnonzero(phase < last)
-        start = history["/time"][before[-1]] if before.size else 0.0
-        u_y = history[f"/bodies/{body}/u_y"][rows]
-        forces = {surface: {component: history[f"/reactions/{body}/{surface}/{component}"][rows] / 1e3
-                            for component in COMPONENTS} for surface in surfaces}
-        label = label or text(history.attrs.get("title", directory))
-
-    time = time - start
-    interval = blow_interval(case)
-    if real_blow_interval and interval:
-        time = on_blow_clock(time, interval, real_blow_interval)
-    # Penetration is the pile's total downward displacement (it is held still before installing),
-    # the measure the case's stop_at and snapshot_penetrations use.
-    return Run(label, time, -u_y, forces)
-
-
-def ratio(numerator, radial):
-    """numerator / radial, NaN where radial is below 1e-3 of its maximum (no division by ~0)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(radial < 1e-3 * np.max(radial, initial=0.0), np.nan, numerator / radial)
-
-
-def shaft_ratios(forces):
-    """|F_y| / |F_r| and sqrt(F_y^2 + F_theta^2) / |F_r|."""
-    radial = np.abs(forces["F_r"])
-    return ratio(np.abs(forces["F_y"]), radial), ratio(np.hypot(forces["F_y"], forces["F_theta"]), radial)
-
-
-def running_mean(values, time, window):
-    """Mean over `window` seconds centred on each row; shorter windows at the ends, not zero-padded."""
-    n = max(1, int(round(window / np.median(np.diff(time))))) if len(time) > 1 else 1
-    kernel = np.ones(n)
-    return np.convolve(values, kernel, "same") / np.convolve(np.ones_like(values), kernel, "same")
+    try:
+        return installation(directory, body, surfaces, real_blow_interval, label or None)
+    except RunFileError as error:
+        sys.exit(f"plot_monopile: {error}")
 
 
 def save(figure, path):
@@ -153,10 +80,8 @@ def ratio_figure(runs, which, ylabel, shafts, friction, smooth, path):
             ax.plot(run.penetration, raw, color=f"C{index}", linewidth=0.6, alpha=0.5 if smooth else 1.0,
                     label=run.label)
             if smooth > 0:
-                # The ratio of running means, not the running mean of the ratio, so that instants where
-                # F_r passes through zero do not dominate.
-                mean = {c: running_mean(np.abs(run.forces[surface][c]), run.time, smooth) for c in COMPONENTS}
-                ax.plot(run.penetration, shaft_ratios(mean)[which], color=f"C{index}", linewidth=1.8,
+                ax.plot(run.penetration, smoothed_ratios(run.forces[surface], run.time, smooth)[which],
+                        color=f"C{index}", linewidth=1.8,
                         label=f"{run.label}, running mean over {smooth:g} s")
         ax.axhline(friction, color="black", linestyle="--", linewidth=1.0,
                    label=f"contact friction coefficient {friction:g}")
@@ -201,11 +126,10 @@ def print_table(runs, targets, surfaces):
         # Quoted when it has spaces, so that the table still splits on whitespace.
         label = f'"{run.label}"' if any(c.isspace() for c in run.label) else run.label
         for target in targets:
-            reached = np.flatnonzero(run.penetration >= target - REACHED_TOLERANCE)
-            if reached.size == 0:
+            row = run.row_at(target)
+            if row is None:
                 lines.append([label, f"{target:.4f}", "not reached"])
                 continue
-            row = reached[0]
             cells = [label, number(run.penetration[row], 4), number(run.time[row], 4)]
             cells += [number(run.forces[s][c][row], 3) for s in surfaces for c in COMPONENTS]
             cells += [number(values[row], 4) for s in shafts for values in shaft_ratios(run.forces[s])]

@@ -12,13 +12,14 @@ particles can be left out (--exclude-body) or drawn in grey (--pile-body) so the
 --check-pixel R Y prints the colour of the image at the physical point (r, y): red, light red, white,
 light blue, blue, grey (pile) or other.
 
-Uses Debian's python3-vtk9 and python3-numpy (installed by tools/setup.sh).
+Reads snapshots and picks the colour range with the mpile package (python/mpile); uses Debian's
+python3-vtk9 and python3-numpy (installed by tools/setup.sh).
 """
 import argparse
 import math
 import os
 import sys
-import xml.etree.ElementTree as ElementTree
+from pathlib import Path
 
 import numpy as np
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  text of the scalar bar and title
@@ -28,10 +29,15 @@ from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkFiltersGeneral import vtkVertexGlyphFilter
 from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkPolyDataMapper,
                                          vtkRenderer, vtkRenderWindow, vtkTextActor, vtkWindowToImageFilter)
+
+# The mpile package of this repository (python/mpile), so the tool runs without installing it.
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+from mpile.display import symmetric_bound  # noqa: E402
+from mpile.files import RunFileError  # noqa: E402
+from mpile.snapshots import open_snapshots, read_vtu  # noqa: E402
 
 BAR_PIXELS = 170  # band at the right of the image kept for the scalar bar
 TITLE_PIXELS = 40  # band at the top of the image kept for the title
@@ -43,25 +49,20 @@ def snapshot(path, time):
     timestep is closest to `time`, or the last one when `time` is None."""
     if not path.endswith(".pvd"):
         return path, None
-    entries = [(float(d.get("timestep")), d.get("file")) for d in ElementTree.parse(path).iter("DataSet")]
-    if not entries:
+    snapshots = open_snapshots(path)
+    if not snapshots:
         sys.exit(f"render_sigma_ry: {path} lists no snapshots")
-    chosen = entries[-1] if time is None else min(entries, key=lambda entry: abs(entry[0] - time))
-    return os.path.join(os.path.dirname(path), chosen[1]), chosen[0]
+    chosen = snapshots[-1] if time is None else snapshots.at(time)
+    return str(chosen.path), chosen.time
 
 
 def read_point_arrays(path):
     if not os.path.isfile(path):
         sys.exit(f"render_sigma_ry: no file {path}")
-    reader = vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    data = grid.GetPointData()
-    arrays = {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
-    if grid.GetNumberOfPoints() == 0:
+    xy, arrays, _ = read_vtu(path)
+    if len(xy) == 0:
         sys.exit(f"render_sigma_ry: {path} has no particles")
-    return vtk_to_numpy(grid.GetPoints().GetData())[:, :2], arrays
+    return xy, arrays
 
 
 def point_cloud(xy, z, scalars=None):
@@ -197,7 +198,10 @@ def main():
     if args.window and not (args.window[0] < args.window[1] and args.window[2] < args.window[3]):
         parser.error("--window needs R0 < R1 and Y0 < Y1")
 
-    path, time = snapshot(args.input, args.time)
+    try:
+        path, time = snapshot(args.input, args.time)
+    except RunFileError as error:
+        sys.exit(f"render_sigma_ry: {error}")
     xy, arrays = read_point_arrays(path)
     if args.array not in arrays or arrays[args.array].ndim != 1:
         scalars = ", ".join(name for name, values in arrays.items() if values.ndim == 1)
@@ -224,7 +228,7 @@ def main():
     if args.range:
         low, high = args.range
     else:
-        bound = float(np.percentile(np.abs(values[inside]), 99)) or 1.0
+        bound = symmetric_bound(values[inside])
         low, high = -bound, bound
     print(f"colour range: {low:.6g} to {high:.6g} kPa")
 
