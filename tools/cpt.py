@@ -13,29 +13,36 @@ optionally writes a CSV of every row.
 """
 import argparse
 import sys
+from pathlib import Path
 
-import h5py
 import numpy as np
+
+# The mpile package of this repository (python/mpile), so the tool runs without installing it.
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+import mpile  # noqa: E402
 
 
 def cpt_series(path, body, radius, sleeve):
-    with h5py.File(path, "r") as f:
-        if f.attrs.get("geometry", "").split(":")[0] != "axisymmetric":
+    try:
+        if mpile.attributes(path).get("geometry", "").split(":")[0] != "axisymmetric":
             sys.exit(f"{path}: a CPT history must be axisymmetric")
-        if f"/bodies/{body}/u_y" not in f:
+        names = {name for name, _, _ in mpile.list_datasets(path)}
+        if f"/bodies/{body}/u_y" not in names:
             sys.exit(f"{path}: no rigid body '{body}' (--body)")
-        penetration = -f[f"/bodies/{body}/u_y"][:]
-        if "/cpt/q_c" in f:
-            return penetration, f["/cpt/q_c"][:], f["/cpt/f_s"][:]
+        if "/cpt/q_c" in names:
+            f = mpile.read_series(path, [f"/bodies/{body}/u_y", "/cpt/q_c", "/cpt/f_s"])
+            return -f[f"/bodies/{body}/u_y"], f["/cpt/q_c"], f["/cpt/f_s"]
         base = f"/reactions/{body}"
         for surface in ("cone", "sleeve"):
-            if f"{base}/{surface}/F_y" not in f:
+            if f"{base}/{surface}/F_y" not in names:
                 sys.exit(f"{path}: no /cpt and no {base}/{surface}/F_y "
                          "(contact surfaces 'cone' and 'sleeve')")
-        cone = f[f"{base}/cone/F_y"][:]
-        friction = f[f"{base}/sleeve/F_y"][:]
-    q_c = cone / (radius * radius / 2.0)  # per radian: the plan area pi R^2 over 2 pi
-    f_s = friction / (radius * sleeve)
+        f = mpile.read_series(path, [f"/bodies/{body}/u_y", f"{base}/cone/F_y", f"{base}/sleeve/F_y"])
+    except mpile.RunFileError as error:
+        sys.exit(str(error))
+    penetration = -f[f"/bodies/{body}/u_y"]
+    q_c = f[f"{base}/cone/F_y"] / (radius * radius / 2.0)  # per radian: the plan area pi R^2 over 2 pi
+    f_s = f[f"{base}/sleeve/F_y"] / (radius * sleeve)
     return penetration, q_c, f_s
 
 
