@@ -35,7 +35,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtk
 
 # The mpile package of this repository (python/mpile), so the tool runs without installing it.
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
-from mpile.display import symmetric_bound  # noqa: E402
+from mpile.display import particle_spacing, symmetric_bound  # noqa: E402
 from mpile.files import RunFileError  # noqa: E402
 from mpile.snapshots import open_snapshots, read_vtu  # noqa: E402
 
@@ -93,13 +93,6 @@ def points_actor(cloud, size, lookup=None, colour_range=None):
     if lookup is None:
         actor.GetProperty().SetColor(PILE_GREY, PILE_GREY, PILE_GREY)
     return actor
-
-
-def particle_spacing(xy):
-    """Median distance to the nearest other particle over an even sample of up to 200 particles."""
-    sample = xy[:: max(1, len(xy) // 200)]
-    distances = [np.partition(np.hypot(*(xy - p).T), 1)[1] for p in sample] if len(xy) > 1 else [0.0]
-    return float(np.median(distances))
 
 
 def cool_to_warm(low, high):
