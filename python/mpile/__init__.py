@@ -21,7 +21,7 @@ _EXPORTS = {
     "read_series": "history",
     "attributes": "history",
     "case": "history",
-    "phases": "phases",
+    "phases": "phase_table",
     "open_snapshots": "snapshots",
     "follow_particle": "snapshots",
     "Snapshot": "snapshots",

@@ -14,7 +14,7 @@ import numpy as np
 
 from .files import RunFileError, history_path
 from .history import attributes, case as case_of, read_series
-from .phases import phases
+from .phase_table import phases
 
 COMPONENTS = ("F_r", "F_y", "F_theta")
 SURFACES = ("tip", "external_shaft", "internal_shaft")
