@@ -3,6 +3,7 @@
 #include "engine/contact.hpp"
 #include "engine/particle_bins.hpp"
 #include "io/case_builder.hpp"
+#include "io/case_composition.hpp"
 #include "io/case_spec.hpp"
 #include "io/monopile_reader.hpp"
 #include "io/region_reader.hpp"
@@ -949,6 +950,15 @@ double CaseSpec::end_time() const {
 
 CaseSpec read_case_text(const std::string& text, const std::string& file) {
   const TomlValue root = parse_toml(text, file);
+  if (root.as_table().count("base") > 0) {
+    throw CaseError(file + ": base names a file; read the case with read_case_file");
+  }
+  CaseSpec spec = read_case_tree(root, text, file);
+  spec.resolved = toml::format(root);
+  return spec;
+}
+
+CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const std::string& file) {
   TomlTable top(root, "", file);
   CaseSpec spec;
   spec.file = file;
@@ -1047,32 +1057,13 @@ CaseSpec read_case_text(const std::string& text, const std::string& file) {
   return spec;
 }
 
-CaseSpec read_case_file(const std::string& path) {
-  // Only a regular file of bounded size: a directory would read as empty, a FIFO would block and
-  // /dev/zero would be read without end.
-  std::error_code error;
-  const std::filesystem::file_status status = std::filesystem::status(path, error);
-  if (error) {
-    throw CaseError(path + ": cannot open the case file: " + error.message());
-  }
-  if (std::filesystem::is_directory(status)) {
-    throw CaseError(path + ": is a directory, not a case file");
-  }
-  if (!std::filesystem::is_regular_file(status)) {
-    throw CaseError(path + ": is not a regular file (a case file is a TOML text file)");
-  }
-  const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (!error && size > max_case_file_bytes) {
-    throw CaseError(path + ": is " + std::to_string(size) + " bytes; a case file is at most " +
-                    std::to_string(max_case_file_bytes) + " bytes");
-  }
-  std::ifstream in(path);
-  if (!in) {
-    throw CaseError(path + ": cannot open the case file: " + std::strerror(errno));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return read_case_text(text.str(), path);
+CaseSpec read_case_file(const std::string& path, const std::vector<std::string>& overrides) {
+  ComposedCase composed = compose_case(path, overrides);
+  CaseSpec spec = read_case_tree(composed.root, composed.text, path);
+  spec.resolved = std::move(composed.resolved);
+  spec.overrides = overrides;
+  spec.bases = std::move(composed.bases);
+  return spec;
 }
 
 } // namespace mpile

@@ -155,7 +155,10 @@ struct MovingMeshSpec {
 
 struct CaseSpec {
   std::string file;
-  std::string text;
+  std::string text;     // the case file's own text
+  std::string resolved; // the case as read: its bases merged and --set applied, as TOML
+  std::vector<std::string> overrides; // the --set key.path=value assignments, in order
+  std::vector<std::string> bases;     // the base files under the case file, nearest first
   std::string title;
   GeometryMode mode = GeometryMode::axisymmetric;
   std::vector<AxisZone> r_zones;
@@ -181,8 +184,9 @@ class TomlTable;
 /// building the model once); errors name the file, line and parameter.
 MaterialSpec read_material_table(TomlTable& table, const std::string& name);
 
-/// Reads and validates a case file; throws CaseError naming file, line, key and reason.
-CaseSpec read_case_file(const std::string& path);
+/// Reads and validates a case file, with the base files it names and --set overrides
+/// (key.path=value); throws CaseError naming file, line, key and reason.
+CaseSpec read_case_file(const std::string& path, const std::vector<std::string>& overrides = {});
 
 /// The largest case file read (bytes): the shipped ones are below 10 KiB, a case with every
 /// snapshot time of a long run listed below 1 MiB.

@@ -27,7 +27,7 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
   CaseSpec spec;
   std::unique_ptr<Scene> scene;
   try {
-    spec = read_case_file(options.case_path);
+    spec = read_case_file(options.case_path, options.overrides);
     scene = build_scene(spec);
   } catch (const std::exception& e) {
     err << "mpile: " << e.what() << '\n';

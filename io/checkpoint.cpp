@@ -1,11 +1,11 @@
 #include "io/checkpoint.hpp"
 
-#include "io/replace_file.hpp"
-#include <algorithm>
-
+#include "io/case_composition.hpp"
 #include "io/case_error.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/replace_file.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace mpile {
@@ -57,6 +57,7 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     file.set_attribute("/", "format", format_version);
     file.set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
     file.set_attribute("/", "case_text", spec.text);
+    file.set_attribute("/", "case_resolved", spec.resolved);
     const Particles& p = scene.particles;
     for (const auto& [name, field] : double_fields(p)) {
       file.write(std::string("/particles/") + name, *field, "SI");
@@ -142,7 +143,13 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
     refuse("written by " + file.string_attribute("/", "program") + ", this is mpile " +
            MPILE_VERSION);
   }
-  if (file.string_attribute("/", "case_text") != spec.text) {
+  Checkpoint checkpoint;
+  if (H5Aexists_by_name(file.id(), "/", "case_resolved", H5P_DEFAULT) > 0) {
+    // The phase the run stopped in decides which end criteria may still change.
+    const auto phase = static_cast<std::size_t>(file.read_doubles("/run/counters").at(0));
+    checkpoint.changed_keys =
+        restart_changes(file.string_attribute("/", "case_resolved"), spec.resolved, phase, path);
+  } else if (file.string_attribute("/", "case_text") != spec.text) {
     refuse("it belongs to another case (or " + spec.file + " was edited since)");
   }
   Particles& p = scene.particles;
@@ -209,7 +216,6 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
     }
   }
 
-  Checkpoint checkpoint;
   const auto s = file.read_doubles("/solver/state");
   const auto e = file.read_doubles("/solver/energy");
   checkpoint.solver = {s.at(0),

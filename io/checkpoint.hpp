@@ -28,6 +28,9 @@ struct RunProgress {
 struct Checkpoint {
   SolverState solver;
   RunProgress progress;
+  /// The keys of the case that changed since the checkpoint was written (those a restart may
+  /// change: outputs and end criteria).
+  std::vector<std::string> changed_keys;
 };
 
 /// Writes the full state (every particle array, the solver state and the run's progress) to an

@@ -1,5 +1,7 @@
 #include "io/history_writer.hpp"
 
+#include "io/case_composition.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <limits>
@@ -36,7 +38,6 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
   Hdf5File file(path, reopened_ ? Hdf5File::Mode::append : Hdf5File::Mode::create);
   if (!reopened_) {
     file.set_attribute("/", "case_file", spec.file);
-    file.set_attribute("/", "case_text", spec.text);
     file.set_attribute("/", "title", spec.title);
     file.set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
     file.set_attribute("/", "geometry",
@@ -44,11 +45,38 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
                            ? "axisymmetric: extensive quantities per radian"
                            : "plane strain: extensive quantities per metre");
     file.set_attribute("/", "status", "running");
+  } else if (H5Aexists_by_name(file.id(), "/", "case_resolved", H5P_DEFAULT) > 0) {
+    // A restart continues its own case's history, never one another run left in the directory;
+    // the checkpoint has judged which changes (outputs, end criteria) the continuation makes.
+    const std::vector<std::string> changed =
+        restart_changes(file.string_attribute("/", "case_resolved"), spec.resolved, 0, path);
+    if (!changed.empty()) {
+      std::string list;
+      for (const std::string& key : changed) {
+        list += (list.empty() ? "" : ", ") + key;
+      }
+      const std::string before = H5Aexists_by_name(file.id(), "/", "restarts", H5P_DEFAULT) > 0
+                                     ? file.string_attribute("/", "restarts") + "\n"
+                                     : "";
+      file.set_attribute("/", "restarts", before + "row " + std::to_string(rows) + ": " + list);
+    }
   } else if (file.string_attribute("/", "case_text") != spec.text) {
-    // A restart continues its own case's history, never one another run left in the directory.
     throw std::runtime_error(path + " is the history of another case (or " + spec.file +
                              " was edited since it was written)");
   }
+  // The case that runs from here on: its file, its bases merged and --set applied.
+  file.set_attribute("/", "case_text", spec.text);
+  file.set_attribute("/", "case_resolved", spec.resolved);
+  std::string overrides;
+  for (const std::string& assignment : spec.overrides) {
+    overrides += (overrides.empty() ? "" : "\n") + assignment;
+  }
+  file.set_attribute("/", "overrides", overrides);
+  std::string bases;
+  for (const std::string& base : spec.bases) {
+    bases += (bases.empty() ? "" : "\n") + base;
+  }
+  file.set_attribute("/", "base_files", bases);
   file.set_attribute("/", "threads", static_cast<double>(threads));
   const Units u = units_of(scene.mode);
   series(file, "/time", "s");

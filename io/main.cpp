@@ -27,6 +27,9 @@ int main(int argc, char** argv) {
   run->add_option("--out", run_options.output_directory,
                   "output directory (default: [output].directory, else out/<case name>)");
   run->add_option("--restart", run_options.restart, "continue from this checkpoint file");
+  const char* set_help = "set one value of the case, key.path=value in TOML syntax (repeatable; "
+                         "recorded in history.h5), e.g. --set monopile.friction=0.3";
+  run->add_option("--set", run_options.overrides, set_help)->allow_extra_args(false);
   run->add_option("--stop-after", run_options.stop_after_steps,
                   "stop after N steps as if interrupted, writing a checkpoint")
       ->check(CLI::PositiveNumber);
@@ -35,6 +38,7 @@ int main(int argc, char** argv) {
   check->add_option("case", run_options.case_path, "the case file (TOML)")->required();
   check->add_option("--threads", threads, "worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
+  check->add_option("--set", run_options.overrides, set_help)->allow_extra_args(false);
 
   mpile::ElementTestOptions element_options;
   auto* element = app.add_subcommand(

@@ -109,13 +109,21 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   Checkpoint restored;
   const bool restarting = !options.restart.empty();
   try {
-    spec = read_case_file(options.case_path);
+    spec = read_case_file(options.case_path, options.overrides);
     scene = build_scene(spec);
     if (restarting) {
       restored = read_checkpoint(options.restart, spec, *scene);
       if (restored.progress.phase >= spec.phases.size()) {
-        throw CaseError(options.restart + ": the run in this checkpoint is complete; nothing to "
-                                          "continue");
+        // A complete run goes on only when its last phase may now end later.
+        const std::string last = "phases." + std::to_string(spec.phases.size() - 1) + ".";
+        if (std::none_of(restored.changed_keys.begin(), restored.changed_keys.end(),
+                         [&](const std::string& key) { return key.starts_with(last); })) {
+          throw CaseError(options.restart +
+                          ": the run in this checkpoint is complete; nothing to continue (to "
+                          "extend it, change the last phase's duration or stop_at, or add a "
+                          "phase)");
+        }
+        restored.progress.phase = spec.phases.size() - 1;
       }
     }
   } catch (const CaseError& e) {
@@ -132,6 +140,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     progress.phase_starts = {0.0};
     apply_k0(*scene, spec, spec.phases.front());
   }
+  // A complete run continued into phases added to its case: the next phase begins now.
+  const bool begins_added_phase = progress.phase == progress.phase_starts.size();
+  if (begins_added_phase) {
+    progress.phase_starts.push_back(restored.solver.time);
+  }
   for (std::size_t p = 0; p < progress.phase_starts.size(); ++p) {
     activate_phase_boundaries(*scene, spec, p, progress.phase_starts[p]);
   }
@@ -143,6 +156,13 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
                         : std::make_unique<ExplicitSolver>(*scene, settings, log);
     if (!restarting) {
       refuse_implausible_run(spec, *scene, solver->stable_time_step());
+    }
+    if (begins_added_phase) {
+      const double elastic_before = elastic_energy(*scene);
+      apply_k0(*scene, spec, spec.phases[progress.phase]);
+      if (!spec.phases[progress.phase].k0.empty()) {
+        solver->account_for_stress_reset(elastic_before);
+      }
     }
   } catch (const CaseError& e) {
     err << "mpile: " << e.what() << '\n';

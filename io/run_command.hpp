@@ -2,13 +2,15 @@
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace mpile {
 
 struct RunOptions {
   std::string case_path;
-  std::string output_directory; // empty: the case's [output].directory, else out/<case stem>
-  std::string restart;          // checkpoint to continue from
+  std::string output_directory;       // empty: the case's [output].directory, else out/<case stem>
+  std::string restart;                // checkpoint to continue from
+  std::vector<std::string> overrides; // --set key.path=value, applied over the case in order
   int threads = 0;
   /// Stop after this many steps as if interrupted (writing a checkpoint); 0: run to the end.
   long stop_after_steps = 0;

@@ -162,8 +162,18 @@ int TomlTable::line_of(const std::string& key) const {
   return static_cast<int>(location.line());
 }
 
+std::string TomlTable::file_of(const std::string& key) const {
+  // A composed case holds values from its base files and from --set: each names its own source.
+  const auto& table = table_->as_table();
+  const auto found = table.find(key);
+  const toml::source_location location =
+      found != table.end() ? found->second.location() : table_->location();
+  const std::string& name = location.file_name();
+  return name.empty() || name == "unknown file" ? file_ : name;
+}
+
 void TomlTable::fail(const std::string& key, const std::string& message) const {
-  throw CaseError(file_ + ":" + std::to_string(line_of(key)) + ": " + key_path(key) + ": " +
+  throw CaseError(file_of(key) + ":" + std::to_string(line_of(key)) + ": " + key_path(key) + ": " +
                   message);
 }
 

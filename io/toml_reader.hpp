@@ -52,6 +52,8 @@ public:
   [[noreturn]] void missing(const std::string& key, const std::string& what = "") const;
   std::string key_path(const std::string& key) const;
   int line_of(const std::string& key) const;
+  /// The file a key's value came from (a base case file, or "--set ..."), else this table's file.
+  std::string file_of(const std::string& key) const;
   const std::string& file() const { return file_; }
 
   /// Checks of a number just read; fail with the reason otherwise.

@@ -1,6 +1,7 @@
 // Every case file shipped under cases/ must stay valid, every element-test file under
 // cases/element_tests/ must run, and a verification case file must reproduce its reference when run
 // through the whole command path (reader, builder, phases, checkpoint).
+#include "io/case_spec.hpp"
 #include "io/element_test.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_command.hpp"
@@ -9,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 namespace mpile {
@@ -21,10 +23,20 @@ bool is_element_test(const std::filesystem::path& path) {
   return path.parent_path().filename() == "element_tests";
 }
 
+// Base files (cases/*/base/) are parts of cases: read through the cases that name them.
+bool is_base(const std::filesystem::path& path) {
+  return path.parent_path().filename() == "base";
+}
+
 TEST(CaseFiles, EveryShippedCaseFileIsValid) {
   int files = 0;
+  std::set<std::filesystem::path> bases, used;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(source / "cases")) {
     if (entry.path().extension() != ".toml" || is_element_test(entry.path())) {
+      continue;
+    }
+    if (is_base(entry.path())) {
+      bases.insert(std::filesystem::canonical(entry.path()));
       continue;
     }
     ++files;
@@ -32,8 +44,27 @@ TEST(CaseFiles, EveryShippedCaseFileIsValid) {
     options.case_path = entry.path().string();
     std::ostringstream out, err;
     EXPECT_EQ(check_case(options, out, err), exit_success) << entry.path() << ": " << err.str();
+    for (const std::string& base : read_case_file(entry.path().string()).bases) {
+      used.insert(std::filesystem::canonical(base));
+    }
   }
   EXPECT_GE(files, 8);
+  // No base file lies unused (it would go unchecked).
+  EXPECT_EQ(bases, used);
+  EXPECT_EQ(bases.size(), 3u);
+}
+
+// Tests that edit a monopile case's text use flat copies (tests/data/); the shipped cases build
+// on base files. Equal resolved trees mean the copies are the very cases that ship.
+TEST(CaseFiles, TheMonopileCasesComposeToTheirFlatCopies) {
+  for (const char* name : {"gdp_quick", "gdp_paper", "jacked_quick"}) {
+    const CaseSpec shipped =
+        read_case_file((source / "cases/monopile" / (std::string(name) + ".toml")).string());
+    const CaseSpec flat =
+        read_case_file((source / "tests/data" / (std::string(name) + "_flat.toml")).string());
+    EXPECT_FALSE(shipped.bases.empty()) << name;
+    EXPECT_EQ(shipped.resolved, flat.resolved) << name;
+  }
 }
 
 TEST(CaseFiles, EveryElementTestFileRuns) {

@@ -450,7 +450,7 @@ void expect_rejected(const std::vector<BadInput>& table) {
 }
 
 std::string monopile_case() {
-  return read_text(source / "cases/monopile/gdp_quick.toml");
+  return read_text(source / "tests/data/gdp_quick_flat.toml");
 }
 
 std::string monopile_edited(const std::string& from, const std::string& to) {

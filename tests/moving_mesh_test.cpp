@@ -317,7 +317,7 @@ TEST(MovingMesh, SoilBelowTheBandIsSeededForTheCellsItWillHave) {
   // down. Seeded for the cells of the start, rows of cells far from the pile end up empty (and in
   // a run the soil above them fell freely); seeded for the cells at the end of the travel, every
   // cell keeps at least its 2 x 2 particles' worth, because a point's cells only get finer.
-  const std::string text = read_text(source / "cases/monopile/gdp_paper.toml");
+  const std::string text = read_text(source / "tests/data/gdp_paper_flat.toml");
   EXPECT_GE(fewest_particles_below_the_band(text, 0.6), 4u);
   EXPECT_GE(fewest_particles_below_the_band(text, 0.3), 4u);
   const std::string short_travel = replaced(replaced(text, "travel = 0.75", "travel = 0.025"),
@@ -369,7 +369,7 @@ TEST(MovingMesh, AResolvedTipFindsSoilInItsFinestCellsAllTheWayDown) {
   // 33 mm of travel on, and the jacked tip's force fell from 12 to 5 kN/rad after 6 cm. Seeded
   // slice by slice for the finest cell carried onto it, no soil cell is empty at any position of
   // the band (every millimetre of its travel).
-  std::string text = read_text(source / "cases/monopile/jacked_quick.toml");
+  std::string text = read_text(source / "tests/data/jacked_quick_flat.toml");
   text = replaced(text, "fine_cell = 0.05",
                   "fine_cell = 0.05\nwall_cells = 4\nband_below = 0.5\n"
                   "band_above = 0.5");
@@ -404,7 +404,7 @@ TEST(MovingMesh, AResolvedTipFindsSoilInItsFinestCellsAllTheWayDown) {
 }
 
 TEST(MovingMesh, CarryingTheBandBeyondItsTravelStopsTheRun) {
-  const std::string text = read_text(source / "cases/monopile/gdp_paper.toml");
+  const std::string text = read_text(source / "tests/data/gdp_paper_flat.toml");
   CaseRun run(text);
   const MovingMesh& mesh = *run.scene->moving_mesh;
   EXPECT_NEAR(mesh.travel, 0.75, 1e-12); // 30 cells of 2.5 cm

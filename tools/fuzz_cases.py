@@ -18,6 +18,7 @@ import os
 import random
 import re
 import resource
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -137,24 +138,33 @@ def main():
     args = parser.parse_args()
 
     cases = []
+    bases = []  # directories of base files (shared parts of cases), copied beside the mutants
     for directory, _, files in os.walk(os.path.join(ROOT, "cases")):
         if os.path.basename(directory) == "element_tests":
             continue  # element-test files, not cases
+        if os.path.basename(directory) == "base":
+            bases.append(os.path.relpath(directory, os.path.join(ROOT, "cases")))
+            continue  # parts of cases, read through the cases that name them
         for name in sorted(files):
             if name.endswith(".toml") and (args.all_cases or name not in SLOW):
                 with open(os.path.join(directory, name), encoding="utf-8") as f:
-                    cases.append((name, f.read()))
+                    folder = os.path.relpath(directory, os.path.join(ROOT, "cases"))
+                    cases.append((name, folder, f.read()))
     cases.sort()
     rng = random.Random(args.seed)
     work = tempfile.mkdtemp(prefix="mpile-fuzz-")
+    # A mutant sits where its case does relative to the bases, so `base = "base/..."` resolves.
+    for folder in bases:
+        shutil.copytree(os.path.join(ROOT, "cases", folder), os.path.join(work, folder))
     jobs = []
     for i in range(args.mutants):
-        name, text = rng.choice(cases)
+        name, folder, text = rng.choice(cases)
         edits = []
         for _ in range(rng.randint(1, 3)):
             text, kind = mutate(text, rng)
             edits.append(kind)
-        path = os.path.join(work, f"m{i:06d}_{name}")
+        os.makedirs(os.path.join(work, folder), exist_ok=True)
+        path = os.path.join(work, folder, f"m{i:06d}_{name}")
         with open(path, "w", encoding="utf-8", errors="surrogatepass") as f:
             f.write(text)
         jobs.append((path, name, edits))
@@ -170,18 +180,19 @@ def main():
                 failures.append((path, name, edits, problem))
     if failures:
         os.makedirs(args.keep, exist_ok=True)
+        for folder in bases:
+            shutil.copytree(os.path.join(work, folder), os.path.join(args.keep, folder),
+                            dirs_exist_ok=True)
         for path, name, edits, problem in failures:
-            kept = os.path.join(args.keep, os.path.basename(path))
+            kept = os.path.join(args.keep, os.path.relpath(path, work))
+            os.makedirs(os.path.dirname(kept), exist_ok=True)
             os.replace(path, kept)
             print(f"FAIL {kept} ({name}; {', '.join(edits)}): {problem}")
             print(f"     replay: {args.mpile} check {kept}")
     elapsed = time.monotonic() - start
     print(f"{len(jobs)} mutants of {len(cases)} case files (seed {args.seed}) in {elapsed:.0f} s: "
           f"{counts['accepted']} accepted, {counts['refused']} refused, {len(failures)} failures")
-    for path, _, _ in jobs:
-        if os.path.exists(path):
-            os.remove(path)
-    os.rmdir(work)
+    shutil.rmtree(work)
     sys.exit(1 if failures else 0)
 
 

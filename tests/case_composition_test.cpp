@@ -1,0 +1,263 @@
+// Case composition: a base file under the case, --set values on top, and what a restart may change.
+#include "io/case_composition.hpp"
+#include "io/case_spec.hpp"
+#include "tests/case_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace mpile {
+namespace {
+
+std::filesystem::path fresh_directory(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / ("mpile_compose_" + name);
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  return directory;
+}
+
+// A base with everything but the phases and outputs, as the monopile cases share one.
+const char* base_text = R"(title = "column base"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 4 }]
+y = [{ start = 0.0, end = 1.0, cells = 4 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 2e6
+poisson_ratio = 0.3
+density = 1800.0
+[[bodies]]
+name = "column"
+material = "soil"
+region = { r = [0.0, 1.0], y = [0.0, 1.0] }
+[boundaries]
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+[[phases]]
+name = "settle"
+duration = 0.1
+)";
+
+// The case: its own title and one material parameter over the base's, its own phases.
+const char* case_text = R"(base = "shared/base.toml"
+title = "column"
+[materials.soil]
+young_modulus = 4e6
+[[phases]]
+name = "settle"
+duration = 0.2
+[[phases]]
+name = "rest"
+duration = 0.05
+)";
+
+// The same case written out in full: what the composition must read as.
+const char* flat_text = R"(title = "column"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 4 }]
+y = [{ start = 0.0, end = 1.0, cells = 4 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 4e6
+poisson_ratio = 0.3
+density = 1800.0
+[[bodies]]
+name = "column"
+material = "soil"
+region = { r = [0.0, 1.0], y = [0.0, 1.0] }
+[boundaries]
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+[[phases]]
+name = "settle"
+duration = 0.2
+[[phases]]
+name = "rest"
+duration = 0.05
+)";
+
+struct Files {
+  std::filesystem::path directory, base, case_file;
+};
+
+Files write_files(const std::string& name, const std::string& base = base_text,
+                  const std::string& top = case_text) {
+  Files f;
+  f.directory = fresh_directory(name);
+  std::filesystem::create_directories(f.directory / "shared");
+  f.base = f.directory / "shared" / "base.toml";
+  f.case_file = f.directory / "case.toml";
+  std::ofstream(f.base) << base;
+  std::ofstream(f.case_file) << top;
+  return f;
+}
+
+std::string error_of(const std::string& path, const std::vector<std::string>& overrides = {}) {
+  try {
+    read_case_file(path, overrides);
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(CaseComposition, ABaseMergesUnderTheCaseTableByTableAndArraysAreReplaced) {
+  const Files f = write_files("merge");
+  const CaseSpec spec = read_case_file(f.case_file.string());
+  const CaseSpec flat = read_case_text(flat_text, "flat.toml");
+  // Equal trees format to equal text (keys sorted), so the composed case is the flat one exactly.
+  EXPECT_EQ(spec.resolved, flat.resolved);
+  EXPECT_EQ(spec.title, "column");
+  EXPECT_EQ(spec.materials.at(0).parameters.at("young_modulus"), 4e6);
+  EXPECT_EQ(spec.materials.at(0).parameters.at("density"), 1800.0); // from the base
+  ASSERT_EQ(spec.phases.size(), 2u); // the case's [[phases]] replace the base's
+  EXPECT_EQ(spec.phases[0].duration, 0.2);
+  ASSERT_EQ(spec.bases.size(), 1u);
+  EXPECT_TRUE(std::filesystem::equivalent(spec.bases[0], f.base));
+  EXPECT_EQ(spec.text, case_text); // the case file's own text, for the record
+}
+
+TEST(CaseComposition, AnErrorInABaseValueNamesTheBaseFileAndLine) {
+  const Files f =
+      write_files("base_error", replaced(base_text, "poisson_ratio = 0.3", "poisson_ratio = 0.7"));
+  const std::string error = error_of(f.case_file.string());
+  // Line 8 of the base holds poisson_ratio.
+  EXPECT_EQ(
+      error.rfind(f.base.lexically_normal().string() + ":8: materials.soil.poisson_ratio:", 0), 0u)
+      << error;
+}
+
+TEST(CaseComposition, BadBasesAreRefusedWithTheLineThatNamesThem) {
+  Files f = write_files("missing_base", base_text, replaced(case_text, "shared/base", "nowhere"));
+  std::string error = error_of(f.case_file.string());
+  EXPECT_EQ(error.rfind(f.case_file.string() + ":1: base: " +
+                            (f.directory / "nowhere.toml").string() + ": cannot open the case file",
+                        0),
+            0u)
+      << error;
+  // An empty path names the case's own directory.
+  f = write_files("empty_base", base_text, replaced(case_text, "shared/base.toml", ""));
+  error = error_of(f.case_file.string());
+  EXPECT_EQ(error.rfind(f.case_file.string() + ":1: base: ", 0), 0u) << error;
+  EXPECT_NE(error.find("is a directory, not a case file"), std::string::npos) << error;
+
+  // A base that names the case again: a cycle.
+  f = write_files("cycle", std::string("base = \"../case.toml\"\n") + base_text);
+  error = error_of(f.case_file.string());
+  EXPECT_NE(error.find(":1: base: "), std::string::npos) << error;
+  EXPECT_NE(error.find("is already in this chain of bases (a cycle)"), std::string::npos) << error;
+
+  f = write_files("base_type", base_text, replaced(case_text, "\"shared/base.toml\"", "3"));
+  EXPECT_EQ(error_of(f.case_file.string()),
+            f.case_file.string() + ":1: base: expected the path of a base case file (a string)");
+}
+
+TEST(CaseComposition, SetReplacesOneValueAnywhereAndIsRecorded) {
+  const Files f = write_files("set");
+  const std::vector<std::string> overrides{"materials.soil.density=2000", "phases.1.duration=0.5",
+                                           "title=\"set from the command line\""};
+  const CaseSpec spec = read_case_file(f.case_file.string(), overrides);
+  EXPECT_EQ(spec.materials.at(0).parameters.at("density"), 2000.0);
+  EXPECT_EQ(spec.phases.at(1).duration, 0.5);
+  EXPECT_EQ(spec.phases.at(0).duration, 0.2);
+  EXPECT_EQ(spec.title, "set from the command line");
+  EXPECT_EQ(spec.overrides, overrides);
+  // The record of what ran holds the values set, and only the case file's text is its own.
+  EXPECT_NE(spec.resolved.find("density = 2000"), std::string::npos) << spec.resolved;
+  EXPECT_EQ(spec.text, case_text);
+  // A table made on the way: [output] is absent from both files.
+  EXPECT_EQ(read_case_file(f.case_file.string(), {"output.history_interval=0.01"})
+                .output.history_interval,
+            0.01);
+}
+
+TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
+  const Files f = write_files("set_errors");
+  const std::string path = f.case_file.string();
+  // An unknown key is caught by the strict reader, which names the --set it came from.
+  EXPECT_EQ(error_of(path, {"materials.soil.densty=2000"})
+                .rfind("--set materials.soil.densty:1: materials.soil.densty: unknown key", 0),
+            0u)
+      << error_of(path, {"materials.soil.densty=2000"});
+  // A value of the wrong type too.
+  EXPECT_EQ(
+      error_of(path, {"materials.soil.density=\"dense\""})
+          .rfind("--set materials.soil.density:1: materials.soil.density: expected a number", 0),
+      0u)
+      << error_of(path, {"materials.soil.density=\"dense\""});
+  EXPECT_EQ(error_of(path, {"materials.soil.density"}),
+            "--set materials.soil.density: expected key.path=value");
+  EXPECT_EQ(error_of(path, {"materials..density=1"}),
+            "--set materials..density=1: 'materials..density' is not a key path (keys joined by "
+            "dots, like monopile.embedment)");
+  EXPECT_EQ(error_of(path, {"phases.2.duration=1"}),
+            "--set phases.2.duration=1: phases.2: the array has 2 elements, numbered from 0");
+  EXPECT_EQ(error_of(path, {"title.text=1"}), "--set title.text=1: title is not a table");
+  EXPECT_EQ(error_of(path, {"base=\"other.toml\""}),
+            "--set base=\"other.toml\": base is the file a case builds on; name it in the case "
+            "file");
+  const std::string unquoted = error_of(path, {"title=a column"});
+  EXPECT_EQ(unquoted.rfind("--set title=a column: the value is not TOML (text needs quotes: "
+                           "title=\"text\"):",
+                           0),
+            0u)
+      << unquoted;
+}
+
+TEST(CaseComposition, DifferingKeysNameTheChangedValuesAndPhases) {
+  const TomlValue before = parse_toml(flat_text, "a");
+  const TomlValue after = parse_toml(
+      replaced(replaced(flat_text, "duration = 0.05", "duration = 0.07"), "density = 1800.0\n", ""),
+      "b");
+  EXPECT_EQ(differing_keys(before, after),
+            (std::vector<std::string>{"materials.soil.density", "phases.1.duration"}));
+  const TomlValue more = parse_toml(std::string(flat_text) + "[[phases]]\nname = \"x\"\n"
+                                                             "duration = 1.0\n",
+                                    "c");
+  EXPECT_EQ(differing_keys(before, more), (std::vector<std::string>{"phases.2"}));
+  EXPECT_TRUE(differing_keys(before, before).empty());
+}
+
+TEST(CaseComposition, ARestartMayChangeOutputsAndEndCriteriaButNotPhysics) {
+  const std::string before = read_case_text(flat_text, "a").resolved;
+  const auto with = [&](const std::string& from, const std::string& to) {
+    return read_case_text(replaced(flat_text, from, to), "b").resolved;
+  };
+  // Stopped in phase 1 ("rest"): its duration may change, and outputs.
+  EXPECT_EQ(restart_changes(before, with("duration = 0.05", "duration = 0.5"), 1, "c.h5"),
+            (std::vector<std::string>{"phases.1.duration"}));
+  EXPECT_EQ(restart_changes(before,
+                            with("title = \"column\"", "title = \"longer\"\n[output]\n"
+                                                       "history_interval = 0.01"),
+                            1, "c.h5"),
+            (std::vector<std::string>{"title", "output"}));
+  // Complete (phase = 2 of 2): the last phase may still be extended.
+  EXPECT_EQ(restart_changes(before, with("duration = 0.05", "duration = 0.5"), 2, "c.h5").size(),
+            1u);
+  // Phase 0 has ended: its duration is history.
+  EXPECT_THROW(restart_changes(before, with("duration = 0.2", "duration = 0.3"), 1, "c.h5"),
+               CaseError);
+  // Physics: refused with the key and both values.
+  try {
+    restart_changes(before, with("young_modulus = 4e6", "young_modulus = 5e6"), 1, "c.h5");
+    FAIL() << "a changed Young's modulus was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("c.h5: cannot continue with this case: "
+                                          "materials.soil.young_modulus changed (was 4000000.0, "
+                                          "now 5000000.0).",
+                                          0),
+              0u)
+        << e.what();
+  }
+  // A phase's name (drives and loads name their phase) is not an end criterion.
+  EXPECT_THROW(restart_changes(before, with("name = \"rest\"", "name = \"pause\""), 1, "c.h5"),
+               CaseError);
+}
+
+} // namespace
+} // namespace mpile
