@@ -73,7 +73,8 @@ def load(spec, quantities, depths, window, body):
         if not text(history.attrs.get("status", "")).startswith("complete"):
             sys.exit(f"convergence: {path} is not a complete run "
                      f"(status '{text(history.attrs.get('status', ''))}')")
-        case = tomllib.loads(text(history.attrs["case_text"]))
+        # The case as it ran (its base files merged); older histories hold only case_text.
+        case = tomllib.loads(text(history.attrs.get("case_resolved", history.attrs["case_text"])))
         phase = history["/phase"][:]
         rows = phase == len(case["phases"]) - 1  # the installation is the last phase
         penetration = -history[f"/bodies/{body}/u_y"][rows]

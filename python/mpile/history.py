@@ -153,8 +153,11 @@ def _frame(attrs, series):
 
 
 def case(path):
-    """The case file the run was started with (root attribute case_text), parsed: a dict, {} if absent."""
+    """The case the run ran, parsed: a dict, {} if absent. The root attribute case_resolved holds
+    it with its base files merged and --set values applied; older files have only the case file's
+    own text (case_text), which was then the whole case."""
     import tomllib
 
-    text_ = attributes(path).get("case_text")
+    attrs = attributes(path)
+    text_ = attrs.get("case_resolved") or attrs.get("case_text")
     return tomllib.loads(text(text_)) if text_ else {}

@@ -38,7 +38,8 @@ def _table(path):
     path = history_path(path)
     with read_only(path) as history:
         attrs = history.attrs
-        case = tomllib.loads(text(attrs["case_text"])) if "case_text" in attrs else {}
+        source = attrs.get("case_resolved", attrs.get("case_text"))
+        case = tomllib.loads(text(source)) if source is not None else {}
         status = text(attrs.get("status", ""))
         recorded = {}
         if "phases" in history:
