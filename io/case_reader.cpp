@@ -12,12 +12,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -852,7 +854,50 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
   return cpt;
 }
 
-void read_output(TomlTable& top, CaseSpec& spec) {
+MonitorSpec read_monitor(TomlTable& table, const Axes& axes,
+                         const std::vector<MonitorSpec>& earlier) {
+  MonitorSpec monitor;
+  monitor.name = table.string("name");
+  const bool dataset_safe =
+      !monitor.name.empty() && std::all_of(monitor.name.begin(), monitor.name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+      });
+  if (!dataset_safe) {
+    table.fail("name", "use letters, digits and underscores (it names /monitors/<name> in "
+                       "history.h5)");
+  }
+  for (const MonitorSpec& other : earlier) {
+    if (other.name == monitor.name) {
+      table.fail("name", "another monitor is named '" + monitor.name + "'");
+    }
+  }
+  if (table.has("position") == table.has("particle")) {
+    table.fail("position", "give either position = [r, y] (the soil particle nearest it at the "
+                           "start) or particle = <id>");
+  }
+  if (table.has("position")) {
+    const std::vector<double> at = table.numbers("position", 2);
+    if (!(at[0] >= axes.r.start() && at[0] <= axes.r.end() && at[1] >= axes.y.start() &&
+          at[1] <= axes.y.end())) {
+      table.fail("position", "lies outside the grid");
+    }
+    monitor.position = std::array<double, 2>{at[0], at[1]};
+    monitor.where = table.file_of("position") + ":" + std::to_string(table.line_of("position")) +
+                    ": " + table.key_path("position");
+  } else {
+    const long id = table.integer("particle");
+    if (id < 0 || id > std::numeric_limits<std::int32_t>::max()) {
+      table.fail("particle", "must be a particle id (0 or more), got " + std::to_string(id));
+    }
+    monitor.particle = id;
+    monitor.where = table.file_of("particle") + ":" + std::to_string(table.line_of("particle")) +
+                    ": " + table.key_path("particle");
+  }
+  table.finish();
+  return monitor;
+}
+
+void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   std::optional<TomlTable> table = top.optional_table("output");
   if (!table) {
     return;
@@ -896,6 +941,9 @@ void read_output(TomlTable& top, CaseSpec& spec) {
   }
   if (std::optional<TomlTable> cpt = table->optional_table("cpt")) {
     out.cpt = read_cpt_output(*cpt, spec);
+  }
+  for (TomlTable& monitor : table->tables("monitor")) {
+    out.monitors.push_back(read_monitor(monitor, axes, out.monitors));
   }
   table->finish();
 }
@@ -1052,7 +1100,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   }
   read_contacts(top, spec);
   read_motions_and_loads(top, spec, axes);
-  read_output(top, spec);
+  read_output(top, spec, axes);
   top.finish();
   return spec;
 }

@@ -124,6 +124,15 @@ struct PhaseSpec {
   std::optional<PenetrationStop> stop_at;
 };
 
+/// A material point whose stress, strain and state go into the history ([[output.monitor]]):
+/// a particle id, or the soil particle nearest a position (r, y) at the start.
+struct MonitorSpec {
+  std::string name;
+  std::string where; // "file:line: output.monitor.<key>", for errors found once particles exist
+  std::optional<std::array<double, 2>> position;
+  std::optional<long> particle;
+};
+
 struct OutputSpec {
   std::string directory;          // empty: out/<case file stem>
   double snapshot_interval = 0.0; // s of simulated time; 0: first and last only
@@ -141,6 +150,7 @@ struct OutputSpec {
     std::string sleeve = "sleeve"; // its surface whose F_y over its side area is f_s
   };
   std::optional<Cpt> cpt;
+  std::vector<MonitorSpec> monitors;
 };
 
 /// y-lines between band_bottom and band_top (grid lines) move with a rigid body.

@@ -1,5 +1,6 @@
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
+#include "io/monitor_points.hpp"
 #include "io/plausibility.hpp"
 #include "io/run_command.hpp"
 #include "solver/explicit_solver.hpp"
@@ -29,6 +30,9 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
   try {
     spec = read_case_file(options.case_path, options.overrides);
     scene = build_scene(spec);
+    for (const MonitorSpec& monitor : spec.output.monitors) {
+      monitored_particle(monitor, *scene);
+    }
   } catch (const std::exception& e) {
     err << "mpile: " << e.what() << '\n';
     return exit_bad_input;

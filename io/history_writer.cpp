@@ -1,10 +1,12 @@
 #include "io/history_writer.hpp"
 
 #include "io/case_composition.hpp"
+#include "io/monitor_points.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace mpile {
@@ -114,6 +116,7 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
     }
   }
   add_unit_resistances(file, spec, scene);
+  add_monitors(file, spec, scene);
   for (const RigidBody& body : scene.rigid_bodies) {
     const std::string base = "/bodies/" + dataset_name(body.name);
     if (!theta) {
@@ -171,6 +174,56 @@ void HistoryWriter::add_unit_resistances(Hdf5File& file, const CaseSpec& spec, c
       series(file, "/cpt/f_s", "Pa");
       series(file, "/cpt/R_f", "-");
     }
+  }
+}
+
+void HistoryWriter::add_monitors(Hdf5File& file, const CaseSpec& spec, const Scene& scene) {
+  for (const MonitorSpec& spec_monitor : spec.output.monitors) {
+    Monitor monitor;
+    monitor.group = "/monitors/" + spec_monitor.name;
+    const bool known = reopened_ && file.exists(monitor.group + "/r");
+    if (known) {
+      monitor.id = static_cast<std::int32_t>(file.number_attribute(monitor.group, "particle_id"));
+      monitor.material =
+          static_cast<std::uint16_t>(file.number_attribute(monitor.group, "material"));
+    } else {
+      monitor.id = monitored_particle(spec_monitor, scene);
+      const Particles& p = scene.particles;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.id[i] == monitor.id) {
+          monitor.material = p.material[i];
+        }
+      }
+    }
+    const std::vector<MonitorQuantity> quantities = monitor_quantities(scene, monitor.material);
+    for (const MonitorQuantity& q : quantities) {
+      const std::string name = monitor.group + "/" + q.name;
+      monitor.datasets.push_back(name);
+      if (known) {
+        series(file, name, q.unit);
+        continue;
+      }
+      // Created here even on a restart: rows before it are NaN (the monitor did not exist).
+      auto [entry, added] = series_.emplace(name, Hdf5Series(file, name, q.unit));
+      order_.push_back(name);
+      file.attach_dimension_scale(name, "/time");
+      for (std::size_t row = 0; row < rows_; ++row) {
+        entry->second.append(std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+    if (!known) {
+      file.set_attribute(monitor.group, "particle_id", static_cast<double>(monitor.id));
+      file.set_attribute(monitor.group, "material", static_cast<double>(monitor.material));
+      file.set_attribute(monitor.group, "material_name", scene.material_names[monitor.material]);
+      file.set_attribute(monitor.group, "followed_from_row", static_cast<double>(rows_));
+      if (spec_monitor.position) {
+        std::ostringstream position;
+        position << "[" << (*spec_monitor.position)[0] << ", " << (*spec_monitor.position)[1]
+                 << "] m";
+        file.set_attribute(monitor.group, "position", position.str());
+      }
+    }
+    monitors_.push_back(std::move(monitor));
   }
 }
 
@@ -264,6 +317,12 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
     series_.at(base + "/contact_torque").append(body.contact[RIGID_ROTATION]);
     series_.at(base + "/driving_F_y").append(body.driving[RIGID_Y]);
     series_.at(base + "/driving_torque").append(body.driving[RIGID_ROTATION]);
+  }
+  for (const Monitor& monitor : monitors_) {
+    const std::vector<double> values = monitor_values(scene, monitor.id, monitor.material);
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      series_.at(monitor.datasets[k]).append(values[k]);
+    }
   }
   ++rows_;
   flush_if_due();

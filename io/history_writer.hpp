@@ -47,6 +47,9 @@ private:
   /// Every outlined surface's plan and side areas as attributes and its vertical force over its
   /// plan area (where it has one) as unit_end_resistance; the CPT's series when asked.
   void add_unit_resistances(Hdf5File& file, const CaseSpec& spec, const Scene& scene);
+  /// /monitors/<name>/...: the followed particle's id is an attribute, so a restart follows the
+  /// same one; a monitor added on a restart starts with NaN rows.
+  void add_monitors(Hdf5File& file, const CaseSpec& spec, const Scene& scene);
   Hdf5Series& series(Hdf5File& file, const std::string& name, const std::string& unit,
                      Hdf5Series::Stored stored = Hdf5Series::Stored::real);
   Hdf5File open() const { return Hdf5File(path_, Hdf5File::Mode::append); }
@@ -61,6 +64,13 @@ private:
   };
   std::vector<UnitResistance> end_resistances_;
   std::optional<std::array<UnitResistance, 2>> cpt_; // q_c, f_s
+  struct Monitor {
+    std::string group;
+    std::int32_t id = 0;
+    std::uint16_t material = 0;
+    std::vector<std::string> datasets;
+  };
+  std::vector<Monitor> monitors_;
 
   std::string path_;
   std::map<std::string, Hdf5Series> series_;

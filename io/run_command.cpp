@@ -4,6 +4,7 @@
 #include "io/case_error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history_writer.hpp"
+#include "io/monitor_points.hpp"
 #include "io/output_directory.hpp"
 #include "io/plausibility.hpp"
 #include "io/progress_reporter.hpp"
@@ -111,6 +112,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   try {
     spec = read_case_file(options.case_path, options.overrides);
     scene = build_scene(spec);
+    if (!restarting) {
+      for (const MonitorSpec& monitor : spec.output.monitors) {
+        monitored_particle(monitor, *scene); // refused here, before anything is written
+      }
+    }
     if (restarting) {
       restored = read_checkpoint(options.restart, spec, *scene);
       if (restored.progress.phase >= spec.phases.size()) {

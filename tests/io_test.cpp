@@ -324,6 +324,104 @@ void run_whole_and_split(const std::string& path, const std::filesystem::path& d
   ASSERT_EQ(run_case(second, out, err), exit_success) << err.str();
 }
 
+// Monitor points: the first row holds the K0 stress of the followed particle in closed form, the
+// last row equals that particle (found by id) in the last snapshot, and a restarted run records
+// the same values as one run whole.
+TEST(RunCommand, AMonitorFollowsItsParticleAndRecordsItsStress) {
+  const auto directory = fresh_directory("monitor");
+  const std::string path = (directory / "column.toml").string();
+  std::ofstream(path) << std::string(shaking_column) +
+                             "[[output.monitor]]\nname = \"middle\"\nposition = [0.3, 0.5]\n"
+                             "[[output.monitor]]\nname = \"first\"\nparticle = 0\n";
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_split(path, directory, 137));
+  Hdf5File history((directory / "whole" / "history.h5").string(), Hdf5File::Mode::read);
+  const auto id =
+      static_cast<std::int32_t>(history.number_attribute("/monitors/middle", "particle_id"));
+  const auto y = history.read_doubles("/monitors/middle/y");
+  const auto r = history.read_doubles("/monitors/middle/r");
+  const auto sigma_yy = history.read_doubles("/monitors/middle/sigma_yy");
+  const auto sigma_rr = history.read_doubles("/monitors/middle/sigma_rr");
+  const auto p = history.read_doubles("/monitors/middle/p");
+  // The particle nearest (0.3, 0.5) among 2 x 2 per cell of 0.1 m (7 cells over 0.4 + 0.6 m in
+  // r): within a quarter cell in each direction.
+  EXPECT_NEAR(r.front(), 0.3, 0.0375 + 1e-12);
+  EXPECT_NEAR(y.front(), 0.5, 0.025 + 1e-12);
+  // At t = 0 the K0 procedure has set sigma_yy = -rho g (surface - y) and sigma_rr = K0 sigma_yy
+  // at the particle's own height: round-off only.
+  EXPECT_NEAR(sigma_yy.front(), -1800.0 * 9.81 * (1.0 - y.front()), 1e-9 * 1800.0 * 9.81);
+  EXPECT_NEAR(sigma_rr.front(), 0.5 * sigma_yy.front(), 1e-9 * 1800.0 * 9.81);
+  EXPECT_NEAR(p.front(), -(sigma_yy.front() + 2.0 * sigma_rr.front()) / 3.0, 1e-9 * 1800.0 * 9.81);
+
+  // The last row is the particle with that id in the last snapshot (written at the same time).
+  std::filesystem::path last;
+  for (const auto& entry : std::filesystem::directory_iterator(directory / "whole")) {
+    if (entry.path().extension() == ".vtu" && entry.path() > last) {
+      last = entry.path();
+    }
+  }
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(last.string().c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  vtkDataArray* ids = grid->GetPointData()->GetArray("id");
+  vtkDataArray* sigma_ry = grid->GetPointData()->GetArray("sigma_ry");
+  ASSERT_NE(ids, nullptr);
+  ASSERT_NE(sigma_ry, nullptr);
+  vtkIdType found = -1;
+  for (vtkIdType i = 0; i < ids->GetNumberOfTuples(); ++i) {
+    if (static_cast<std::int32_t>(ids->GetTuple1(i)) == id) {
+      found = i;
+    }
+  }
+  ASSERT_GE(found, 0);
+  EXPECT_EQ(history.read_doubles("/monitors/middle/sigma_ry").back(), sigma_ry->GetTuple1(found));
+  EXPECT_EQ(y.back(), grid->GetPoint(found)[1]);
+  EXPECT_EQ(history.number_attribute("/monitors/first", "particle_id"), 0.0);
+
+  // Stopped and restarted: every monitored value equals the whole run's.
+  Hdf5File split((directory / "split" / "history.h5").string(), Hdf5File::Mode::read);
+  for (const char* series : {"/monitors/middle/sigma_ry", "/monitors/middle/gamma_p",
+                             "/monitors/middle/volumetric_strain", "/monitors/first/y"}) {
+    if (!history.exists(series)) {
+      continue; // gamma_p: a state variable of Hardening Soil, not of this elastic column
+    }
+    EXPECT_EQ(history.read_doubles(series), split.read_doubles(series)) << series;
+  }
+  EXPECT_EQ(history.read_doubles("/monitors/middle/volumetric_strain").size(), y.size());
+}
+
+TEST(RunCommand, AMonitorThatFindsNoParticleIsRefusedBeforeAnythingIsWritten) {
+  const auto directory = fresh_directory("monitor_refused");
+  const std::string path = (directory / "column.toml").string();
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  // The grid reaches y = 1.2 m, the column 1.0 m: nothing to follow at the top of the grid.
+  std::ofstream(path) << std::string(shaking_column) +
+                             "[[output.monitor]]\nname = \"air\"\nposition = [0.3, 1.19]\n";
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("column.toml:43: output.monitor[0].position: no soil particle near "
+                           "position [0.3, 1.19] (the nearest is "),
+            std::string::npos)
+      << err.str();
+  EXPECT_FALSE(std::filesystem::exists(directory / "out"));
+  std::ofstream(path) << std::string(shaking_column) +
+                             "[[output.monitor]]\nname = \"none\"\nparticle = 100000\n";
+  err.str("");
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("column.toml:43: output.monitor[0].particle: no particle has id 100000"),
+            std::string::npos)
+      << err.str();
+  std::ofstream(path) << std::string(shaking_column) +
+                             "[[output.monitor]]\nname = \"out\"\nposition = [0.3, 2.0]\n";
+  err.str("");
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("column.toml:43: output.monitor[0].position: lies outside the grid"),
+            std::string::npos)
+      << err.str();
+}
+
 TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
   const auto directory = fresh_directory("restart");
   const std::string path = write_case(directory);
