@@ -8,6 +8,7 @@
 #include <chrono>
 #include <iomanip>
 #include <ostream>
+#include <sstream>
 
 namespace mpile {
 
@@ -20,6 +21,29 @@ void print_axis(std::ostream& out, const char* name, const GradedAxis& axis) {
   }
   out << "  " << name << ": " << axis.start() << " to " << axis.end() << " m, " << axis.cell_count()
       << " cells, sizes " << axis.min_cell_size() << " to " << largest << " m\n";
+}
+
+} // namespace
+
+namespace {
+
+/// A phase's end criteria in words: what ends it first, and its duration as the latest end.
+std::string how_it_stops(const PhaseSpec& phase) {
+  std::ostringstream s;
+  s << std::setprecision(4);
+  if (phase.stop_at) {
+    s << "at " << phase.stop_at->body << " penetration " << phase.stop_at->penetration << " m"
+      << (phase.stop_at->at_rest ? " once at rest" : "") << ", ";
+  }
+  if (phase.equilibrium_tolerance) {
+    s << "at equilibrium (out-of-balance force and kinetic energy ratios below "
+      << *phase.equilibrium_tolerance << "), ";
+  }
+  if (phase.stop_at || phase.equilibrium_tolerance) {
+    s << "else ";
+  }
+  s << "after " << phase.duration << " s";
+  return s.str();
 }
 
 } // namespace
@@ -92,8 +116,13 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
         << spec.solver.courant_number << ")\n";
     out << "phases: " << spec.phases.size() << ", " << spec.end_time()
         << " s of simulated time at most\n";
-    out << "estimated steps: " << std::setprecision(3) << steps << " (at the first step's size)\n";
-    out << "estimated run time: " << std::setprecision(3) << steps * per_step << " s ("
+    for (const PhaseSpec& phase : spec.phases) {
+      out << "  " << phase.name << ": " << how_it_stops(phase) << "\n";
+    }
+    // An upper bound: a phase that stops at equilibrium or at a penetration usually ends sooner,
+    // by how much only running it tells (the progress line's ETA does, from the measured rate).
+    out << "steps at most: " << std::setprecision(3) << steps << " (at the first step's size)\n";
+    out << "run time at most: " << std::setprecision(3) << steps * per_step << " s ("
         << per_step * 1e3 << " ms per step measured over " << trial << " steps)\n";
     out << "estimated memory: " << std::setprecision(3) << memory / 1048576.0 << " MiB ("
         << std::setprecision(0) << std::fixed

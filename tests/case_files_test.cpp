@@ -67,6 +67,23 @@ TEST(CaseFiles, TheMonopileCasesComposeToTheirFlatCopies) {
   }
 }
 
+// `check` says how each phase ends, and bounds the run by the phases' durations.
+TEST(CaseFiles, CheckSaysHowEachPhaseStops) {
+  RunOptions options;
+  options.case_path = (source / "cases/monopile/impact_quick.toml").string();
+  options.overrides = {"phases.1.duration=3.0"};
+  std::ostringstream out, err;
+  ASSERT_EQ(check_case(options, out, err), exit_success) << err.str();
+  EXPECT_NE(
+      out.str().find("phases: 2, 5 s of simulated time at most\n"
+                     "  geostatic: at equilibrium (out-of-balance force and kinetic energy "
+                     "ratios below 0.01), else after 2 s\n"
+                     "  installation: at pile penetration 0.1 m once at rest, else after 3 s\n"
+                     "steps at most: "),
+      std::string::npos)
+      << out.str();
+}
+
 TEST(CaseFiles, EveryElementTestFileRuns) {
   const auto directory = std::filesystem::temp_directory_path() / "mpile_test_element_files";
   std::filesystem::create_directories(directory);
