@@ -12,13 +12,6 @@
 namespace mpile {
 namespace {
 
-std::filesystem::path fresh_directory(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() / ("mpile_compose_" + name);
-  std::filesystem::remove_all(directory);
-  std::filesystem::create_directories(directory);
-  return directory;
-}
-
 // A base with everything but the phases and outputs, as the monopile cases share one.
 const char* base_text = R"(title = "column base"
 [grid]

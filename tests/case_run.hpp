@@ -25,6 +25,14 @@ inline std::string read_text(const std::filesystem::path& path) {
   return text.str();
 }
 
+/// An empty directory under the system's temporary directory, named mpile_test_<name>.
+inline std::filesystem::path fresh_directory(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / ("mpile_test_" + name);
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  return directory;
+}
+
 /// The text with every occurrence of `from` replaced by `to` (at least one must exist).
 inline std::string replaced(std::string text, const std::string& from, const std::string& to) {
   std::size_t at = text.find(from);

@@ -36,13 +36,6 @@
 namespace mpile {
 namespace {
 
-std::filesystem::path fresh_directory(const std::string& name) {
-  const auto directory = std::filesystem::temp_directory_path() / ("mpile_test_" + name);
-  std::filesystem::remove_all(directory);
-  std::filesystem::create_directories(directory);
-  return directory;
-}
-
 TEST(VtkOutput, ParticleSnapshotReadsBackWithEveryArrayExact) {
   Scene scene(GeometryMode::axisymmetric, verification::uniform_grid(0.0, 1.0, 4, 0.0, 1.0, 4));
   const auto material = scene.add_material(std::make_unique<LinearElastic>(1e7, 0.3, 1800.0));
