@@ -3,9 +3,13 @@
 #include "io/monitor_points.hpp"
 #include "io/plausibility.hpp"
 #include "io/run_command.hpp"
+#include "io/run_estimate.hpp"
 #include "solver/explicit_solver.hpp"
 
+#include <unistd.h>
+
 #include <chrono>
+#include <filesystem>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -44,6 +48,47 @@ std::string how_it_stops(const PhaseSpec& phase) {
   }
   s << "after " << phase.duration << " s";
   return s.str();
+}
+
+/// Runs the case for options.pilot_seconds of wall time in a temporary directory (the run's own
+/// path: phases, stop criteria, outputs) and prints the run time estimated from it.
+int run_pilot(const RunOptions& options, const CaseSpec& spec, std::ostream& out,
+              std::ostream& err) {
+  std::error_code error;
+  const auto directory =
+      std::filesystem::temp_directory_path(error) / ("mpile-pilot-" + std::to_string(::getpid()));
+  RunOptions pilot = options;
+  pilot.output_directory = directory.string();
+  pilot.stop_after_seconds = options.pilot_seconds;
+  pilot.restart.clear();
+  std::ostringstream pilot_out, pilot_err;
+  const int status = run_case(pilot, pilot_out, pilot_err);
+  int result = exit_success;
+  if (status != exit_success && status != exit_interrupted) {
+    err << "mpile: the pilot run failed:\n" << pilot_err.str();
+    result = exit_failure;
+  } else {
+    const PilotRecord record = read_pilot((directory / "history.h5").string(), spec);
+    const std::vector<PhaseEstimate> phases = estimate_phases(spec, record);
+    double total = 0.0;
+    bool bound = false;
+    for (const PhaseEstimate& e : phases) {
+      total += e.wall;
+      bound = bound || e.bound;
+    }
+    out << std::defaultfloat << std::setprecision(3) << "pilot: " << record.wall.back()
+        << " s of wall time, to t = " << record.time.back() << " s in phase "
+        << spec.phases[static_cast<std::size_t>(record.phase.back())].name
+        << (record.complete ? " (the whole run)" : "") << "\n";
+    out << "estimated run time: " << (bound ? "at most " : "") << total << " s on "
+        << options.threads << " threads\n";
+    for (const PhaseEstimate& e : phases) {
+      out << "  " << e.name << ": " << (e.bound ? "at most " : "") << e.wall << " s, " << e.basis
+          << "\n";
+    }
+  }
+  std::filesystem::remove_all(directory, error);
+  return result;
 }
 
 } // namespace
@@ -134,7 +179,7 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
     err << "mpile: " << spec.file << ": " << e.what() << '\n';
     return exit_bad_input;
   }
-  return exit_success;
+  return options.pilot_seconds > 0.0 ? run_pilot(options, spec, out, err) : exit_success;
 }
 
 } // namespace mpile

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -36,7 +37,8 @@ Units units_of(GeometryMode mode) {
 
 HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, const Scene& scene,
                              int threads, std::size_t rows)
-    : path_(path), rows_(rows), reopened_(rows > 0), last_flush_(std::chrono::steady_clock::now()) {
+    : path_(path), rows_(rows), reopened_(rows > 0), last_flush_(std::chrono::steady_clock::now()),
+      wall_start_(last_flush_) {
   Hdf5File file(path, reopened_ ? Hdf5File::Mode::append : Hdf5File::Mode::create);
   if (!reopened_) {
     file.set_attribute("/", "case_file", spec.file);
@@ -83,6 +85,12 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
   const Units u = units_of(scene.mode);
   series(file, "/time", "s");
   series(file, "/dt", "s");
+  series(file, "/wall_time", "s of wall time since the run began (a restart carries it on)");
+  if (reopened_) {
+    const std::vector<double> wall = file.read_doubles("/wall_time");
+    wall_offset_ =
+        rows > 0 && rows <= wall.size() && std::isfinite(wall[rows - 1]) ? wall[rows - 1] : 0.0;
+  }
   series(file, "/step", "-", Hdf5Series::Stored::integer);
   series(file, "/phase", "index into the case's [[phases]] and /phases",
          Hdf5Series::Stored::integer);
@@ -199,17 +207,8 @@ void HistoryWriter::add_monitors(Hdf5File& file, const CaseSpec& spec, const Sce
     for (const MonitorQuantity& q : quantities) {
       const std::string name = monitor.group + "/" + q.name;
       monitor.datasets.push_back(name);
-      if (known) {
-        series(file, name, q.unit);
-        continue;
-      }
-      // Created here even on a restart: rows before it are NaN (the monitor did not exist).
-      auto [entry, added] = series_.emplace(name, Hdf5Series(file, name, q.unit));
-      order_.push_back(name);
-      file.attach_dimension_scale(name, "/time");
-      for (std::size_t row = 0; row < rows_; ++row) {
-        entry->second.append(std::numeric_limits<double>::quiet_NaN());
-      }
+      // On a restart a monitor new to the history starts with NaN rows (series() makes them).
+      series(file, name, q.unit);
     }
     if (!known) {
       file.set_attribute(monitor.group, "particle_id", static_cast<double>(monitor.id));
@@ -235,8 +234,16 @@ Hdf5Series& HistoryWriter::series(Hdf5File& file, const std::string& name, const
                                   Hdf5Series::Stored stored) {
   auto found = series_.find(name);
   if (found == series_.end()) {
-    if (reopened_) {
+    if (reopened_ && file.exists(name)) {
       found = series_.emplace(name, Hdf5Series(file, name, rows_)).first;
+    } else if (reopened_) {
+      // A series this version records and the one that began the history did not: its earlier
+      // rows are NaN.
+      found = series_.emplace(name, Hdf5Series(file, name, unit, stored)).first;
+      file.attach_dimension_scale(name, "/time");
+      for (std::size_t row = 0; row < rows_; ++row) {
+        found->second.append(std::numeric_limits<double>::quiet_NaN());
+      }
     } else {
       found = series_.emplace(name, Hdf5Series(file, name, unit, stored)).first;
       // Every series runs along /time: xarray and netCDF readers see one shared dimension.
@@ -255,6 +262,10 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
   const Scene& scene = solver.scene();
   series_.at("/time").append(solver.time());
   series_.at("/dt").append(solver.last_time_step());
+  series_.at("/wall_time")
+      .append(
+          wall_offset_ +
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count());
   series_.at("/step").append(static_cast<double>(solver.step_count()));
   series_.at("/phase").append(static_cast<double>(phase));
   const EnergyBalance energy = solver.energy_balance();

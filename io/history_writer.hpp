@@ -78,6 +78,9 @@ private:
   std::size_t rows_ = 0;
   bool reopened_ = false;
   std::chrono::steady_clock::time_point last_flush_;
+  // /wall_time: seconds of wall time since the run began, carried on across restarts.
+  std::chrono::steady_clock::time_point wall_start_;
+  double wall_offset_ = 0.0;
 };
 
 /// A dataset-safe name: letters, digits and underscores.

@@ -39,6 +39,11 @@ int main(int argc, char** argv) {
   check->add_option("--threads", threads, "worker threads (default: all cores)")
       ->check(CLI::PositiveNumber);
   check->add_option("--set", run_options.overrides, set_help)->allow_extra_args(false);
+  check
+      ->add_option("--pilot", run_options.pilot_seconds,
+                   "run the case for this many seconds of wall time (in a temporary directory) "
+                   "and estimate its run time from how far it got")
+      ->check(CLI::PositiveNumber);
 
   mpile::ElementTestOptions element_options;
   auto* element = app.add_subcommand(

@@ -362,7 +362,9 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     long steps_this_run = 0;
     auto stop_due = [&] {
       return stop_requested != 0 ||
-             (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps);
+             (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps) ||
+             (options.stop_after_seconds > 0.0 &&
+              seconds_since(wall_start) >= options.stop_after_seconds);
     };
     // A snapshot of the state a run stops or a phase ends in, unless one was just written.
     auto snapshot_now = [&] {

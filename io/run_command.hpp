@@ -14,6 +14,10 @@ struct RunOptions {
   int threads = 0;
   /// Stop after this many steps as if interrupted (writing a checkpoint); 0: run to the end.
   long stop_after_steps = 0;
+  /// Stop after this many seconds of wall time as if interrupted; 0: run to the end.
+  double stop_after_seconds = 0.0;
+  /// check: run the case for this many seconds of wall time and estimate its run time from it.
+  double pilot_seconds = 0.0;
 };
 
 /// Exit statuses of the command line.

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -82,6 +84,23 @@ TEST(CaseFiles, CheckSaysHowEachPhaseStops) {
                      "steps at most: "),
       std::string::npos)
       << out.str();
+}
+
+// `check --pilot` runs the case through the run's own path in a temporary directory; a case the
+// pilot finishes is its own measurement, phase by phase, and the directory is removed.
+TEST(CaseFiles, CheckWithAPilotRunEstimatesTheRunTime) {
+  RunOptions options;
+  options.case_path = (source / "cases/verification/single_point.toml").string();
+  options.pilot_seconds = 60.0;
+  options.threads = 1;
+  std::ostringstream out, err;
+  ASSERT_EQ(check_case(options, out, err), exit_success) << err.str();
+  const std::string text = out.str();
+  EXPECT_NE(text.find(" (the whole run)\nestimated run time: "), std::string::npos) << text;
+  EXPECT_NE(text.find(", measured in the pilot ("), std::string::npos) << text;
+  EXPECT_EQ(text.find("at most "), std::string::npos) << text;
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() /
+                                       ("mpile-pilot-" + std::to_string(::getpid()))));
 }
 
 TEST(CaseFiles, EveryElementTestFileRuns) {

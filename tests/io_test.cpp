@@ -498,7 +498,9 @@ TEST(RunCommand, ACompleteRunIsExtendedByALongerLastPhaseOrAnAddedPhase) {
   EXPECT_EQ(run_case(added, out, err), exit_bad_input);
   EXPECT_NE(err.str().find("phases.1.duration changed (was 0.25, now 0.15)"), std::string::npos)
       << err.str();
-  added.overrides = longer.overrides;
+  // A monitor added with it: followed from the row the restart continues at.
+  added.overrides = {longer.overrides[0],
+                     "output.monitor = [{ name = \"late\", position = [0.3, 0.5] }]"};
   ASSERT_EQ(run_case(added, out, err), exit_success) << err.str();
   {
     Hdf5File history(history_path, Hdf5File::Mode::read);
@@ -508,6 +510,18 @@ TEST(RunCommand, ACompleteRunIsExtendedByALongerLastPhaseOrAnAddedPhase) {
     EXPECT_NEAR(history.number_attribute("/phases/2", "start"), shake_start + 0.25, 1e-12);
     EXPECT_NEAR(times.back(), shake_start + 0.30, 1e-12);
     EXPECT_EQ(history.read_doubles("/phase").back(), 2.0);
+    const auto late = history.read_doubles("/monitors/late/sigma_yy");
+    ASSERT_EQ(late.size(), times.size());
+    EXPECT_EQ(history.number_attribute("/monitors/late", "followed_from_row"),
+              static_cast<double>(rows_after_longer));
+    EXPECT_TRUE(std::all_of(late.begin(), late.begin() + static_cast<long>(rows_after_longer),
+                            [](double v) { return std::isnan(v); }));
+    EXPECT_TRUE(std::all_of(late.begin() + static_cast<long>(rows_after_longer), late.end(),
+                            [](double v) { return std::isfinite(v) && v < 0.0; }));
+    // Wall time runs on across the restarts.
+    const auto wall = history.read_doubles("/wall_time");
+    EXPECT_TRUE(std::is_sorted(wall.begin(), wall.end()));
+    EXPECT_GT(wall.back(), 0.0);
   }
 
   // Physics may not change under a history.

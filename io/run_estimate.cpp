@@ -1,0 +1,108 @@
+#include "io/run_estimate.hpp"
+
+#include "io/hdf5_file.hpp"
+#include "io/history_writer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace mpile {
+
+std::vector<PhaseEstimate> estimate_phases(const CaseSpec& spec, const PilotRecord& pilot) {
+  std::vector<PhaseEstimate> estimates;
+  const std::size_t rows = pilot.time.size();
+  if (rows < 2) {
+    return estimates;
+  }
+  const auto last_phase = static_cast<std::size_t>(pilot.phase.back());
+  // Rows of phase i: [first, end).
+  auto rows_of = [&](std::size_t i) {
+    std::size_t first = rows, end = 0;
+    for (std::size_t r = 0; r < rows; ++r) {
+      if (static_cast<std::size_t>(pilot.phase[r]) == i) {
+        first = std::min(first, r);
+        end = r + 1;
+      }
+    }
+    return std::pair{first, end};
+  };
+  // Wall time per simulated second, where the pilot stopped (the phase's own settings, such as
+  // mass scaling, set it), else over the whole pilot.
+  auto [first, end] = rows_of(last_phase);
+  const auto per_second = [&](std::size_t a, std::size_t b) {
+    const double dt = pilot.time[b - 1] - pilot.time[a];
+    return dt > 0.0 ? (pilot.wall[b - 1] - pilot.wall[a]) / dt : 0.0;
+  };
+  double wall_per_second = end - first >= 2 ? per_second(first, end) : 0.0;
+  if (!(wall_per_second > 0.0)) {
+    wall_per_second = per_second(0, rows);
+  }
+  double phase_start_wall = 0.0;
+  double phase_start_time = 0.0;
+  for (std::size_t i = 0; i < spec.phases.size(); ++i) {
+    const PhaseSpec& phase = spec.phases[i];
+    PhaseEstimate e;
+    e.name = phase.name;
+    std::ostringstream basis;
+    basis << std::setprecision(3);
+    if (i < last_phase || (i == last_phase && pilot.complete)) {
+      const auto [a, b] = rows_of(i);
+      e.wall = pilot.wall[b - 1] - phase_start_wall;
+      basis << "measured in the pilot (" << pilot.time[b - 1] - phase_start_time << " s simulated)";
+      phase_start_wall = pilot.wall[b - 1];
+      phase_start_time = pilot.time[b - 1];
+    } else if (i == last_phase) {
+      const auto [a, b] = rows_of(i);
+      const double now = pilot.time[b - 1];
+      const double to_end = std::max(phase_start_time + phase.duration - now, 0.0);
+      double remaining = to_end;
+      e.bound = true;
+      basis << "at most its duration";
+      if (phase.stop_at && pilot.penetration.count(phase.stop_at->body) > 0 && b - a >= 2) {
+        const std::vector<double>& p = pilot.penetration.at(phase.stop_at->body);
+        const double rate = (p[b - 1] - p[a]) / (pilot.time[b - 1] - pilot.time[a]);
+        if (rate > 0.0) {
+          remaining = std::min(std::max(phase.stop_at->penetration - p[b - 1], 0.0) / rate, to_end);
+          e.bound = false;
+          basis.str("");
+          basis << "from its penetration rate in the pilot, " << rate << " m/s to "
+                << phase.stop_at->penetration << " m";
+        }
+      } else if (!phase.stop_at && !phase.equilibrium_tolerance) {
+        e.bound = false;
+        basis.str("");
+        basis << "its duration";
+      }
+      e.wall = pilot.wall[b - 1] - phase_start_wall + remaining * wall_per_second;
+      phase_start_time += phase.duration; // at the latest; only phases after it use this
+    } else {
+      e.wall = phase.duration * wall_per_second;
+      e.bound = phase.stop_at.has_value() || phase.equilibrium_tolerance.has_value();
+      basis << (e.bound ? "at most its duration" : "its duration")
+            << ", at the pilot's wall time per simulated second";
+    }
+    e.basis = basis.str();
+    estimates.push_back(e);
+  }
+  return estimates;
+}
+
+PilotRecord read_pilot(const std::string& history, const CaseSpec& spec) {
+  Hdf5File file(history, Hdf5File::Mode::read);
+  PilotRecord pilot;
+  pilot.time = file.read_doubles("/time");
+  pilot.phase = file.read_doubles("/phase");
+  pilot.wall = file.read_doubles("/wall_time");
+  for (const PhaseSpec& phase : spec.phases) {
+    if (phase.stop_at && pilot.penetration.count(phase.stop_at->body) == 0) {
+      pilot.penetration[phase.stop_at->body] =
+          file.read_doubles("/bodies/" + dataset_name(phase.stop_at->body) + "/penetration");
+    }
+  }
+  pilot.complete = file.string_attribute("/", "status").rfind("complete", 0) == 0;
+  return pilot;
+}
+
+} // namespace mpile

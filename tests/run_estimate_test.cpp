@@ -1,0 +1,82 @@
+// The run-time estimate from a pilot run, on pilot records whose rates are known exactly.
+#include "io/run_estimate.hpp"
+
+#include <gtest/gtest.h>
+
+namespace mpile {
+namespace {
+
+// Two phases like the monopile cases': a geostatic phase ending at equilibrium, then an
+// installation stopping at 0.1 m of penetration, at the latest after 30 s.
+CaseSpec two_phases() {
+  CaseSpec spec;
+  PhaseSpec geostatic;
+  geostatic.name = "geostatic";
+  geostatic.duration = 2.0;
+  geostatic.equilibrium_tolerance = 0.01;
+  PhaseSpec installation;
+  installation.name = "installation";
+  installation.duration = 30.0;
+  installation.stop_at = PenetrationStop{"pile", 0.1, false};
+  spec.phases = {geostatic, installation};
+  return spec;
+}
+
+// A pilot that ran the geostatic phase to t = 0.01 s in 1 s of wall time, then the installation
+// for 2 s of wall time at 100 s of wall per simulated second, the pile going down at 0.5 m/s.
+PilotRecord pilot_in_installation() {
+  PilotRecord pilot;
+  for (int i = 0; i <= 10; ++i) {
+    pilot.time.push_back(0.001 * i);
+    pilot.phase.push_back(0.0);
+    pilot.wall.push_back(0.1 * i);
+    pilot.penetration["pile"].push_back(0.0);
+  }
+  for (int i = 1; i <= 20; ++i) {
+    const double t = 0.01 + 0.001 * i;
+    pilot.time.push_back(t);
+    pilot.phase.push_back(1.0);
+    pilot.wall.push_back(1.0 + 0.1 * i);
+    pilot.penetration["pile"].push_back(0.5 * (t - 0.01));
+  }
+  return pilot;
+}
+
+TEST(RunEstimate, ThePhaseThePilotStoppedInIsExtrapolatedFromItsPenetrationRate) {
+  const std::vector<PhaseEstimate> e = estimate_phases(two_phases(), pilot_in_installation());
+  ASSERT_EQ(e.size(), 2u);
+  // Geostatic: measured, 1 s. Installation: its rows run from 0.011 s (penetration 0.0005 m) to
+  // 0.030 s (0.01 m): 0.5 m/s, so 0.09 m remain, 0.18 s of simulated time at 100 s per simulated
+  // second, on top of the 2 s already spent: 20 s.
+  EXPECT_DOUBLE_EQ(e[0].wall, 1.0);
+  EXPECT_FALSE(e[0].bound);
+  EXPECT_NEAR(e[1].wall, 2.0 + 0.18 * 100.0, 1e-9);
+  EXPECT_FALSE(e[1].bound);
+  EXPECT_NE(e[1].basis.find("penetration rate"), std::string::npos) << e[1].basis;
+}
+
+TEST(RunEstimate, APilotStillAtEquilibriumBoundsTheRunByTheDurations) {
+  PilotRecord pilot = pilot_in_installation();
+  // Only the geostatic rows: 100 s of wall per simulated second there too.
+  for (auto* series : {&pilot.time, &pilot.phase, &pilot.wall, &pilot.penetration["pile"]}) {
+    series->resize(11);
+  }
+  const std::vector<PhaseEstimate> e = estimate_phases(two_phases(), pilot);
+  ASSERT_EQ(e.size(), 2u);
+  // Equilibrium cannot be extrapolated: the rest of its 2 s, and the installation's 30 s.
+  EXPECT_TRUE(e[0].bound);
+  EXPECT_NEAR(e[0].wall, 1.0 + (2.0 - 0.01) * 100.0, 1e-9);
+  EXPECT_TRUE(e[1].bound);
+  EXPECT_NEAR(e[1].wall, 30.0 * 100.0, 1e-9);
+}
+
+TEST(RunEstimate, APilotThatRanTheWholeCaseIsTheMeasurement) {
+  PilotRecord pilot = pilot_in_installation();
+  pilot.complete = true;
+  const std::vector<PhaseEstimate> e = estimate_phases(two_phases(), pilot);
+  EXPECT_DOUBLE_EQ(e[0].wall + e[1].wall, 3.0);
+  EXPECT_FALSE(e[1].bound);
+}
+
+} // namespace
+} // namespace mpile
