@@ -85,7 +85,10 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
   const Units u = units_of(scene.mode);
   series(file, "/time", "s");
   series(file, "/dt", "s");
-  series(file, "/wall_time", "s of wall time since the run began (a restart carries it on)");
+  // Not "s since ...": CF readers (xarray) take a unit with "since" for a calendar date.
+  series(file, "/wall_time", "s");
+  file.set_attribute("/wall_time", "long_name",
+                     "wall time since the run began (a restart carries it on)");
   if (reopened_) {
     const std::vector<double> wall = file.read_doubles("/wall_time");
     wall_offset_ =

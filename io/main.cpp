@@ -1,6 +1,7 @@
 // mpile: the command line.
 #include "io/element_test.hpp"
 #include "io/run_command.hpp"
+#include "io/sweep_command.hpp"
 #include "io/verify_command.hpp"
 #include "solver/solver_settings.hpp"
 
@@ -44,6 +45,20 @@ int main(int argc, char** argv) {
                    "run the case for this many seconds of wall time (in a temporary directory) "
                    "and estimate its run time from how far it got")
       ->check(CLI::PositiveNumber);
+
+  mpile::SweepOptions sweep_options;
+  auto* sweep = app.add_subcommand(
+      "sweep", "run a case at every combination of listed values (a parameter study) through "
+               "Snakemake and gather the results into one table");
+  sweep->add_option("file", sweep_options.file, "the sweep file (TOML)")->required();
+  sweep->add_option("--out", sweep_options.output_directory,
+                    "output directory (default: out/sweeps/<sweep file name>)");
+  sweep->add_option("--cores", sweep_options.cores, "cores to fill with runs (default: all)")
+      ->check(CLI::PositiveNumber);
+  sweep->add_option("--profile", sweep_options.profile,
+                    "a Snakemake profile directory (a cluster's submission settings)");
+  sweep->add_flag("--prepare", sweep_options.prepare,
+                  "write the workflow and print the Snakemake command, run nothing");
 
   mpile::ElementTestOptions element_options;
   auto* element = app.add_subcommand(
@@ -100,6 +115,9 @@ int main(int argc, char** argv) {
     }
     if (check->parsed()) {
       return mpile::check_case(run_options, std::cout, std::cerr);
+    }
+    if (sweep->parsed()) {
+      return mpile::sweep_command(sweep_options, std::cout, std::cerr);
     }
     if (element->parsed()) {
       return mpile::element_test_command(element_options, std::cout, std::cerr);

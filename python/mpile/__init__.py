@@ -26,6 +26,7 @@ _EXPORTS = {
     "follow_particle": "snapshots",
     "Snapshot": "snapshots",
     "Snapshots": "snapshots",
+    "open_sweep": "sweep",
     "installation": "monopile",
     "Installation": "monopile",
     "shaft_ratios": "monopile",

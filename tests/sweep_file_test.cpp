@@ -1,0 +1,145 @@
+// Sweep files: the variants they expand to, the values --set receives, and bad inputs refused
+// with the file, line and key before anything runs.
+#include "io/case_error.hpp"
+#include "io/sweep_file.hpp"
+#include "tests/case_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+namespace mpile {
+namespace {
+
+// A sweep of the shipped single-point case (V2), written beside a copy of it.
+std::string write_sweep(const std::string& name, const std::string& text) {
+  const auto directory = fresh_directory("sweep_file_" + name);
+  std::filesystem::copy_file(source / "cases/verification/single_point.toml",
+                             directory / "point.toml");
+  const auto path = directory / "sweep.toml";
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+const char* good = R"(title = "point"
+case = "point.toml"
+set = ["phases.0.duration=0.5"]
+[parameters]
+"materials.spring.young_modulus" = { from = 1.0, to = 100.0, count = 3, scale = "log" }
+"bodies.0.velocity" = [[0.1, 0.0, 0.0], [0.3, 0.0, 0.0]]
+"solver.courant_number" = [0.1]
+[[gather]]
+name = "kinetic_start"
+series = "energy/kinetic"
+at_time = 0.0
+)";
+
+TEST(SweepFile, ExpandsTheProductWithTheFirstParameterSlowest) {
+  const SweepSpec sweep = read_sweep_file(write_sweep("good", good));
+  ASSERT_EQ(sweep.variants.size(), 6u); // 3 x 2 x 1
+  EXPECT_EQ(sweep.variants.front().id, "v01");
+  EXPECT_EQ(sweep.variants.back().id, "v06");
+  // A log range of 3 from 1 to 100: 1, 10, 100; its ends exactly as written.
+  EXPECT_EQ(sweep.parameters[0].values, (std::vector<std::string>{"1.0", "10.0", "100.0"}));
+  // The fixed --set first, then the parameters in the file's order; floats in their shortest form
+  // that reads back exactly (0.1, not 0.10000000000000001).
+  EXPECT_EQ(
+      sweep.variants[1].sets,
+      (std::vector<std::string>{"phases.0.duration=0.5", "materials.spring.young_modulus=1.0",
+                                "bodies.0.velocity=[0.3, 0.0, 0.0]", "solver.courant_number=0.1"}));
+  EXPECT_EQ(sweep.variants[2].values[0], "10.0");
+  EXPECT_NO_THROW(validate_sweep(sweep));
+}
+
+// Each bad sweep file and the start of the message it must give after the file name.
+struct BadSweep {
+  const char* what;
+  std::string from;
+  std::string to;
+  std::string message;
+};
+
+TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
+  const std::vector<BadSweep> bad = {
+      {"no case", "case = \"point.toml\"\n", "", ":1: case: missing (required)"},
+      {"an unknown key", "title = \"point\"", "title = \"point\"\ncores = 2",
+       ":2: cores: unknown key"},
+      {"set not a list", "set = [\"phases.0.duration=0.5\"]", "set = \"x=1\"",
+       ":3: set: expected an array of \"key.path=value\" strings"},
+      {"set without =", "set = [\"phases.0.duration=0.5\"]", "set = [\"phases\"]",
+       ":3: set: expected an array"},
+      {"an empty list", "\"solver.courant_number\" = [0.1]", "\"solver.courant_number\" = []",
+       ":7: parameters.\"solver.courant_number\": the list of values is empty"},
+      {"a value that is not a list", "\"solver.courant_number\" = [0.1]",
+       "\"solver.courant_number\" = 0.1",
+       ":7: parameters.\"solver.courant_number\": expected a list of values or a range"},
+      {"a key path with a gap", "\"solver.courant_number\"", "\"solver..courant_number\"",
+       ":7: parameters.\"solver..courant_number\": not a key path"},
+      {"a range of one", "count = 3", "count = 1",
+       ":5: parameters.materials.spring.young_modulus.count: must be from 2 to 10000"},
+      {"a log range through zero", "from = 1.0", "from = 0.0",
+       ":5: parameters.materials.spring.young_modulus.from: a log range needs from and to above "
+       "zero"},
+      {"an unknown scale", "scale = \"log\"", "scale = \"cubic\"",
+       ":5: parameters.materials.spring.young_modulus.scale: must be \"linear\" or \"log\""},
+      {"a range key misspelt", "count = 3", "cuont = 3",
+       ":5: parameters.materials.spring.young_modulus.cuont: unknown key; did you mean 'count'?"},
+      {"too many variants", "count = 3", "count = 10000",
+       ":4: parameters: the values make more than 10000 variants"},
+      {"a gather with two ways", "at_time = 0.0", "at_time = 0.0\nreduce = \"max\"",
+       ":10: gather[0].series: give exactly one of at_penetration, at_time or reduce"},
+      {"a gather with none", "at_time = 0.0\n", "",
+       ":10: gather[0].series: give exactly one of at_penetration, at_time or reduce"},
+      {"an unknown reduction", "at_time = 0.0", "reduce = \"median\"",
+       ":11: gather[0].reduce: must be last, max, min, mean or max_abs"},
+      {"a name with a space", "name = \"kinetic_start\"", "name = \"kinetic start\"",
+       ":9: gather[0].name: must be a column name"},
+      {"at_penetration without a body", "at_time = 0.0", "at_penetration = 0.1",
+       ":8: gather[0].body: missing (required): (the rigid body"},
+      {"a series with a leading slash", "series = \"energy/kinetic\"", "series = \"/energy\"",
+       ":10: gather[0].series: a path in history.h5"},
+      {"a phase without reduce", "at_time = 0.0", "at_time = 0.0\nphase = \"vibrate\"",
+       ":12: gather[0].phase: only reduce takes a phase"},
+      {"threads zero", "title = \"point\"", "title = \"point\"\nthreads = 0",
+       ":2: threads: threads per run must be from 1 to 1024"},
+  };
+  for (const BadSweep& b : bad) {
+    const std::string text = replaced(good, b.from, b.to);
+    const std::string path = write_sweep("bad", text);
+    try {
+      read_sweep_file(path);
+      ADD_FAILURE() << b.what << ": accepted";
+    } catch (const CaseError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + b.message, 0), 0u) << b.what << ": " << e.what();
+    }
+  }
+}
+
+TEST(SweepFile, AVariantTheCaseRefusesNamesTheParameterLineAndItsValues) {
+  // The case file is read with each variant's --set values before anything runs: a key the case
+  // does not have, or a value it refuses, names the sweep file's line and the variant.
+  const std::vector<BadSweep> bad = {
+      {"an unknown key path", "\"solver.courant_number\"", "\"solver.courant_numbr\"",
+       ":7: parameters.\"solver.courant_numbr\": variant v01 "},
+      {"a value out of range", "[[0.1, 0.0, 0.0], [0.3, 0.0, 0.0]]", "[[0.1, 0.0, 0.0], [0.3]]",
+       ":6: parameters.\"bodies.0.velocity\": variant v02 (materials.spring.young_modulus = 1.0, "
+       "bodies.0.velocity = [0.3], solver.courant_number = 0.1) cannot run: "},
+      {"a case file that is not there", "case = \"point.toml\"", "case = \"nothing.toml\"",
+       ":5: parameters.\"materials.spring.young_modulus\": variant v01 "},
+      {"a gathered phase the case lacks", "at_time = 0.0", "reduce = \"max\"\nphase = \"shake\"",
+       ":9: gather[0].phase: the case "},
+  };
+  for (const BadSweep& b : bad) {
+    const std::string path = write_sweep("variant", replaced(good, b.from, b.to));
+    try {
+      validate_sweep(read_sweep_file(path));
+      ADD_FAILURE() << b.what << ": accepted";
+    } catch (const CaseError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + b.message, 0), 0u) << b.what << ": " << e.what();
+    }
+  }
+}
+
+} // namespace
+} // namespace mpile
