@@ -112,6 +112,10 @@ std::string snakefile(const std::string& sweep_file) {
     << "with open(\"sweep.toml\", \"rb\") as f:\n"
     << "    SWEEP = tomllib.load(f)\n"
     << "VARIANTS = {v[\"id\"]: v for v in SWEEP[\"variants\"]}\n\n"
+    << "# On a cluster, only the runs are submitted; the table is gathered where Snakemake runs.\n"
+    << "localrules:\n"
+    << "    all,\n"
+    << "    gather,\n\n\n"
     << "wildcard_constraints:\n"
     << "    variant=\"v[0-9]+\",\n\n\n"
     << "def finished(wildcards):\n"
@@ -153,8 +157,21 @@ std::string snakefile(const std::string& sweep_file) {
   return s.str();
 }
 
-/// Runs a program found on PATH and waits for it; its exit status, 128 + signal when killed.
-/// An interrupt (SIGINT, SIGTERM) reaches the program, which stops its jobs; this process waits.
+/// The process group of the program running, for the signal handler to pass signals on to.
+volatile std::sig_atomic_t running_group = 0;
+volatile std::sig_atomic_t interrupted = 0;
+
+extern "C" void pass_on_signal(int signal) {
+  interrupted = 1;
+  if (running_group > 0) {
+    ::kill(-running_group, signal);
+  }
+}
+
+/// Runs a program found on PATH in a process group of its own and waits for it; returns its exit
+/// status, 128 + signal when it was killed, minus errno when it could not start. SIGINT and
+/// SIGTERM sent to this process (Ctrl-C, a batch system's stop) are passed on to the whole group:
+/// Snakemake and the runs it started, which write their checkpoints and stop.
 int run_program(const std::vector<std::string>& arguments) {
   std::vector<char*> argv;
   for (const std::string& a : arguments) {
@@ -163,24 +180,27 @@ int run_program(const std::vector<std::string>& arguments) {
   argv.push_back(nullptr);
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  sigaddset(&defaults, SIGTERM);
-  posix_spawnattr_setsigdefault(&attributes, &defaults);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
-  auto* previous_int = std::signal(SIGINT, SIG_IGN);
-  auto* previous_term = std::signal(SIGTERM, SIG_IGN);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  struct sigaction pass_on {};
+  pass_on.sa_handler = pass_on_signal;
+  sigemptyset(&pass_on.sa_mask);
+  struct sigaction previous_int {};
+  struct sigaction previous_term {};
+  sigaction(SIGINT, &pass_on, &previous_int);
+  sigaction(SIGTERM, &pass_on, &previous_term);
   pid_t pid = 0;
   const int spawned = posix_spawnp(&pid, argv[0], nullptr, &attributes, argv.data(), environ);
   posix_spawnattr_destroy(&attributes);
   int status = 0;
   if (spawned == 0) {
+    running_group = pid;
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
+    running_group = 0;
   }
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
+  sigaction(SIGINT, &previous_int, nullptr);
+  sigaction(SIGTERM, &previous_term, nullptr);
   if (spawned != 0) {
     return -spawned;
   }
@@ -278,7 +298,7 @@ int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& 
         << "); install it (Debian: apt-get install snakemake)\n";
     return exit_failure;
   }
-  if (status == 128 + SIGINT || status == 128 + SIGTERM) {
+  if (interrupted != 0 || status == 128 + SIGINT || status == 128 + SIGTERM) {
     err << "mpile: the sweep was interrupted; run the same command again to continue it\n";
     return exit_interrupted;
   }

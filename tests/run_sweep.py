@@ -8,15 +8,18 @@ the single material point, one of which leaves the grid):
   to round-off, and a quarter period into the stiffer spring (omega = 4 pi, T/4 = 0.125 s) at the
   small velocity nearly all of it is elastic;
 - the same command again reruns only the failed variant (Snakemake's markers), the finished
-  variants' outputs untouched.
+  variants' outputs untouched;
+- SIGTERM to a running sweep stops Snakemake and its runs (checkpoints written), exit status 130.
 
   run_sweep.py MPILE SWEEP_FILE WORK_DIRECTORY
 """
 import math
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 import mpile  # noqa: E402
@@ -85,6 +88,35 @@ again = sweep()
 check(again.returncode == 1, f"second run: exit status {again.returncode}, expected 1")
 check(os.stat(finished_history).st_mtime_ns == before, "the finished variant v01 ran again")
 check(os.stat(failed_log).st_mtime_ns != 0, "the failed variant v02 was not retried")
+
+# An interrupt: SIGTERM to `mpile sweep` reaches Snakemake and the runs (two variants of 20 000 s
+# of the single point, about a million steps each), which write their checkpoints and stop; the
+# sweep exits with 130 within seconds and leaves no process behind.
+case = os.path.join(os.path.dirname(os.path.abspath(sweep_file)), "../../../cases/verification/single_point.toml")
+slow_file = os.path.join(work, "slow.toml")
+with open(slow_file, "w") as f:
+    f.write(f'case = "{os.path.abspath(case)}"\nset = ["phases.0.duration=20000.0"]\n'
+            '[parameters]\n"solver.courant_number" = [0.1, 0.2]\n')
+slow = subprocess.Popen([mpile_binary, "sweep", slow_file, "--out", os.path.join(work, "slow"), "--cores", "2"],
+                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+log = os.path.join(work, "slow", "variants", "v01", "run.log")
+for _ in range(100):
+    if os.path.exists(log) and "phase vibrate from" in open(log).read():
+        break
+    time.sleep(0.1)
+slow.send_signal(signal.SIGTERM)
+try:
+    _, slow_err = slow.communicate(timeout=30)
+    check(slow.returncode == 130, f"interrupted sweep: exit status {slow.returncode}, expected 130")
+    check("the sweep was interrupted" in slow_err, "the interrupt is not reported")
+    check("checkpoint" in open(log).read(), "the interrupted run wrote no checkpoint")
+except subprocess.TimeoutExpired:
+    slow.kill()
+    check(False, "the interrupted sweep did not stop within 30 s")
+time.sleep(0.5)
+left = subprocess.run(["pgrep", "-af", f"{os.path.join(work, 'slow')}|phases.0.duration=20000.0"],
+                      capture_output=True, text=True).stdout
+check(left.strip() == "", f"processes left after the interrupt: {left}")
 
 if failures:
     print("first run:\n" + first.stdout + first.stderr[-3000:])

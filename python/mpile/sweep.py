@@ -50,7 +50,7 @@ def _status(run):
     try:
         with read_only(run / "history.h5") as history:
             status = str(plain(history.attrs.get("status", "unknown")))
-            return status if status.startswith("failed") else "failed: " + status
+            return status if status.startswith(("failed", "interrupted")) else "failed: " + status
     except OSError:
         return "failed"
 
