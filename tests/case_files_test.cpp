@@ -99,6 +99,7 @@ TEST(CaseFiles, CheckWithAPilotRunEstimatesTheRunTime) {
   EXPECT_NE(text.find(" (the whole run)\nestimated run time: "), std::string::npos) << text;
   EXPECT_NE(text.find(", measured in the pilot ("), std::string::npos) << text;
   EXPECT_EQ(text.find("at most "), std::string::npos) << text;
+  EXPECT_NE(text.find("\n  start-up and final output: "), std::string::npos) << text;
   EXPECT_FALSE(std::filesystem::exists(std::filesystem::temp_directory_path() /
                                        ("mpile-pilot-" + std::to_string(::getpid()))));
 }

@@ -80,6 +80,16 @@ check(float(stored["kinetic_start"].sel({"materials.spring.young_modulus": 157.9
       "results.nc does not hold the stiff, fast variant's 8 J/m")
 stored.close()
 
+check(os.path.getsize(os.path.join(out, "results.png")) > 10000, "no results.png")
+tool = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools", "plot_sweep.py")
+plotted = subprocess.run([sys.executable, tool, out, "--quantities", "kinetic_at_quarter", "--x",
+                          "materials.spring.young_modulus", "--out", os.path.join(work, "quarter.png")],
+                         capture_output=True, text=True)
+check(plotted.returncode == 0 and os.path.exists(os.path.join(work, "quarter.png")), f"plot_sweep.py: {plotted.stderr}")
+wrong = subprocess.run([sys.executable, tool, out, "--quantities", "kinetic_end"], capture_output=True, text=True)
+check(wrong.returncode != 0 and "the sweep gathers no kinetic_end (it gathers kinetic_start, kinetic_at_quarter, run_time)"
+      in wrong.stderr, f"plot_sweep.py with an unknown quantity: {wrong.stderr}")
+
 finished_history = os.path.join(out, "variants", "v01", "history.h5")
 before = os.stat(finished_history).st_mtime_ns
 failed_log = os.path.join(out, "variants", "v02", "run.log")

@@ -164,9 +164,9 @@ def open_sweep(directory, form="xarray"):
     return to_xarray(frame, sweep, units)
 
 
-def plot(directory, frame=None, units=None, x=None):
-    """A figure with each gathered quantity against parameter `x` (default: the one with the most
-    values), one line per combination of the other parameters' values."""
+def plot(directory, frame=None, units=None, x=None, quantities=None):
+    """A figure with each gathered quantity (default: all) against parameter `x` (default: the
+    one with the most values), one line per combination of the other parameters' values."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -181,6 +181,13 @@ def plot(directory, frame=None, units=None, x=None):
         x = max(parameters, key=lambda p: frame[p].nunique())
     others = [p for p in parameters if p != x]
     names = [g["name"] for g in sweep.get("gather", [])]
+    if quantities:
+        unknown = [q for q in quantities if q not in names]
+        if unknown:
+            raise ValueError(f"{directory}: the sweep gathers no {', '.join(unknown)} (it gathers {', '.join(names)})")
+        names = list(quantities)
+    if x not in parameters:
+        raise ValueError(f"{directory}: {x!r} is not a parameter of the sweep ({', '.join(parameters)})")
     figure, axes = plt.subplots(len(names), 1, figsize=(6.0, 3.2 * len(names)), squeeze=False)
     if not others:
         groups = [((), frame)]
@@ -198,5 +205,5 @@ def plot(directory, frame=None, units=None, x=None):
             ax.legend(fontsize=8)
     axes[-1, 0].set_xlabel(x)
     figure.suptitle(sweep["title"], fontsize=10)
-    figure.tight_layout()
+    figure.tight_layout(rect=(0.0, 0.0, 1.0, 1.0 - 0.3 / (3.2 * len(names))))
     return figure
