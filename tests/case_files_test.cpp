@@ -5,6 +5,7 @@
 #include "io/element_test.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/run_command.hpp"
+#include "io/sweep_file.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,6 +26,11 @@ bool is_element_test(const std::filesystem::path& path) {
   return path.parent_path().filename() == "element_tests";
 }
 
+// Sweep files (cases/sweeps/) describe studies of cases: checked with the sweep reader below.
+bool is_sweep(const std::filesystem::path& path) {
+  return path.parent_path().filename() == "sweeps";
+}
+
 // Base files (cases/*/base/) are parts of cases: read through the cases that name them.
 bool is_base(const std::filesystem::path& path) {
   return path.parent_path().filename() == "base";
@@ -34,7 +40,8 @@ TEST(CaseFiles, EveryShippedCaseFileIsValid) {
   int files = 0;
   std::set<std::filesystem::path> bases, used;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(source / "cases")) {
-    if (entry.path().extension() != ".toml" || is_element_test(entry.path())) {
+    if (entry.path().extension() != ".toml" || is_element_test(entry.path()) ||
+        is_sweep(entry.path())) {
       continue;
     }
     if (is_base(entry.path())) {
@@ -58,6 +65,18 @@ TEST(CaseFiles, EveryShippedCaseFileIsValid) {
 
 // Tests that edit a monopile case's text use flat copies (tests/data/); the shipped cases build
 // on base files. Equal resolved trees mean the copies are the very cases that ship.
+TEST(CaseFiles, EveryShippedSweepFileIsValid) {
+  // Read as `mpile sweep` reads it: the sweep file, then every variant's case with its values.
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(source / "cases/sweeps")) {
+    if (entry.path().extension() == ".toml") {
+      ++files;
+      EXPECT_NO_THROW(validate_sweep(read_sweep_file(entry.path().string()))) << entry.path();
+    }
+  }
+  EXPECT_GE(files, 1);
+}
+
 TEST(CaseFiles, TheMonopileCasesComposeToTheirFlatCopies) {
   for (const char* name : {"gdp_quick", "gdp_paper", "jacked_quick"}) {
     const CaseSpec shipped =

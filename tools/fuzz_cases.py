@@ -101,10 +101,18 @@ def limits(memory_mib, cpu_seconds):
     return apply
 
 
+def command(mpile, path):
+    """How a mutant is read: a case with `mpile check`; a sweep file (cases/sweeps/) with
+    `mpile sweep --prepare`, which reads it and every variant's case and writes the workflow."""
+    if os.path.basename(os.path.dirname(path)) == "sweeps":
+        return [mpile, "sweep", path, "--prepare", "--out", path + ".workflow"]
+    return [mpile, "check", path]
+
+
 def check(mpile, path, timeout, memory_mib):
-    """`mpile check` on one file: ("accepted" | "refused", None), or ("failed", what went wrong)."""
+    """One mutant read: ("accepted" | "refused", None), or ("failed", what went wrong)."""
     try:
-        done = subprocess.run([mpile, "check", path], capture_output=True, timeout=timeout,
+        done = subprocess.run(command(mpile, path), capture_output=True, timeout=timeout,
                               preexec_fn=limits(memory_mib, int(timeout) + 1))
     except subprocess.TimeoutExpired:
         return "failed", f"no answer within {timeout} s"
@@ -138,12 +146,10 @@ def main():
     args = parser.parse_args()
 
     cases = []
-    bases = []  # directories of base files (shared parts of cases), copied beside the mutants
     for directory, _, files in os.walk(os.path.join(ROOT, "cases")):
         if os.path.basename(directory) == "element_tests":
             continue  # element-test files, not cases
         if os.path.basename(directory) == "base":
-            bases.append(os.path.relpath(directory, os.path.join(ROOT, "cases")))
             continue  # parts of cases, read through the cases that name them
         for name in sorted(files):
             if name.endswith(".toml") and (args.all_cases or name not in SLOW):
@@ -153,9 +159,9 @@ def main():
     cases.sort()
     rng = random.Random(args.seed)
     work = tempfile.mkdtemp(prefix="mpile-fuzz-")
-    # A mutant sits where its case does relative to the bases, so `base = "base/..."` resolves.
-    for folder in bases:
-        shutil.copytree(os.path.join(ROOT, "cases", folder), os.path.join(work, folder))
+    # A mutant sits where its case does among copies of all the shipped files, so that a base
+    # (`base = "base/..."`) and a sweep's case (`case = "../monopile/..."`) resolve.
+    shutil.copytree(os.path.join(ROOT, "cases"), work, dirs_exist_ok=True)
     jobs = []
     for i in range(args.mutants):
         name, folder, text = rng.choice(cases)
@@ -180,15 +186,13 @@ def main():
                 failures.append((path, name, edits, problem))
     if failures:
         os.makedirs(args.keep, exist_ok=True)
-        for folder in bases:
-            shutil.copytree(os.path.join(work, folder), os.path.join(args.keep, folder),
-                            dirs_exist_ok=True)
+        shutil.copytree(os.path.join(ROOT, "cases"), args.keep, dirs_exist_ok=True)
         for path, name, edits, problem in failures:
             kept = os.path.join(args.keep, os.path.relpath(path, work))
             os.makedirs(os.path.dirname(kept), exist_ok=True)
             os.replace(path, kept)
             print(f"FAIL {kept} ({name}; {', '.join(edits)}): {problem}")
-            print(f"     replay: {args.mpile} check {kept}")
+            print(f"     replay: {' '.join(command(args.mpile, kept))}")
     elapsed = time.monotonic() - start
     print(f"{len(jobs)} mutants of {len(cases)} case files (seed {args.seed}) in {elapsed:.0f} s: "
           f"{counts['accepted']} accepted, {counts['refused']} refused, {len(failures)} failures")
