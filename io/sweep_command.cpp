@@ -324,9 +324,11 @@ int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& 
   }
   if (failed > 0) {
     // The table of the variants that did finish, so that a study is not held up by one case.
-    snakemake.insert(snakemake.end(),
-                     {"--config", "partial=1", "--forcerun", "gather", "--", "gather"});
-    run_program(snakemake);
+    // Here, not through a profile: the gathering is a local job, and a cluster profile's settings
+    // would only be in its way.
+    run_program({"snakemake", "--snakefile", (directory / "Snakefile").string(), "--directory",
+                 directory.string(), "--quiet", "rules", "--cores", "1", "--config", "partial=1",
+                 "--forcerun", "gather", "--", "gather"});
     err << "mpile: " << failed << " of " << sweep.variants.size()
         << " variants did not finish (run the same command to retry them):\n"
         << report.str();

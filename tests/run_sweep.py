@@ -9,6 +9,7 @@ the single material point, one of which leaves the grid):
   small velocity nearly all of it is elastic;
 - the same command again reruns only the failed variant (Snakemake's markers), the finished
   variants' outputs untouched;
+- a Snakemake profile (here a local one) runs it the same way;
 - SIGTERM to a running sweep stops Snakemake and its runs (checkpoints written), exit status 130.
 
   run_sweep.py MPILE SWEEP_FILE WORK_DIRECTORY
@@ -98,6 +99,19 @@ again = sweep()
 check(again.returncode == 1, f"second run: exit status {again.returncode}, expected 1")
 check(os.stat(finished_history).st_mtime_ns == before, "the finished variant v01 ran again")
 check(os.stat(failed_log).st_mtime_ns != 0, "the failed variant v02 was not retried")
+
+# Through a Snakemake profile (as on a cluster; here one that runs locally): the same table, the
+# partial gathering done locally whatever the profile says.
+profile = os.path.join(work, "profile")
+os.makedirs(profile)
+with open(os.path.join(profile, "config.yaml"), "w") as f:
+    f.write("cores: 2\n")
+profiled = subprocess.run([mpile_binary, "sweep", sweep_file, "--out", os.path.join(work, "profiled"),
+                           "--profile", profile], capture_output=True, text=True, timeout=300)
+check(profiled.returncode == 1 and "1 of 4 variants did not finish" in profiled.stderr,
+      f"with a profile: exit status {profiled.returncode}: {profiled.stderr[-500:]}")
+with open(os.path.join(work, "profiled", "results.csv")) as f:
+    check(len(f.read().strip().splitlines()) == 5, "with a profile: results.csv does not hold 4 rows")
 
 # An interrupt: SIGTERM to `mpile sweep` reaches Snakemake and the runs (two variants of 20 000 s
 # of the single point, about a million steps each), which write their checkpoints and stop; the
