@@ -723,11 +723,13 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
       s.body = read_rigid_body_name(*stop, spec, declared_rigid, "");
       s.penetration = stop->positive("penetration");
       if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
-          s.penetration > spec.moving_mesh->travel) {
+          s.penetration >= spec.moving_mesh->travel) {
+        // Equal is refused too: the phase stops after the step that reaches the depth, and that
+        // step has already carried the band past its travel.
         std::ostringstream why;
-        why << "is beyond the travel of the moving band (" << spec.moving_mesh->travel
-            << " m): below that depth the soil is seeded for coarser cells than the band's; "
-               "raise "
+        why << "reaches the travel of the moving band (" << spec.moving_mesh->travel
+            << " m): below that depth the soil is seeded for coarser cells than the band's, and "
+               "the step that reaches it carries the band past it; stop short of it or raise "
             << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
         stop->fail("penetration", why.str());
       }

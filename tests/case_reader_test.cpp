@@ -505,9 +505,13 @@ std::vector<BadInput> bad_monopile_inputs() {
        monopile_edited("snapshot_penetrations = [0.05, 0.1]", "snapshot_penetrations = [-0.05]"),
        "output.snapshot_penetrations: penetrations must be positive", "snapshot_penetrations"},
       {"stop beyond the band's travel", monopile_edited("travel = 0.2", "travel = 0.05"),
-       "phases[1].stop_at.penetration: is beyond the travel of the moving band (0.05 m): below "
-       "that depth the soil is seeded for coarser cells than the band's; raise [monopile] travel",
+       "phases[1].stop_at.penetration: reaches the travel of the moving band (0.05 m): below "
+       "that depth the soil is seeded for coarser cells than the band's, and the step that "
+       "reaches it carries the band past it; stop short of it or raise [monopile] travel",
        "stop_at"},
+      // Equal fails too: the run would stop with the band past its travel in its last step.
+      {"stop at the band's whole travel", monopile_edited("travel = 0.2", "travel = 0.1"),
+       "phases[1].stop_at.penetration: reaches the travel of the moving band (0.1 m)", "stop_at"},
       {"non-positive travel", monopile_edited("travel = 0.2", "travel = 0.0"),
        "monopile.travel: must be positive", "travel = 0.0"},
   };
@@ -622,9 +626,9 @@ TEST(CaseReader, APhaseStopsAtThePenetrationOfABodyDeclaredRigidInItsOwnTable) {
       stopping + "\n[moving_mesh]\nbody = \"pile\"\nband = [0.3, 0.7]\ntravel = 0.01\n";
   expect_rejected(
       {{"stop beyond the band's travel", banded,
-        "phases[1].stop_at.penetration: is beyond the travel of the moving band (0.01 m): below "
-        "that depth the soil is seeded for coarser cells than the band's; raise [moving_mesh] "
-        "travel",
+        "phases[1].stop_at.penetration: reaches the travel of the moving band (0.01 m): below "
+        "that depth the soil is seeded for coarser cells than the band's, and the step that "
+        "reaches it carries the band past it; stop short of it or raise [moving_mesh] travel",
         "stop_at = {"}});
   // Stretch limits must be grid lines outside the band.
   const std::string stretched =
