@@ -62,12 +62,24 @@ std::vector<PhaseEstimate> estimate_phases(const CaseSpec& spec, const PilotReco
       basis << "at most its duration";
       if (phase.stop_at && pilot.penetration.count(phase.stop_at->body) > 0 && b - a >= 2) {
         const std::vector<double>& p = pilot.penetration.at(phase.stop_at->body);
-        const double rate = (p[b - 1] - p[a]) / (pilot.time[b - 1] - pilot.time[a]);
+        // The rate over the later half of the phase's rows: a pile that gathers speed (GDP spins
+        // up; the first centimetres are mostly settling) would be given too long by the average
+        // since the phase began. Where the later half stood still (between impact blows), the
+        // average over the whole phase.
+        const double middle = 0.5 * (pilot.time[a] + pilot.time[b - 1]);
+        std::size_t m = a;
+        while (m + 2 < b && pilot.time[m] < middle) {
+          ++m;
+        }
+        double rate = (p[b - 1] - p[m]) / (pilot.time[b - 1] - pilot.time[m]);
+        if (!(rate > 0.0)) {
+          rate = (p[b - 1] - p[a]) / (pilot.time[b - 1] - pilot.time[a]);
+        }
         if (rate > 0.0) {
           remaining = std::min(std::max(phase.stop_at->penetration - p[b - 1], 0.0) / rate, to_end);
           e.bound = false;
           basis.str("");
-          basis << "from its penetration rate in the pilot, " << rate << " m/s to "
+          basis << "from its penetration rate late in the pilot, " << rate << " m/s to "
                 << phase.stop_at->penetration << " m";
         }
       } else if (!phase.stop_at && !phase.equilibrium_tolerance) {

@@ -55,6 +55,21 @@ TEST(RunEstimate, ThePhaseThePilotStoppedInIsExtrapolatedFromItsPenetrationRate)
   EXPECT_NE(e[1].basis.find("penetration rate"), std::string::npos) << e[1].basis;
 }
 
+TEST(RunEstimate, APileThatGathersSpeedIsExtrapolatedFromItsLaterRate) {
+  PilotRecord pilot = pilot_in_installation();
+  // The pile accelerates: p = 25 (t - 0.01)^2, 0.01 m at 0.03 s. The later half of the phase's
+  // rows (from 0.021 s, the first row past the middle 0.0205 s) gives (0.01 - 0.003025) /
+  // 0.009 = 0.775 m/s; the average since the phase began would give 0.5 m/s and 50 % more time.
+  for (std::size_t r = 11; r < pilot.time.size(); ++r) {
+    const double s = pilot.time[r] - 0.01;
+    pilot.penetration["pile"][r] = 25.0 * s * s;
+  }
+  const std::vector<PhaseEstimate> e = estimate_phases(two_phases(), pilot);
+  const double rate = (0.01 - 25.0 * 0.011 * 0.011) / 0.009;
+  EXPECT_NEAR(e[1].wall, 2.0 + 0.09 / rate * 100.0, 1e-9);
+  EXPECT_NE(e[1].basis.find("late in the pilot, 0.775 m/s"), std::string::npos) << e[1].basis;
+}
+
 TEST(RunEstimate, APilotStillAtEquilibriumBoundsTheRunByTheDurations) {
   PilotRecord pilot = pilot_in_installation();
   // Only the geostatic rows: 100 s of wall per simulated second there too.
