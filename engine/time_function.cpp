@@ -65,6 +65,16 @@ double table_primitive(const std::vector<std::pair<double, double>>& p, double t
 
 } // namespace
 
+std::optional<double> TimeFunction::period() const {
+  if (const auto* h = std::get_if<Harmonic>(&function_); h != nullptr && h->frequency > 0.0) {
+    return 1.0 / h->frequency;
+  }
+  if (const auto* p = std::get_if<PulseTrain>(&function_); p != nullptr && p->interval > 0.0) {
+    return p->interval;
+  }
+  return std::nullopt;
+}
+
 TimeFunction TimeFunction::starting_at(double start) const {
   TimeFunction shifted = *this;
   shifted.start_ = start;

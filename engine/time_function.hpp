@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -29,6 +30,8 @@ public:
   double start() const { return start_; }
 
   double value(double t) const;
+  /// The period of a harmonic (1 / f) or a pulse train (its interval); none for the others.
+  std::optional<double> period() const;
   /// Integral of the function from 0 to t.
   double primitive(double t) const;
   /// Mean value over [t0, t1] (the value at t0 when the interval is empty).

@@ -6,9 +6,32 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace mpile {
+
+namespace {
+
+/// The longest period among the drives of a rigid body, if any is periodic.
+std::optional<double> drive_period(const CaseSpec& spec, const std::string& body) {
+  std::optional<double> longest;
+  for (const BodySpec& b : spec.bodies) {
+    if (b.name != body || !b.rigid) {
+      continue;
+    }
+    for (const std::optional<RigidDrive>& drive : b.rigid->drive) {
+      if (drive) {
+        if (const std::optional<double> period = drive->function.period()) {
+          longest = std::max(longest.value_or(0.0), *period);
+        }
+      }
+    }
+  }
+  return longest;
+}
+
+} // namespace
 
 std::vector<PhaseEstimate> estimate_phases(const CaseSpec& spec, const PilotRecord& pilot) {
   std::vector<PhaseEstimate> estimates;
@@ -62,25 +85,42 @@ std::vector<PhaseEstimate> estimate_phases(const CaseSpec& spec, const PilotReco
       basis << "at most its duration";
       if (phase.stop_at && pilot.penetration.count(phase.stop_at->body) > 0 && b - a >= 2) {
         const std::vector<double>& p = pilot.penetration.at(phase.stop_at->body);
-        // The rate over the later half of the phase's rows: a pile that gathers speed (GDP spins
-        // up; the first centimetres are mostly settling) would be given too long by the average
-        // since the phase began. Where the later half stood still (between impact blows), the
-        // average over the whole phase.
-        const double middle = 0.5 * (pilot.time[a] + pilot.time[b - 1]);
+        const double into_phase = now - pilot.time[a];
+        // A periodic drive (a torque's cycle, the interval between blows) moves the pile in
+        // spurts: its rate means something only over whole periods. Otherwise the rate over the
+        // later half of the phase's rows: a pile that gathers speed would be given too long by
+        // the average since the phase began (the first centimetres are mostly settling).
+        const std::optional<double> period = drive_period(spec, phase.stop_at->body);
+        double window = 0.5 * into_phase;
+        if (period) {
+          const double periods = std::floor(0.5 * into_phase / *period);
+          window = std::max(periods, into_phase >= *period ? 1.0 : 0.0) * *period;
+        }
+        const bool within_first_period = period && window == 0.0;
+        if (within_first_period) {
+          window = into_phase; // the rate so far: right if the pile gets there in this period
+        }
         std::size_t m = a;
-        while (m + 2 < b && pilot.time[m] < middle) {
+        while (m + 2 < b && pilot.time[m] < now - window) {
           ++m;
         }
-        double rate = (p[b - 1] - p[m]) / (pilot.time[b - 1] - pilot.time[m]);
-        if (!(rate > 0.0)) {
-          rate = (p[b - 1] - p[a]) / (pilot.time[b - 1] - pilot.time[a]);
-        }
+        const double rate = (p[b - 1] - p[m]) / (pilot.time[b - 1] - pilot.time[m]);
         if (rate > 0.0) {
           remaining = std::min(std::max(phase.stop_at->penetration - p[b - 1], 0.0) / rate, to_end);
           e.bound = false;
           basis.str("");
-          basis << "from its penetration rate late in the pilot, " << rate << " m/s to "
-                << phase.stop_at->penetration << " m";
+          basis << "from its penetration rate over the pilot's last " << window << " s, " << rate
+                << " m/s to " << phase.stop_at->penetration << " m";
+        }
+        if (within_first_period) {
+          // How long a pilot must run to see one whole period of the drive.
+          const double one_period = pilot.wall[a] + (pilot.wall[b - 1] - pilot.wall[a]) * *period /
+                                                        std::max(into_phase, 1e-300);
+          basis << (rate > 0.0 ? "; " : " (") << "the pilot ran " << into_phase
+                << " s of its drive's period of " << *period
+                << " s: longer if the pile does not get there within this period; --pilot "
+                << std::ceil(1.2 * one_period) << " or more covers one period"
+                << (rate > 0.0 ? "" : ")");
         }
       } else if (!phase.stop_at && !phase.equilibrium_tolerance) {
         e.bound = false;

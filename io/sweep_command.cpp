@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <csignal>
 #include <cstring>
 #include <deque>
@@ -59,6 +60,14 @@ std::string quoted_list(const std::vector<std::string>& items) {
   return list + "]";
 }
 
+/// A number as TOML reads it back exactly (the shortest round-trip form).
+std::string number_text(double x) {
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
+  std::string text(buffer, end);
+  return text.find_first_of(".e") == std::string::npos ? text + ".0" : text;
+}
+
 /// The validated sweep as the workflow and the gathering read it (absolute paths, every variant).
 std::string sweep_record(const SweepSpec& sweep, const std::string& case_path,
                          const std::string& mpile) {
@@ -78,10 +87,11 @@ std::string sweep_record(const SweepSpec& sweep, const std::string& case_path,
   for (const GatherSpec& g : sweep.gather) {
     s << "\n[[gather]]\nname = " << quoted(g.name) << "\nseries = " << quoted(g.series) << "\n";
     if (g.at_penetration) {
-      s << "body = " << quoted(g.body) << "\nat_penetration = " << *g.at_penetration << "\n";
+      s << "body = " << quoted(g.body) << "\nat_penetration = " << number_text(*g.at_penetration)
+        << "\n";
     }
     if (g.at_time) {
-      s << "at_time = " << *g.at_time << "\n";
+      s << "at_time = " << number_text(*g.at_time) << "\n";
     }
     if (!g.reduce.empty()) {
       s << "reduce = " << quoted(g.reduce) << "\n";
@@ -118,6 +128,9 @@ std::string snakefile(const std::string& sweep_file) {
     << "    gather,\n\n\n"
     << "wildcard_constraints:\n"
     << "    variant=\"v[0-9]+\",\n\n\n"
+    << "def literal(path):\n"
+    << "    # A path quoted for the shell, its braces kept from Snakemake's formatting.\n"
+    << "    return shlex.quote(path).replace(\"{\", \"{{\").replace(\"}\", \"}}\")\n\n\n"
     << "def finished(wildcards):\n"
     << "    # With --config partial=1 the table gathers the variants that have finished so far.\n"
     << "    markers = [f\"variants/{v}/finished\" for v in VARIANTS]\n"
@@ -139,7 +152,7 @@ std::string snakefile(const std::string& sweep_file) {
     << "    resources:\n"
     << "        mem_mb=2000,\n"
     << "    shell:\n"
-    << "        shlex.quote(SWEEP[\"mpile\"]) + \" run \" + shlex.quote(SWEEP[\"case\"]) + \" "
+    << "        literal(SWEEP[\"mpile\"]) + \" run \" + literal(SWEEP[\"case\"]) + \" "
        "{params.sets} --out variants/{wildcards.variant} --threads {threads} > {log} 2>&1\"\n\n\n"
     << "rule gather:\n"
     << "    input:\n"

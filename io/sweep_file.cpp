@@ -103,6 +103,13 @@ std::vector<GatherSpec> read_gather(TomlTable& top) {
     if (ways != 1) {
       g.fail("series", "give exactly one of at_penetration, at_time or reduce");
     }
+    if (spec.at_penetration &&
+        !(std::isfinite(*spec.at_penetration) && *spec.at_penetration > 0.0)) {
+      g.fail("at_penetration", "must be a penetration above zero, m");
+    }
+    if (spec.at_time && !(std::isfinite(*spec.at_time) && *spec.at_time >= 0.0)) {
+      g.fail("at_time", "must be a time from zero on, s");
+    }
     if (spec.at_penetration && spec.body.empty()) {
       g.missing("body", "(the rigid body whose penetration at_penetration means)");
     }

@@ -101,6 +101,12 @@ TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
        ":10: gather[0].series: a path in history.h5"},
       {"a phase without reduce", "at_time = 0.0", "at_time = 0.0\nphase = \"vibrate\"",
        ":12: gather[0].phase: only reduce takes a phase"},
+      {"a negative time", "at_time = 0.0", "at_time = -1.0",
+       ":11: gather[0].at_time: must be a time from zero on, s"},
+      {"a penetration of nan", "at_time = 0.0", "at_penetration = nan\nbody = \"pile\"",
+       ":11: gather[0].at_penetration: must be a finite number"},
+      {"a penetration of zero", "at_time = 0.0", "at_penetration = 0.0\nbody = \"pile\"",
+       ":11: gather[0].at_penetration: must be a penetration above zero, m"},
       {"threads zero", "title = \"point\"", "title = \"point\"\nthreads = 0",
        ":2: threads: threads per run must be from 1 to 1024"},
   };
