@@ -180,10 +180,15 @@ def main():
     counts = {"accepted": 0, "refused": 0, "failed": 0}
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         outcomes = pool.map(lambda job: check(args.mpile, job[0], args.timeout, args.memory), jobs)
-        for (path, name, edits), (outcome, problem) in zip(jobs, outcomes):
+        for done, ((path, name, edits), (outcome, problem)) in enumerate(zip(jobs, outcomes), 1):
             counts[outcome] += 1
             if problem is not None:
                 failures.append((path, name, edits, problem))
+            if done % 10000 == 0 and done < len(jobs):
+                # A long run says where it is, so that one cut short still has counts.
+                print(f"{done} of {len(jobs)} mutants in {time.monotonic() - start:.0f} s: "
+                      f"{counts['accepted']} accepted, {counts['refused']} refused, "
+                      f"{len(failures)} failures so far", flush=True)
     if failures:
         os.makedirs(args.keep, exist_ok=True)
         shutil.copytree(os.path.join(ROOT, "cases"), args.keep, dirs_exist_ok=True)
