@@ -11,7 +11,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <charconv>
 #include <csignal>
 #include <cstring>
 #include <deque>
@@ -30,26 +29,7 @@ namespace fs = std::filesystem;
 
 /// A TOML basic string.
 std::string quoted(const std::string& text) {
-  std::string q = "\"";
-  for (const char c : text) {
-    switch (c) {
-    case '"':
-      q += "\\\"";
-      break;
-    case '\\':
-      q += "\\\\";
-      break;
-    case '\n':
-      q += "\\n";
-      break;
-    case '\t':
-      q += "\\t";
-      break;
-    default:
-      q += c;
-    }
-  }
-  return q + "\"";
+  return toml_text(TomlValue(text));
 }
 
 std::string quoted_list(const std::vector<std::string>& items) {
@@ -58,14 +38,6 @@ std::string quoted_list(const std::vector<std::string>& items) {
     list += (i > 0 ? ", " : "") + quoted(items[i]);
   }
   return list + "]";
-}
-
-/// A number as TOML reads it back exactly (the shortest round-trip form).
-std::string number_text(double x) {
-  char buffer[64];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x).ptr;
-  std::string text(buffer, end);
-  return text.find_first_of(".e") == std::string::npos ? text + ".0" : text;
 }
 
 /// The validated sweep as the workflow and the gathering read it (absolute paths, every variant).
@@ -87,11 +59,11 @@ std::string sweep_record(const SweepSpec& sweep, const std::string& case_path,
   for (const GatherSpec& g : sweep.gather) {
     s << "\n[[gather]]\nname = " << quoted(g.name) << "\nseries = " << quoted(g.series) << "\n";
     if (g.at_penetration) {
-      s << "body = " << quoted(g.body) << "\nat_penetration = " << number_text(*g.at_penetration)
-        << "\n";
+      s << "body = " << quoted(g.body)
+        << "\nat_penetration = " << toml_text(TomlValue(*g.at_penetration)) << "\n";
     }
     if (g.at_time) {
-      s << "at_time = " << number_text(*g.at_time) << "\n";
+      s << "at_time = " << toml_text(TomlValue(*g.at_time)) << "\n";
     }
     if (!g.reduce.empty()) {
       s << "reduce = " << quoted(g.reduce) << "\n";

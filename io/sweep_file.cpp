@@ -12,9 +12,8 @@
 
 namespace mpile {
 
-namespace {
+namespace {} // namespace
 
-/// A value as --set reads it back exactly: floats in their shortest round-trip form.
 std::string toml_text(const TomlValue& value) {
   if (value.is_floating()) {
     const double x = value.as_floating();
@@ -50,6 +49,8 @@ std::string toml_text(const TomlValue& value) {
   text.erase(text.find_last_not_of('\n') + 1);
   return text;
 }
+
+namespace {
 
 /// `{ from, to, count, scale }`: count values from `from` to `to`, both included.
 std::vector<std::string> range_values(TomlTable range) {

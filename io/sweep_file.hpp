@@ -5,6 +5,8 @@
 // strictly as a case file, and every variant is composed (base, --set) and read before anything
 // runs, so a wrong key path or value is refused naming the sweep file's line.
 
+#include "io/toml_reader.hpp"
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +51,10 @@ struct SweepSpec {
 
 /// The most variants a sweep may expand to; more is almost surely a mistyped range.
 inline constexpr std::size_t max_sweep_variants = 10000;
+
+/// A TOML value as text that reads back exactly (floats in their shortest round-trip form,
+/// strings quoted and escaped): what --set and the expanded sweep.toml are given.
+std::string toml_text(const TomlValue& value);
 
 /// Reads a sweep file and expands its variants; CaseError naming file, line and key otherwise.
 SweepSpec read_sweep_file(const std::string& path);
