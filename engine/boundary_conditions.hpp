@@ -1,5 +1,6 @@
 #pragma once
 
+#include "engine/absorbing_boundary.hpp"
 #include "engine/geometry_mode.hpp"
 #include "engine/grid.hpp"
 #include "engine/time_function.hpp"
@@ -46,7 +47,6 @@ struct NodalLoad {
   TimeFunction traction;
 };
 
-enum class GridFace { r_min, r_max, y_min, y_max };
 enum class FaceCondition { free, roller, fixed };
 
 /// Node indices along a grid line: the column of nodes at r-index ir (direction y) or the row at
@@ -74,6 +74,8 @@ NodalLoad line_load(const Grid& grid, GeometryMode mode, const std::vector<int>&
 struct Boundaries {
   std::vector<NodeConstraint> constraints;
   std::vector<NodalLoad> loads;
+  /// Faces whose support gives way to dashpots when they are switched on.
+  std::vector<AbsorbingFace> absorbing;
 
   /// Sets grid.constrained from the constraints (the DOFs that local damping leaves alone).
   void mark_constrained_dofs(Grid& grid) const;

@@ -28,6 +28,9 @@ struct alignas(64) GridNode {
 };
 static_assert(sizeof(GridNode) == 64);
 
+/// The four faces of the grid's rectangle.
+enum class GridFace { r_min, r_max, y_min, y_max };
+
 /// Bit mask of constrained nodal degrees of freedom.
 enum DofBit : std::uint8_t { DOF_R = 1, DOF_Y = 2, DOF_THETA = 4 };
 

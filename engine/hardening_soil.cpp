@@ -282,6 +282,11 @@ double HardeningSoil::constrained_modulus(const Stress& stress, const double*) c
   return e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
 }
 
+double HardeningSoil::shear_modulus(const Stress& stress, const double*) const {
+  const PrincipalValues principal = principal_compression_values(stress);
+  return unloading_modulus(principal.values[2]) / (2.0 * (1.0 + parameters_.poisson_ur));
+}
+
 double HardeningSoil::elastic_energy_density(const Stress& stress, const double*) const {
   // Recoverable energy at the current unloading stiffness (the hypoelastic law has no exact
   // potential; this is the energy an unloading at fixed moduli would return).

@@ -54,6 +54,8 @@ public:
   void initialise_state(const Stress& stress, double* state) const override;
   void update_stress(const StressUpdateBatch& batch) const override;
   double constrained_modulus(const Stress& stress, const double* state) const override;
+  /// Eur(sigma_3) / (2 (1 + nu_ur)), the unloading-reloading shear stiffness.
+  double shear_modulus(const Stress& stress, const double* state) const override;
   double elastic_energy_density(const Stress& stress, const double* state) const override;
 
   /// Advances one material point; returns the constrained modulus used.

@@ -16,10 +16,12 @@ public:
   double constrained_modulus(const Stress&, const double*) const override {
     return lambda_ + 2.0 * mu_;
   }
+  double shear_modulus(const Stress&, const double*) const override { return mu_; }
   double elastic_energy_density(const Stress& stress, const double* state) const override;
 
   double young_modulus() const { return young_; }
   double poisson_ratio() const { return poisson_; }
+  using Material::shear_modulus;
   double shear_modulus() const { return mu_; }
   double lame_lambda() const { return lambda_; }
 

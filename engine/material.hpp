@@ -48,6 +48,10 @@ public:
   /// Constrained (P-wave) modulus at a stress state, for the initial time step (Pa).
   virtual double constrained_modulus(const Stress& stress, const double* state) const = 0;
 
+  /// Shear modulus at a stress state (Pa); with the constrained modulus it gives the P and S wave
+  /// impedances of an absorbing boundary.
+  virtual double shear_modulus(const Stress& stress, const double* state) const = 0;
+
   /// Recoverable (elastic) energy per unit volume stored at a stress state (J/m^3).
   virtual double elastic_energy_density(const Stress& stress, const double* state) const = 0;
 };

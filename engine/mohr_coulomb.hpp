@@ -59,6 +59,7 @@ public:
   double constrained_modulus(const Stress&, const double*) const override {
     return lambda_ + 2.0 * mu_;
   }
+  double shear_modulus(const Stress&, const double*) const override { return mu_; }
   double elastic_energy_density(const Stress& stress, const double* state) const override;
 
   /// Return of a trial state given by its principal compressions (sorted, sigma_1 first).
@@ -70,6 +71,7 @@ public:
 
   double young_modulus() const { return young_; }
   double poisson_ratio() const { return poisson_; }
+  using Material::shear_modulus;
   double shear_modulus() const { return mu_; }
   double lame_lambda() const { return lambda_; }
   double cohesion() const { return cohesion_; }

@@ -20,6 +20,7 @@ public:
     }
   }
   double constrained_modulus(const Stress&, const double*) const override { return 0.0; }
+  double shear_modulus(const Stress&, const double*) const override { return 0.0; }
   double elastic_energy_density(const Stress&, const double*) const override { return 0.0; }
 
 private:

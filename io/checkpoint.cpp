@@ -102,9 +102,10 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     const EnergyLedger& e = solver.energy;
     file.write("/solver/energy",
                std::vector<double>{e.external_work, e.internal_work, e.damping, e.contact,
-                                   e.kinetic_reference, e.elastic_reference, e.transfer},
+                                   e.kinetic_reference, e.elastic_reference, e.transfer,
+                                   e.radiated},
                "external work, internal work, damping, contact, kinetic and elastic references, "
-               "transfer");
+               "transfer, radiated");
     file.write("/run/counters",
                std::vector<double>{static_cast<double>(progress.phase),
                                    static_cast<double>(progress.history_rows),
@@ -226,7 +227,7 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
                        EnergyLedger{e.at(0), e.at(1), e.at(2), e.at(3), e.at(4), e.at(5),
                                     // A checkpoint written before the transfer term
                                     // was kept had none to keep (pure FLIP runs).
-                                    e.size() > 6 ? e[6] : 0.0}};
+                                    e.size() > 6 ? e[6] : 0.0, e.size() > 7 ? e[7] : 0.0}};
   const auto c = file.read_doubles("/run/counters");
   RunProgress& progress = checkpoint.progress;
   progress.phase = static_cast<std::size_t>(c.at(0));

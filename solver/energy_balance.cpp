@@ -24,11 +24,12 @@ EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, dou
   b.damping = ledger.damping;
   b.contact = ledger.contact;
   b.transfer = ledger.transfer;
+  b.radiated = ledger.radiated;
   b.residual = b.external_work - (b.kinetic - ledger.kinetic_reference) - ledger.internal_work -
-               b.damping - b.contact - b.transfer;
-  const double scale =
-      std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference, b.elastic,
-                std::abs(ledger.internal_work), std::abs(b.damping + b.contact + b.transfer)});
+               b.damping - b.contact - b.transfer - b.radiated;
+  const double scale = std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference,
+                                 b.elastic, std::abs(ledger.internal_work),
+                                 std::abs(b.damping + b.contact + b.transfer + b.radiated)});
   b.relative_residual = scale > 0.0 ? std::abs(b.residual) / scale : 0.0;
   return b;
 }

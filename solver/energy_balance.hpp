@@ -22,11 +22,13 @@ struct EnergyLedger {
   /// Taken by the particle velocity update against FLIP: the numerical dissipation of a FLIP/PIC
   /// blend or of XPIC (0 with pure FLIP).
   double transfer = 0.0;
+  /// Taken out of the model by the dashpots of absorbing faces: the energy radiated away.
+  double radiated = 0.0;
 };
 
 /// The balance at one instant: external work = (kinetic - its reference) + internal work +
-/// damping + contact + transfer + residual, with internal work = (elastic - its reference) +
-/// plastic.
+/// damping + contact + transfer + radiated + residual, with internal work = (elastic - its
+/// reference) + plastic.
 struct EnergyBalance {
   double external_work = 0.0;
   double kinetic = 0.0; // with the mass scaling's inertia, the energy the dynamics conserve
@@ -35,6 +37,7 @@ struct EnergyBalance {
   double damping = 0.0;
   double contact = 0.0;
   double transfer = 0.0;
+  double radiated = 0.0;
   double residual = 0.0;
   /// The residual over the largest energy in play: |external work|, the kinetic energy now or at
   /// the reference, the stored elastic energy, |internal work|, or the dissipated sum (a state

@@ -319,8 +319,12 @@ void ExplicitSolver::sort_particles_by_cell() {
 double ExplicitSolver::unbalanced_force_ratio() {
   particle_to_grid();
   // Node forces are f_ext - f_int (gravity included); loads are added here as in a step.
-  passes::apply_nodal_loads(scene_, passes::StepParameters{time_, 0.0, mass_floor_});
+  const passes::StepParameters now{time_, 0.0, mass_floor_};
+  passes::apply_nodal_loads(scene_, now);
   const Grid& grid = scene_.grid;
+  // The holding forces of absorbing faces, like loads, are part of f_ext and among the forces
+  // that hold the state.
+  const double holding_squared = passes::apply_holding_tractions(scene_, now);
   const int dofs = has_theta(scene_.mode) ? 3 : 2;
   const double g2 =
       settings_.gravity[0] * settings_.gravity[0] + settings_.gravity[1] * settings_.gravity[1];
@@ -364,7 +368,19 @@ double ExplicitSolver::unbalanced_force_ratio() {
       sums.held += f * f * (torque ? node.mass / node.inertia : 1.0);
     }
   }
+  sums.held += holding_squared;
   return sums.held > 0.0 ? std::sqrt(sums.free / sums.held) : 0.0;
+}
+
+void ExplicitSolver::switch_on_absorbing(const std::vector<std::size_t>& faces) {
+  if (faces.empty()) {
+    return;
+  }
+  particle_to_grid();
+  const passes::StepParameters now{time_, 0.0, mass_floor_};
+  passes::apply_nodal_loads(scene_, now);
+  passes::apply_holding_tractions(scene_, now);
+  passes::switch_on_absorbing_faces(scene_, faces, now);
 }
 
 void ExplicitSolver::step(double max_dt) {
@@ -435,9 +451,13 @@ void ExplicitSolver::step_in_mode(double dt) {
   {
     PassTimer timer(timings_.grid_update);
     passes::apply_nodal_loads(scene_, step);
+    passes::apply_holding_tractions(scene_, step);
     const passes::GridUpdateResult grid =
         passes::update_grid_velocities<mode>(scene_, settings_, step);
     energy_.damping += grid.damping_dissipation;
+    const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, settings_, step);
+    energy_.radiated += absorbed.radiated;
+    energy_.external_work += absorbed.holding;
     if (grid.node_nonfinite >= 0) {
       const int node = static_cast<int>(grid.node_nonfinite);
       std::ostringstream s;

@@ -89,6 +89,10 @@ public:
   /// Maps the particles to the grid once; nothing of the run's state changes.
   double unbalanced_force_ratio();
 
+  /// Switches the scene's absorbing faces with these indices on in the state now
+  /// (passes::switch_on_absorbing_faces); the state does not change.
+  void switch_on_absorbing(const std::vector<std::size_t>& faces);
+
 private:
   template <GeometryMode mode, bool contact, ShapeFunctions shape> void step_in_mode(double dt);
   template <GeometryMode mode, bool contact> void step_with_contact(double dt);

@@ -37,6 +37,28 @@ template <GeometryMode mode>
 GridUpdateResult update_grid_velocities(Scene& scene, const SolverSettings& settings,
                                         const StepParameters& step);
 
+/// Adds the forces (theta: torques) that absorbing faces hold their nodes with to the soil's node
+/// forces, as loads are added. Returns the sum of their squares (a torque counted as a force at the
+/// node's radius of gyration), for the equilibrium check's measure of the forces that hold.
+double apply_holding_tractions(Scene& scene, const StepParameters& step);
+
+struct AbsorbedWork {
+  double radiated = 0.0; // taken by the dashpots over the step (J)
+  double holding = 0.0;  // done by the holding forces, an external work
+};
+
+/// After the momentum balance: the dashpots of the active absorbing faces, taken implicitly, on the
+/// soil's free DOFs of their nodes.
+AbsorbedWork absorb_at_faces(Scene& scene, const SolverSettings& settings,
+                             const StepParameters& step);
+
+/// Switches absorbing faces on from the node forces f_ext - f_int now (a particle-to-grid map with
+/// loads and the holding forces of faces already on): their supports give way, each node keeps
+/// the force that held it as a traction profile along the face, and the impedances of the soil
+/// beside the face are sampled.
+void switch_on_absorbing_faces(Scene& scene, const std::vector<std::size_t>& faces,
+                               const StepParameters& step);
+
 /// Which constraints a call applies: with contact, those on structure fields come before the
 /// contact correction (which then sees the structure's prescribed velocity), those on the soil
 /// after it.

@@ -147,6 +147,9 @@ public:
   double constrained_modulus(const Stress& s, const double* state) const override {
     return elastic_.constrained_modulus(s, state);
   }
+  double shear_modulus(const Stress& s, const double* state) const override {
+    return elastic_.shear_modulus(s, state);
+  }
   double elastic_energy_density(const Stress& s, const double* state) const override {
     return elastic_.elastic_energy_density(s, state);
   }
