@@ -109,6 +109,21 @@ NodalLoad line_load(const Grid& grid, GeometryMode mode, const std::vector<int>&
   return load;
 }
 
+void Boundaries::release_absorbing_supports() {
+  for (const AbsorbingFace& face : absorbing) {
+    if (!face.active) {
+      continue;
+    }
+    for (NodeConstraint& c : constraints) {
+      if (c.nodes == face.nodes && c.name != "axis") {
+        c.dofs = 0;
+        c.reaction = {0.0, 0.0, 0.0}; // it holds nothing from now on
+        c.torque = 0.0;
+      }
+    }
+  }
+}
+
 void Boundaries::mark_constrained_dofs(Grid& grid) const {
   for (int f = 0; f < grid.field_count(); ++f) {
     std::vector<std::uint8_t>& mask = grid.field_constrained(f);

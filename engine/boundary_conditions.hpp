@@ -77,6 +77,8 @@ struct Boundaries {
   /// Faces whose support gives way to dashpots when they are switched on.
   std::vector<AbsorbingFace> absorbing;
 
+  /// The supports on the faces of active absorbing faces give way (the axis keeps its own).
+  void release_absorbing_supports();
   /// Sets grid.constrained from the constraints (the DOFs that local damping leaves alone).
   void mark_constrained_dofs(Grid& grid) const;
   const NodeConstraint& constraint(const std::string& name) const;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 namespace mpile {
@@ -318,6 +319,12 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
   if (spec.mode == GeometryMode::axisymmetric && scene->grid.r_axis().start() == 0.0) {
     boundaries.constraints.push_back(axis_constraint(scene->grid));
   }
+  for (const GridFace face : spec.absorbing.faces) {
+    AbsorbingFace absorbing;
+    absorbing.face = face;
+    absorbing.nodes = nodes_on_face(scene->grid, face);
+    boundaries.absorbing.push_back(std::move(absorbing));
+  }
   for (const MotionSpec& motion : spec.motions) {
     NodeConstraint c;
     c.name = motion.name;
@@ -398,6 +405,17 @@ void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t p
         load.traction = spec_load.traction.starting_at(starts == phase_index ? start_time : never);
       }
     }
+  }
+}
+
+void switch_on_absorbing_faces(ExplicitSolver& solver, const CaseSpec& spec,
+                               std::size_t phase_index) {
+  const std::string& phase = spec.absorbing.phase;
+  const bool starts = phase.empty() ? phase_index == 0 : spec.phases[phase_index].name == phase;
+  if (starts && !spec.absorbing.faces.empty()) {
+    std::vector<std::size_t> faces(spec.absorbing.faces.size());
+    std::iota(faces.begin(), faces.end(), std::size_t{0});
+    solver.switch_on_absorbing(faces);
   }
 }
 

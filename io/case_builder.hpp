@@ -2,6 +2,7 @@
 
 #include "engine/scene.hpp"
 #include "io/case_spec.hpp"
+#include "solver/explicit_solver.hpp"
 
 #include <memory>
 
@@ -25,6 +26,12 @@ std::size_t count_body_particles(const CaseSpec& spec, const BodySpec& body);
 /// functions count from start_time. Motions and loads without a phase start with the first.
 void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t phase_index,
                                double start_time);
+
+/// Switches the case's absorbing faces on when phase `phase_index` is the one they start with, from
+/// the state now (after the phase's K0 procedure and settings are in place): their supports give
+/// way to dashpots and the forces that held them.
+void switch_on_absorbing_faces(ExplicitSolver& solver, const CaseSpec& spec,
+                               std::size_t phase_index);
 
 /// Applies the K0 procedures of a phase (geostatic stress from each body's density and gravity).
 void apply_k0(Scene& scene, const CaseSpec& spec, const PhaseSpec& phase);

@@ -2,6 +2,7 @@
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
 #include "engine/contact.hpp"
 #include "engine/particle_bins.hpp"
+#include "io/absorbing_reader.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_composition.hpp"
 #include "io/case_spec.hpp"
@@ -1027,6 +1028,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
   std::vector<TomlTable> body_tables; // empty with [monopile], whose bodies are never empty
   Axes axes;
+  std::optional<TomlTable> monopile_table;
   if (std::optional<TomlTable> monopile = top.optional_table("monopile")) {
     for (const char* key : {"grid", "bodies", "contact", "boundaries", "moving_mesh"}) {
       if (top.has(key)) {
@@ -1038,6 +1040,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     if (std::optional<TomlTable> drive = read_monopile(*monopile, spec)) {
       rigid_tables.emplace_back(spec.bodies.size() - 1, std::move(*drive));
     }
+    monopile_table = *monopile;
     axes = axes_of(spec);
   } else {
     TomlTable grid = top.table("grid");
@@ -1052,7 +1055,15 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     read_materials(top, spec);
     rigid_tables = read_bodies(top, spec, axes, body_tables);
   }
+  // The table `absorbing` was read from, for its phase's check once the phases are read.
+  std::optional<TomlTable> absorbing_table;
+  if (monopile_table) {
+    absorbing_table = *monopile_table;
+  }
   if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
+    read_absorbing_faces(*boundaries, spec,
+                         spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0);
+    absorbing_table = *boundaries;
     const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
     for (std::size_t f = 0; f < 4; ++f) {
       spec.faces[f] = read_face(*boundaries, keys[f]);
@@ -1097,6 +1108,9 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     }
   }
   read_phases(top, spec, declared_rigid);
+  if (absorbing_table) {
+    check_absorbing_phase(*absorbing_table, spec);
+  }
   for (auto& [index, table] : rigid_tables) {
     read_rigid_body(table, spec.bodies[index], spec);
   }

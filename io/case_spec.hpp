@@ -177,6 +177,12 @@ struct CaseSpec {
   std::vector<BodySpec> bodies;
   std::array<FaceCondition, 4> faces{FaceCondition::free, FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free};
+  /// Faces whose support gives way to dashpots (engine/absorbing_boundary.hpp) at the start of a
+  /// phase (empty: the first).
+  struct Absorbing {
+    std::vector<GridFace> faces;
+    std::string phase;
+  } absorbing;
   std::vector<ContactSpec> contacts;
   std::vector<MotionSpec> motions;
   std::vector<LoadSpec> loads;

@@ -78,6 +78,22 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
       file.write("/rigid_bodies/" + std::to_string(k), rigid_state(scene.rigid_bodies[k]),
                  "velocity (3), displacement (3), contact (3), driving (3), centre (2), work");
     }
+    for (std::size_t k = 0; k < scene.boundaries.absorbing.size(); ++k) {
+      // An absorbing face switched on keeps what it sampled then; one still off keeps nothing.
+      const AbsorbingFace& face = scene.boundaries.absorbing[k];
+      if (!face.active) {
+        continue;
+      }
+      const std::string base = "/absorbing/" + std::to_string(k);
+      file.write(base + "/edges", face.edges, "m");
+      file.write(base + "/p_impedance", face.p_impedance, "Pa s/m");
+      file.write(base + "/s_impedance", face.s_impedance, "Pa s/m");
+      std::vector<double> holding;
+      for (const auto& t : face.holding_traction) {
+        holding.insert(holding.end(), t.begin(), t.end());
+      }
+      file.write(base + "/holding_traction", holding, "Pa (r, y, theta per node)");
+    }
     for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
       const ContactPair& pair = scene.contacts[k];
       const std::string base = "/contacts/" + std::to_string(k);
@@ -199,6 +215,28 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
     restore_rigid_state(scene.rigid_bodies[k],
                         file.read_doubles("/rigid_bodies/" + std::to_string(k)));
   }
+  for (std::size_t k = 0; k < scene.boundaries.absorbing.size(); ++k) {
+    AbsorbingFace& face = scene.boundaries.absorbing[k];
+    const std::string base = "/absorbing/" + std::to_string(k);
+    if (!file.exists(base)) {
+      continue; // not yet switched on
+    }
+    face.active = true;
+    face.edges = file.read_doubles(base + "/edges");
+    face.p_impedance = file.read_doubles(base + "/p_impedance");
+    face.s_impedance = file.read_doubles(base + "/s_impedance");
+    const auto holding = file.read_doubles(base + "/holding_traction");
+    const std::size_t count = face.nodes.size();
+    if (face.edges.size() != count || face.p_impedance.size() + 1 != count ||
+        face.s_impedance.size() + 1 != count || holding.size() != 3 * count) {
+      refuse("absorbing face " + std::to_string(k) + " does not fit the case's grid");
+    }
+    face.holding_traction.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      face.holding_traction[i] = {holding[3 * i], holding[3 * i + 1], holding[3 * i + 2]};
+    }
+  }
+  scene.boundaries.release_absorbing_supports();
   for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
     ContactPair& pair = scene.contacts[k];
     const std::string base = "/contacts/" + std::to_string(k);

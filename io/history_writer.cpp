@@ -102,6 +102,10 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
         "/energy/damping", "/energy/contact", "/energy/transfer", "/energy/residual"}) {
     series(file, name, u.energy);
   }
+  if (!scene.boundaries.absorbing.empty()) {
+    // Only a scene with absorbing faces radiates.
+    series(file, "/energy/radiated", u.energy);
+  }
   series(file, "/energy/relative_residual", "-");
   for (const NodeConstraint& c : scene.boundaries.constraints) {
     const std::string base = "/boundaries/" + dataset_name(c.name);
@@ -280,6 +284,9 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
   series_.at("/energy/contact").append(energy.contact);
   series_.at("/energy/transfer").append(energy.transfer);
   series_.at("/energy/residual").append(energy.residual);
+  if (!scene.boundaries.absorbing.empty()) {
+    series_.at("/energy/radiated").append(energy.radiated);
+  }
   series_.at("/energy/relative_residual").append(energy.relative_residual);
   for (const NodeConstraint& c : scene.boundaries.constraints) {
     const std::string base = "/boundaries/" + dataset_name(c.name);

@@ -2,6 +2,8 @@
 // moving mesh out (the geometry itself is built by cases/monopile/monopile_geometry).
 #include "io/monopile_reader.hpp"
 
+#include "io/absorbing_reader.hpp"
+
 #include "cases/monopile/monopile_geometry.hpp"
 
 #include <algorithm>
@@ -77,6 +79,7 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   std::optional<TomlTable> drive = table.optional_table("drive");
   // A fixed grid instead, for comparison: the tip then leaves its grid line as it penetrates.
   const bool moving = table.boolean_or("moving_mesh", true);
+  read_absorbing_faces(table, spec, true);
 
   MonopileGeometry g;
   try {

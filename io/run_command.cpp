@@ -162,6 +162,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
                         : std::make_unique<ExplicitSolver>(*scene, settings, log);
     if (!restarting) {
       refuse_implausible_run(spec, *scene, solver->stable_time_step());
+      switch_on_absorbing_faces(*solver, spec, 0);
     }
     if (begins_added_phase) {
       const double elastic_before = elastic_energy(*scene);
@@ -169,6 +170,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       if (!spec.phases[progress.phase].k0.empty()) {
         solver->account_for_stress_reset(elastic_before);
       }
+      switch_on_absorbing_faces(*solver, spec, progress.phase);
     }
   } catch (const CaseError& e) {
     err << "mpile: " << e.what() << '\n';
@@ -493,6 +495,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             solver->account_for_stress_reset(elastic_before);
           }
           solver->change_settings(phase_settings(spec, spec.phases[progress.phase]));
+          switch_on_absorbing_faces(*solver, spec, progress.phase);
           // A stop due on the step that ended the phase comes here, with the next phase set up.
           if (stop_due()) {
             return interrupt();

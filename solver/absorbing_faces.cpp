@@ -153,14 +153,9 @@ void switch_on_absorbing_faces(Scene& scene, const std::vector<std::size_t>& fac
   const bool theta = has_theta(scene.mode);
   // The supports of the faces give way to the dashpots (the axis keeps its own).
   for (const std::size_t f : faces) {
-    AbsorbingFace& face = scene.boundaries.absorbing[f];
-    face.active = true;
-    for (NodeConstraint& c : scene.boundaries.constraints) {
-      if (c.nodes == face.nodes && c.name != "axis") {
-        c.dofs = 0;
-      }
-    }
+    scene.boundaries.absorbing[f].active = true;
   }
+  scene.boundaries.release_absorbing_supports();
   scene.boundaries.mark_constrained_dofs(grid);
   // A node on several faces switching on together (a corner) shares its holding force out.
   std::vector<int> all_nodes;

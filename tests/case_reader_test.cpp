@@ -192,6 +192,27 @@ std::vector<BadInput> bad_inputs() {
       {"a condition on the axis",
        edited("y_min = \"fixed\"", "y_min = \"fixed\"\nr_min = \"roller\""),
        "boundaries.r_min: the grid starts on the axis", "r_min = \"roller\""},
+      {"absorbing face not a list",
+       edited("y_min = \"fixed\"", "y_min = \"fixed\"\nabsorbing = \"y_min\""),
+       "boundaries.absorbing: must be a list of grid faces", "absorbing = \"y_min\""},
+      {"absorbing face unknown",
+       edited("y_min = \"fixed\"", "y_min = \"fixed\"\nabsorbing = [\"bottom\"]"),
+       "boundaries.absorbing: must be a list of grid faces, each \"r_min\", \"r_max\", \"y_min\" "
+       "or \"y_max\" once, got \"bottom\"",
+       "absorbing = [\"bottom\"]"},
+      {"absorbing face twice",
+       edited("y_min = \"fixed\"",
+              "y_min = \"fixed\"\nabsorbing = [\"y_min\", \"r_max\", \"y_min\"]"),
+       "boundaries.absorbing: lists \"y_min\" twice", "absorbing = [\"y_min\""},
+      {"absorbing axis", edited("y_min = \"fixed\"", "y_min = \"fixed\"\nabsorbing = [\"r_min\"]"),
+       "boundaries.absorbing: \"r_min\" is the axis here", "absorbing = [\"r_min\"]"},
+      {"absorbing phase unknown",
+       edited("y_min = \"fixed\"",
+              "y_min = \"fixed\"\nabsorbing = [\"y_min\"]\nabsorbing_phase = \"shake\""),
+       "boundaries.absorbing_phase: no phase named 'shake' in [[phases]]", "absorbing_phase ="},
+      {"absorbing phase without faces",
+       edited("y_min = \"fixed\"", "y_min = \"fixed\"\nabsorbing_phase = \"settle\""),
+       "boundaries.absorbing_phase: given without `absorbing`", "absorbing_phase ="},
       {"unknown face condition", edited("y_min = \"fixed\"", "y_min = \"clamped\""),
        "boundaries.y_min: must be \"free\", \"roller\" or \"fixed\"", "y_min = \"clamped\""},
       {"prescribed range beside the grid",
@@ -459,6 +480,9 @@ std::string monopile_edited(const std::string& from, const std::string& to) {
 
 std::vector<BadInput> bad_monopile_inputs() {
   return {
+      {"absorbing monopile axis",
+       monopile_edited("embedment = 3.0", "embedment = 3.0\nabsorbing = [\"r_min\", \"r_max\"]"),
+       "monopile.absorbing: \"r_min\" is the axis here", "absorbing = ["},
       {"misspelt monopile key", monopile_edited("embedment = 3.0", "embedmnt = 3.0"),
        "monopile.embedmnt: unknown key", "embedmnt"},
       {"unknown soil material",
@@ -536,6 +560,14 @@ TEST(CaseReader, TheMonopileCaseBuildsTheSeedGeometry) {
       monopile_edited("travel = 0.2", "travel = 0.2\nmoving_mesh = false"), "case.toml");
   EXPECT_FALSE(fixed.moving_mesh.has_value());
   EXPECT_EQ(fixed.solver.shape_functions, ShapeFunctions::linear);
+  // Absorbing lateral face and base, switched on when the installation starts.
+  EXPECT_TRUE(spec.absorbing.faces.empty());
+  const CaseSpec absorbing = read_case_text(
+      monopile_edited("travel = 0.2", "travel = 0.2\nabsorbing = [\"r_max\", \"y_min\"]\n"
+                                      "absorbing_phase = \"installation\""),
+      "case.toml");
+  EXPECT_EQ(absorbing.absorbing.faces, (std::vector{GridFace::r_max, GridFace::y_min}));
+  EXPECT_EQ(absorbing.absorbing.phase, "installation");
 }
 
 TEST(CaseReader, RejectsEachBadMonopileInputWithFileLineKeyAndReason) {
