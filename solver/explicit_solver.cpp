@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -381,6 +382,19 @@ void ExplicitSolver::switch_on_absorbing(const std::vector<std::size_t>& faces) 
   passes::apply_nodal_loads(scene_, now);
   passes::apply_holding_tractions(scene_, now);
   passes::switch_on_absorbing_faces(scene_, faces, now);
+  static const char* names[] = {"r_min", "r_max", "y_min", "y_max"};
+  for (const std::size_t f : faces) {
+    const AbsorbingFace& face = scene_.boundaries.absorbing[f];
+    if (face.p_impedance.empty()) {
+      continue;
+    }
+    const auto [low, high] = std::minmax_element(face.p_impedance.begin(), face.p_impedance.end());
+    std::ostringstream s;
+    s << "absorbing face " << names[static_cast<int>(face.face)] << " switched on at t = " << time_
+      << " s: its support gives way to dashpots, rho c_p from " << std::setprecision(3) << *low
+      << " to " << *high << " Pa s/m beside it";
+    log_.info(s.str());
+  }
 }
 
 void ExplicitSolver::step(double max_dt) {
