@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -385,14 +386,19 @@ void ExplicitSolver::switch_on_absorbing(const std::vector<std::size_t>& faces) 
   static const char* names[] = {"r_min", "r_max", "y_min", "y_max"};
   for (const std::size_t f : faces) {
     const AbsorbingFace& face = scene_.boundaries.absorbing[f];
-    if (face.p_impedance.empty()) {
-      continue;
-    }
-    const auto [low, high] = std::minmax_element(face.p_impedance.begin(), face.p_impedance.end());
+    std::vector<double> soil; // the segments with soil beside them
+    std::copy_if(face.p_impedance.begin(), face.p_impedance.end(), std::back_inserter(soil),
+                 [](double z) { return z > 0.0; });
     std::ostringstream s;
     s << "absorbing face " << names[static_cast<int>(face.face)] << " switched on at t = " << time_
-      << " s: its support gives way to dashpots, rho c_p from " << std::setprecision(3) << *low
-      << " to " << *high << " Pa s/m beside it";
+      << " s: its support gives way to dashpots";
+    if (soil.empty()) {
+      s << ", but no soil lies beside it";
+    } else {
+      const auto [low, high] = std::minmax_element(soil.begin(), soil.end());
+      s << ", rho c_p from " << std::setprecision(3) << *low << " to " << *high
+        << " Pa s/m where soil lies beside it";
+    }
     log_.info(s.str());
   }
 }

@@ -7,6 +7,7 @@
     snaps = mpile.open_snapshots("out/jacked_quick")      # particles.pvd
     mpile.follow_particle(snaps, 1234)                    # one particle through time
     run = mpile.installation("out/jacked_quick")          # the seed's figures 3 to 7
+    mpile.radiation("out/gdp_quick")                      # radiated energy, peak particle velocity
 
 The names are imported on first use, so that `import mpile` is quick and the snapshot and display
 modules work where only numpy and VTK are (ParaView's Python). The reference is docs/python.md.
@@ -30,6 +31,8 @@ _EXPORTS = {
     "installation": "monopile",
     "Installation": "monopile",
     "shaft_ratios": "monopile",
+    "radiation": "vibration",
+    "Radiation": "vibration",
     "RunFileError": "files",
 }
 
