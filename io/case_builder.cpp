@@ -398,6 +398,20 @@ void activate_phase_boundaries(Scene& scene, const CaseSpec& spec, std::size_t p
       }
     }
   }
+  // A phase's own drive replaces the body's from the phase's start (after the body's drives,
+  // which phase 0 sets: the phase's drive wins).
+  if (const auto& phase_drive = spec.phases[phase_index].drive) {
+    for (RigidBody& rigid : scene.rigid_bodies) {
+      if (rigid.name != phase_drive->body) {
+        continue;
+      }
+      for (std::size_t d = 0; d < 3; ++d) {
+        const auto& drive = phase_drive->drive[d];
+        rigid.drive[d] = drive ? RigidDrive{drive->kind, drive->function.starting_at(start_time)}
+                               : RigidDrive{RigidDrive::Kind::force, TimeFunction::constant(0.0)};
+      }
+    }
+  }
   for (const LoadSpec& spec_load : spec.loads) {
     const std::size_t starts = phase_of(spec, spec_load.phase);
     for (NodalLoad& load : scene.boundaries.loads) {

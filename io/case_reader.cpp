@@ -333,6 +333,34 @@ std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
   return phase;
 }
 
+/// The drive keys of a rigid body's table or a phase's `drive`: per DOF (RigidDof order) a velocity
+/// or a force function, or neither (free).
+std::array<std::optional<RigidDrive>, 3> read_drives(TomlTable& table, const CaseSpec& spec) {
+  const bool plane = spec.mode == GeometryMode::plane_strain;
+  const char* velocity_keys[] = {"velocity_r", "velocity_y", "angular_velocity"};
+  const char* force_keys[] = {"force_r", "force_y", "torque"};
+  std::array<std::optional<RigidDrive>, 3> drives;
+  for (std::size_t d = 0; d < 3; ++d) {
+    const bool velocity = table.has(velocity_keys[d]);
+    const bool force = table.has(force_keys[d]);
+    if (velocity && force) {
+      table.fail(force_keys[d], std::string("give either ") + velocity_keys[d] + " or " +
+                                    force_keys[d] + ", not both");
+    }
+    if (d == RIGID_X && !plane && (velocity || force)) {
+      table.fail(velocity ? velocity_keys[d] : force_keys[d],
+                 "an axisymmetric rigid body has no radial motion (zero by symmetry)");
+    }
+    if (velocity || force) {
+      RigidDrive drive;
+      drive.kind = velocity ? RigidDrive::Kind::velocity : RigidDrive::Kind::force;
+      drive.function = read_time_function(table, velocity ? velocity_keys[d] : force_keys[d]);
+      drives[d] = drive;
+    }
+  }
+  return drives;
+}
+
 /// Reads a rigid body's drives (and mass and inertia unless a [monopile] table has derived them
 /// from the whole pile already).
 void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec) {
@@ -352,27 +380,7 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec) {
   if (table.has(inertia_key)) {
     rigid.inertia = table.positive(inertia_key);
   }
-  // Velocity and force keys per DOF (RigidDof order).
-  const char* velocity_keys[] = {"velocity_r", "velocity_y", "angular_velocity"};
-  const char* force_keys[] = {"force_r", "force_y", "torque"};
-  for (std::size_t d = 0; d < 3; ++d) {
-    const bool velocity = table.has(velocity_keys[d]);
-    const bool force = table.has(force_keys[d]);
-    if (velocity && force) {
-      table.fail(force_keys[d], std::string("give either ") + velocity_keys[d] + " or " +
-                                    force_keys[d] + ", not both");
-    }
-    if (d == RIGID_X && !plane && (velocity || force)) {
-      table.fail(velocity ? velocity_keys[d] : force_keys[d],
-                 "an axisymmetric rigid body has no radial motion (zero by symmetry)");
-    }
-    if (velocity || force) {
-      RigidDrive drive;
-      drive.kind = velocity ? RigidDrive::Kind::velocity : RigidDrive::Kind::force;
-      drive.function = read_time_function(table, velocity ? velocity_keys[d] : force_keys[d]);
-      rigid.drive[d] = drive;
-    }
-  }
+  rigid.drive = read_drives(table, spec);
   rigid.phase = read_phase_reference(table, spec);
   table.finish();
   body.rigid = rigid;
@@ -722,7 +730,25 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     if (std::optional<TomlTable> stop = table.optional_table("stop_at")) {
       PenetrationStop s;
       s.body = read_rigid_body_name(*stop, spec, declared_rigid, "");
-      s.penetration = stop->positive("penetration");
+      if (stop->has("settlement") == stop->has("penetration")) {
+        stop->fail("penetration", "give either penetration (the total downward displacement) or "
+                                  "settlement (the displacement since the phase started)");
+      }
+      const bool settlement = stop->has("settlement");
+      if (settlement) {
+        s.settlement = stop->positive("settlement");
+        // The deepest an earlier phase stops at, plus the settlement: how far the band must go
+        // at least (an at-rest stop may overshoot; the run then ends the phase at the travel).
+        double before = 0.0;
+        for (const PhaseSpec& earlier : spec.phases) {
+          if (earlier.stop_at && earlier.stop_at->body == s.body) {
+            before = std::max(before, earlier.stop_at->penetration);
+          }
+        }
+        s.penetration = before + s.settlement;
+      } else {
+        s.penetration = stop->positive("penetration");
+      }
       if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
           s.penetration >= spec.moving_mesh->travel) {
         // Equal is refused too: the phase stops after the step that reaches the depth, and that
@@ -732,11 +758,25 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
             << " m): below that depth the soil is seeded for coarser cells than the band's, and "
                "the step that reaches it carries the band past it; stop short of it or raise "
             << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
-        stop->fail("penetration", why.str());
+        if (settlement) {
+          why.str("");
+          why << "with the " << s.penetration - s.settlement
+              << " m an earlier phase stops at, reaches the travel of the moving band ("
+              << spec.moving_mesh->travel << " m); settle less or raise "
+              << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
+        }
+        stop->fail(settlement ? "settlement" : "penetration", why.str());
       }
       s.at_rest = stop->boolean_or("at_rest", false);
       stop->finish();
       phase.stop_at = s;
+    }
+    if (std::optional<TomlTable> drive = table.optional_table("drive")) {
+      PhaseDrive d;
+      d.body = read_rigid_body_name(*drive, spec, declared_rigid, "");
+      d.drive = read_drives(*drive, spec);
+      drive->finish();
+      phase.drive = d;
     }
     table.finish();
     spec.phases.push_back(std::move(phase));

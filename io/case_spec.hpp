@@ -103,11 +103,22 @@ struct K0Spec {
 };
 
 /// Ends a phase once a rigid body has gone down by `penetration` (m, its total downward
-/// displacement), and, with at_rest, once it has also come to rest (before the next blow).
+/// displacement) or, with settlement > 0, by `settlement` since the phase started (a load test),
+/// and, with at_rest, once it has also come to rest (before the next blow).
 struct PenetrationStop {
   std::string body;
+  /// With a settlement, the depth the phase is expected to end at (the deepest earlier stop plus
+  /// the settlement), for the travel check and run-time estimates.
   double penetration = 0.0;
+  double settlement = 0.0;
   bool at_rest = false;
+};
+
+/// A rigid body's drives from a phase's start on (a load test after an installation): the DOFs
+/// given are driven, the others free (force 0), as a body's own drives once their phase starts.
+struct PhaseDrive {
+  std::string body;
+  std::array<std::optional<RigidDrive>, 3> drive; // RigidDof order
 };
 
 struct PhaseSpec {
@@ -122,6 +133,7 @@ struct PhaseSpec {
   std::optional<double> courant_number;
   std::vector<K0Spec> k0;
   std::optional<PenetrationStop> stop_at;
+  std::optional<PhaseDrive> drive;
 };
 
 /// A material point whose stress, strain and state go into the history ([[output.monitor]]):

@@ -37,8 +37,13 @@ std::string how_it_stops(const PhaseSpec& phase) {
   std::ostringstream s;
   s << std::setprecision(4);
   if (phase.stop_at) {
-    s << "at " << phase.stop_at->body << " penetration " << phase.stop_at->penetration << " m"
-      << (phase.stop_at->at_rest ? " once at rest" : "") << ", ";
+    if (phase.stop_at->settlement > 0.0) {
+      s << "at " << phase.stop_at->body << " settlement " << phase.stop_at->settlement
+        << " m since the phase began";
+    } else {
+      s << "at " << phase.stop_at->body << " penetration " << phase.stop_at->penetration << " m";
+    }
+    s << (phase.stop_at->at_rest ? " once at rest" : "") << ", ";
   }
   if (phase.equilibrium_tolerance) {
     s << "at equilibrium (out-of-balance force and kinetic energy ratios below "

@@ -132,6 +132,7 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
                "phase, history rows, next history time, next snapshot time, next listed "
                "snapshot, next checkpoint time, peak energy residual, its time");
     file.write("/run/phase_starts", progress.phase_starts, "s");
+    file.write("/run/phase_start_depths", progress.phase_start_depths, "m");
     std::vector<double> snapshot_times;
     std::string snapshot_files;
     for (const auto& [time, name] : progress.snapshots) {
@@ -277,6 +278,9 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
   progress.peak_residual = c.at(6);
   progress.peak_residual_time = c.at(7);
   progress.phase_starts = file.read_doubles("/run/phase_starts");
+  if (file.exists("/run/phase_start_depths")) {
+    progress.phase_start_depths = file.read_doubles("/run/phase_start_depths");
+  }
   const auto times = file.read_doubles("/run/snapshot_times");
   const std::string files = file.string_attribute("/run/snapshot_times", "files");
   std::size_t position = 0;

@@ -14,6 +14,9 @@ namespace mpile {
 struct RunProgress {
   std::size_t phase = 0;
   std::vector<double> phase_starts; // start time of each phase begun so far
+  /// Per phase begun, the penetration of its stop_at body when it began, for a settlement stop
+  /// (NaN for a phase without one).
+  std::vector<double> phase_start_depths;
   std::size_t history_rows = 0;
   double next_history_time = 0.0;
   double next_snapshot_time = 0.0;

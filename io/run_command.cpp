@@ -142,14 +142,24 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
 
   RunLog log(&out);
   RunProgress progress = restarting ? restored.progress : RunProgress{};
+  // Where a phase's stop_at body stands as the phase begins, for a settlement stop.
+  const auto begin_phase = [&](std::size_t p, double time) {
+    progress.phase_starts.push_back(time);
+    const auto& stop = spec.phases[p].stop_at;
+    progress.phase_start_depths.resize(progress.phase_starts.size() - 1,
+                                       std::numeric_limits<double>::quiet_NaN());
+    progress.phase_start_depths.push_back(
+        stop && stop->settlement > 0.0 ? penetration_of(rigid_body_named(*scene, stop->body))
+                                       : std::numeric_limits<double>::quiet_NaN());
+  };
   if (!restarting) {
-    progress.phase_starts = {0.0};
+    begin_phase(0, 0.0);
     apply_k0(*scene, spec, spec.phases.front());
   }
   // A complete run continued into phases added to its case: the next phase begins now.
   const bool begins_added_phase = progress.phase == progress.phase_starts.size();
   if (begins_added_phase) {
-    progress.phase_starts.push_back(restored.solver.time);
+    begin_phase(progress.phase, restored.solver.time);
   }
   for (std::size_t p = 0; p < progress.phase_starts.size(); ++p) {
     activate_phase_boundaries(*scene, spec, p, progress.phase_starts[p]);
@@ -460,14 +470,39 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             const PenetrationStop& stop = *phase.stop_at;
             const RigidBody& pile = rigid_body_named(*scene, stop.body);
             const double depth = penetration_of(pile);
-            goal = {"penetration", depth, stop.penetration, "m", t, phase_end};
             const double speed = std::abs(pile.velocity[RIGID_Y]);
-            if (depth >= stop.penetration && (!stop.at_rest || speed < rest_speed)) {
-              std::ostringstream why;
-              why << "at " << stop.body << " penetration " << std::setprecision(4) << depth << " m"
-                  << (stop.at_rest ? " and at rest" : "");
-              ended = why.str();
-              break;
+            if (stop.settlement > 0.0) {
+              // A load test: the settlement since the phase began.
+              const double start = progress.phase_start_depths.at(progress.phase);
+              const double settled = depth - start;
+              goal = {"settlement", settled, stop.settlement, "m", t, phase_end};
+              const double travel = scene->moving_mesh ? scene->moving_mesh->travel : 0.0;
+              if (settled >= stop.settlement && (!stop.at_rest || speed < rest_speed)) {
+                std::ostringstream why;
+                why << "at " << stop.body << " settlement " << std::setprecision(4) << settled
+                    << " m (penetration " << depth << " m)" << (stop.at_rest ? " and at rest" : "");
+                ended = why.str();
+                break;
+              }
+              // The band may not be carried past its travel: the test ends there, short of its
+              // settlement, and says so.
+              if (travel > 0.0 && depth + speed * solver->stable_time_step() >= travel) {
+                std::ostringstream why;
+                why << "at the moving band's travel (" << travel << " m) with " << stop.body
+                    << " settlement " << std::setprecision(4) << settled << " m of "
+                    << stop.settlement;
+                ended = why.str();
+                break;
+              }
+            } else {
+              goal = {"penetration", depth, stop.penetration, "m", t, phase_end};
+              if (depth >= stop.penetration && (!stop.at_rest || speed < rest_speed)) {
+                std::ostringstream why;
+                why << "at " << stop.body << " penetration " << std::setprecision(4) << depth
+                    << " m" << (stop.at_rest ? " and at rest" : "");
+                ended = why.str();
+                break;
+              }
             }
           }
           reporter.update(phase.name, solver->step_count(), goal);
@@ -487,7 +522,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
                  ended + ", " + std::to_string(solver->step_count()) + " steps so far");
         ++progress.phase;
         if (progress.phase < spec.phases.size()) {
-          progress.phase_starts.push_back(solver->time());
+          begin_phase(progress.phase, solver->time());
           activate_phase_boundaries(*scene, spec, progress.phase, solver->time());
           const double elastic_before = elastic_energy(*scene);
           apply_k0(*scene, spec, spec.phases[progress.phase]);
