@@ -148,9 +148,9 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     const auto& stop = spec.phases[p].stop_at;
     progress.phase_start_depths.resize(progress.phase_starts.size() - 1,
                                        std::numeric_limits<double>::quiet_NaN());
-    progress.phase_start_depths.push_back(
-        stop && stop->settlement > 0.0 ? penetration_of(rigid_body_named(*scene, stop->body))
-                                       : std::numeric_limits<double>::quiet_NaN());
+    progress.phase_start_depths.push_back(stop && stop->settlement > 0.0
+                                              ? penetration_of(rigid_body_named(*scene, stop->body))
+                                              : std::numeric_limits<double>::quiet_NaN());
   };
   if (!restarting) {
     begin_phase(0, 0.0);

@@ -478,8 +478,41 @@ std::string monopile_edited(const std::string& from, const std::string& to) {
   return edited_text(monopile_case(), from, to);
 }
 
+/// The monopile case with a load test after its installation: `stop` and `drive` are the
+/// load test phase's.
+std::string with_load_test(const std::string& stop, const std::string& drive) {
+  return monopile_edited("[output]",
+                         "[[phases]]\nname = \"load_test\"\nduration = 5.0\nstop_at = " + stop +
+                             "\ndrive = " + drive + "\n\n[output]");
+}
+
 std::vector<BadInput> bad_monopile_inputs() {
+  const std::string push = "{ body = \"pile\", velocity_y = -0.02 }";
   return {
+      {"settlement and penetration",
+       with_load_test("{ body = \"pile\", settlement = 0.05, penetration = 0.15 }", push),
+       "phases[2].stop_at.penetration: give either penetration (the total downward displacement) "
+       "or settlement",
+       "stop_at = { body = \"pile\", settlement"},
+      {"settlement past the band's travel",
+       with_load_test("{ body = \"pile\", settlement = 0.1 }", push),
+       "phases[2].stop_at.settlement: with the 0.1 m an earlier phase stops at, reaches the "
+       "travel of the moving band (0.2 m)",
+       "stop_at = { body = \"pile\", settlement = 0.1 }"},
+      {"phase drive of no rigid body",
+       with_load_test("{ body = \"pile\", settlement = 0.05 }",
+                      "{ body = \"soil plug\", velocity_y = -0.02 }"),
+       "phases[2].drive.body: no rigid body named 'soil plug'", "drive = { body = \"soil plug\""},
+      {"phase drive radial in axisymmetry",
+       with_load_test("{ body = \"pile\", settlement = 0.05 }",
+                      "{ body = \"pile\", velocity_r = 0.01 }"),
+       "phases[2].drive.velocity_r: an axisymmetric rigid body has no radial motion",
+       "drive = { body = \"pile\", velocity_r"},
+      {"phase drive velocity and force",
+       with_load_test("{ body = \"pile\", settlement = 0.05 }",
+                      "{ body = \"pile\", velocity_y = -0.02, force_y = -1e3 }"),
+       "phases[2].drive.force_y: give either velocity_y or force_y, not both",
+       "drive = { body = \"pile\", velocity_y = -0.02, force_y"},
       {"absorbing monopile axis",
        monopile_edited("embedment = 3.0", "embedment = 3.0\nabsorbing = [\"r_min\", \"r_max\"]"),
        "monopile.absorbing: \"r_min\" is the axis here", "absorbing = ["},
@@ -568,6 +601,20 @@ TEST(CaseReader, TheMonopileCaseBuildsTheSeedGeometry) {
       "case.toml");
   EXPECT_EQ(absorbing.absorbing.faces, (std::vector{GridFace::r_max, GridFace::y_min}));
   EXPECT_EQ(absorbing.absorbing.phase, "installation");
+  // A load test after the installation: its own drive and a settlement stop.
+  const CaseSpec load_test =
+      read_case_text(with_load_test("{ body = \"pile\", settlement = 0.05 }",
+                                    "{ body = \"pile\", velocity_y = -0.02 }"),
+                     "case.toml");
+  ASSERT_EQ(load_test.phases.size(), 3u);
+  const PhaseSpec& last = load_test.phases[2];
+  ASSERT_TRUE(last.stop_at && last.drive);
+  EXPECT_DOUBLE_EQ(last.stop_at->settlement, 0.05);
+  EXPECT_DOUBLE_EQ(last.stop_at->penetration, 0.15); // the installation's 0.1 m plus 0.05 m
+  EXPECT_EQ(last.drive->body, "pile");
+  ASSERT_TRUE(last.drive->drive[RIGID_Y].has_value());
+  EXPECT_EQ(last.drive->drive[RIGID_Y]->kind, RigidDrive::Kind::velocity);
+  EXPECT_FALSE(last.drive->drive[RIGID_ROTATION].has_value());
 }
 
 TEST(CaseReader, RejectsEachBadMonopileInputWithFileLineKeyAndReason) {

@@ -712,6 +712,95 @@ TEST(RunCommand, AbsorbingFacesRadiateAndRestartBitwiseIdentically) {
   }
 }
 
+/// A rigid block driven down above soil it never touches, under a moving mesh whose band may
+/// travel 0.2 m: a first phase of 0.2 s at 0.5 m/s (0.1 m), then a load test with its own drive
+/// at 0.25 m/s and a settlement stop.
+std::string load_test_case(double settlement) {
+  return R"(geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 10 }]
+y = [{ start = 0.0, end = 1.0, cells = 10 }, { start = 1.0, end = 1.4, cells = 8 },
+     { start = 1.4, end = 2.5, cells = 11 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 50e6
+poisson_ratio = 0.3
+density = 1650.0
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 200e9
+poisson_ratio = 0.0
+density = 8000.0
+[[bodies]]
+name = "soil"
+material = "soil"
+region = { r = [0.0, 1.0], y = [0.0, 2.0] }
+[[bodies]]
+name = "block"
+material = "steel"
+region = { r = [0.5, 0.6], y = [2.3, 2.4] }
+[bodies.rigid]
+velocity_y = -0.5
+[[contact]]
+structure = "block"
+[boundaries]
+r_max = "roller"
+y_min = "fixed"
+[moving_mesh]
+body = "block"
+band = [1.0, 1.4]
+travel = 0.2
+[[phases]]
+name = "install"
+duration = 0.2
+[[phases]]
+name = "load_test"
+duration = 1.0
+drive = { body = "block", velocity_y = -0.25 }
+stop_at = { body = "block", settlement = )" +
+         std::to_string(settlement) + R"( }
+[output]
+history_interval = 0.0
+)";
+}
+
+TEST(RunCommand, ALoadTestPhaseStopsAtItsSettlementOrAtTheBandsTravel) {
+  const auto directory = fresh_directory("load_test");
+  std::ostringstream out, err;
+  for (const double settlement : {0.05, 0.15}) {
+    const std::string path = (directory / "case.toml").string();
+    std::ofstream(path) << load_test_case(settlement);
+    RunOptions options;
+    options.case_path = path;
+    options.output_directory = (directory / std::to_string(settlement)).string();
+    ASSERT_EQ(run_case(options, out, err), exit_success) << err.str();
+    Hdf5File history(options.output_directory + "/history.h5", Hdf5File::Mode::read);
+    const auto depth = history.read_doubles("/bodies/block/penetration");
+    const auto v_y = history.read_doubles("/bodies/block/v_y");
+    const auto phase = history.read_doubles("/phase");
+    const std::string ended = history.string_attribute("/phases/1", "ended");
+    // The first phase: 0.2 s at 0.5 m/s.
+    const auto first_test_row = std::find(phase.begin(), phase.end(), 1.0) - phase.begin();
+    const double start = depth[static_cast<std::size_t>(first_test_row) - 1];
+    EXPECT_NEAR(start, 0.1, 1e-9);
+    // The phase's own drive: 0.25 m/s from its start.
+    EXPECT_NEAR(v_y.back(), -0.25, 1e-12);
+    if (settlement == 0.05) {
+      // Ends on the step that reaches the settlement: within one step (0.25 m/s x dt) past it.
+      EXPECT_GE(depth.back() - start, 0.05);
+      EXPECT_LT(depth.back() - start, 0.05 + 0.25 * 1e-3);
+      EXPECT_EQ(ended.rfind("at block settlement 0.05", 0), 0u) << ended;
+    } else {
+      // 0.1 + 0.15 m is past the band's 0.2 m of travel: the test ends before the step that
+      // would carry the band beyond it, and says so.
+      EXPECT_LT(depth.back(), 0.2);
+      EXPECT_GT(depth.back(), 0.2 - 0.25 * 2e-3);
+      EXPECT_EQ(ended.rfind("at the moving band's travel (0.2 m) with block settlement", 0), 0u)
+          << ended;
+    }
+  }
+}
+
 TEST(RunCommand, RestartWithContactAndAFreeRigidBodyIsBitwiseIdentical) {
   // The seed's torsion case, coarse, with the pile free to sink under its weight and a torque:
   // the rigid body's state, the outline and the contact sums must all come back from the
