@@ -8,6 +8,7 @@
     mpile.follow_particle(snaps, 1234)                    # one particle through time
     run = mpile.installation("out/jacked_quick")          # the seed's figures 3 to 7
     mpile.radiation("out/gdp_quick")                      # radiated energy, peak particle velocity
+    mpile.load_test("out/gdp_quick_capacity")             # load-settlement curve, capacity
 
 The names are imported on first use, so that `import mpile` is quick and the snapshot and display
 modules work where only numpy and VTK are (ParaView's Python). The reference is docs/python.md.
@@ -32,6 +33,8 @@ _EXPORTS = {
     "Installation": "monopile",
     "shaft_ratios": "monopile",
     "radiation": "vibration",
+    "load_test": "capacity",
+    "LoadTest": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",
 }

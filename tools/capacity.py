@@ -1,0 +1,63 @@
+#!/usr/bin/python3
+"""Capacity after installation: the load-settlement curves of load-test runs in one figure, and a
+Markdown table of each run's capacity at a settlement of 10 % of the diameter (docs/results.md,
+"Capacity after installation").
+
+  tools/capacity.py out/jacked_quick_capacity:jacked out/gdp_quick_capacity:GDP --out capacity.png
+
+A run is a directory or history.h5 whose last phase is the load test, optionally with :label
+(default: the run's title). The capacity is in kN/rad and, times 2 pi, in MN for the whole pile.
+"""
+import argparse
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+
+from mpile.capacity import CAPACITY_SETTLEMENT, load_test  # noqa: E402
+from mpile.files import RunFileError  # noqa: E402
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("runs", nargs="+", help="run directory or history.h5, optionally :label")
+    parser.add_argument("--out", default="capacity.png", help="the figure (PNG)")
+    args = parser.parse_args()
+    tests = []
+    try:
+        for run in args.runs:
+            path, _, label = run.partition(":")
+            tests.append(load_test(path, label=label or None))
+    except RunFileError as e:
+        print(f"capacity.py: {e}", file=sys.stderr)
+        return 2
+    print("| run | settlement reached (m) | load at 10 % of D (kN/rad) | whole pile (MN) | ended |")
+    print("|---|---|---|---|---|")
+    for t in tests:
+        q = t.capacity
+        print(f"| {t.label} | {t.settlement.max():.4f} | {q:.1f} | {2 * math.pi * q / 1e3:.3g} | {t.ended} |")
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(figsize=(6, 4.5))
+    for t in tests:
+        axes.plot(1e3 * t.settlement, t.load, label=t.label)
+    diameters = {t.diameter for t in tests if math.isfinite(t.diameter)}
+    if len(diameters) == 1:
+        axes.axvline(1e3 * CAPACITY_SETTLEMENT * diameters.pop(), color="grey", linestyle=":",
+                     label="10 % of D")
+    axes.set_xlabel("settlement since the load test began (mm)")
+    axes.set_ylabel("load on the pile head (kN/rad)")
+    axes.grid(True, alpha=0.3)
+    axes.legend()
+    figure.tight_layout()
+    figure.savefig(args.out, dpi=120)
+    print(args.out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
