@@ -716,41 +716,7 @@ TEST(RunCommand, AbsorbingFacesRadiateAndRestartBitwiseIdentically) {
 /// travel 0.2 m: a first phase of 0.2 s at 0.5 m/s (0.1 m), then a load test with its own drive
 /// at 0.25 m/s and a settlement stop.
 std::string load_test_case(double settlement) {
-  return R"(geometry = "axisymmetric"
-[grid]
-r = [{ start = 0.0, end = 1.0, cells = 10 }]
-y = [{ start = 0.0, end = 1.0, cells = 10 }, { start = 1.0, end = 1.4, cells = 8 },
-     { start = 1.4, end = 2.5, cells = 11 }]
-[materials.soil]
-type = "linear_elastic"
-young_modulus = 50e6
-poisson_ratio = 0.3
-density = 1650.0
-[materials.steel]
-type = "linear_elastic"
-young_modulus = 200e9
-poisson_ratio = 0.0
-density = 8000.0
-[[bodies]]
-name = "soil"
-material = "soil"
-region = { r = [0.0, 1.0], y = [0.0, 2.0] }
-[[bodies]]
-name = "block"
-material = "steel"
-region = { r = [0.5, 0.6], y = [2.3, 2.4] }
-[bodies.rigid]
-velocity_y = -0.5
-[[contact]]
-structure = "block"
-[boundaries]
-r_max = "roller"
-y_min = "fixed"
-[moving_mesh]
-body = "block"
-band = [1.0, 1.4]
-travel = 0.2
-[[phases]]
+  return std::string(block_above_soil) + R"([[phases]]
 name = "install"
 duration = 0.2
 [[phases]]

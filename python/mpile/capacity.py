@@ -9,9 +9,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .files import RunFileError, history_path
+from .files import history_path
 from .history import attributes, case as case_of, read_series
-from .phase_table import phases
+from .phase_table import last_phase_rows, phases
 
 CAPACITY_SETTLEMENT = 0.1  # of the diameter
 
@@ -50,17 +50,12 @@ def load_test(path, body="pile", diameter=None, label=None):
     attrs = attributes(path)
     series = read_series(path, ["/time", "/phase", f"/bodies/{body}/penetration",
                                 f"/bodies/{body}/driving_F_y"])
-    table = phases(path)
-    phase = series["/phase"]
-    last = len(table) - 1 if len(table) else int(phase.max(initial=0))
-    rows = np.flatnonzero(phase == last)
-    if not rows.size:
-        raise RunFileError(f"{path} has no rows of its last phase (index {last:g}), the load test")
-    before = rows[0] - 1 if rows[0] > 0 else rows[0]
+    rows, before = last_phase_rows(path, series["/phase"], "the load test")
     depth = series[f"/bodies/{body}/penetration"]
     settlement = depth[rows] - depth[before]
     load = -series[f"/bodies/{body}/driving_F_y"][rows] / 1e3
     if diameter is None:
         diameter = float(case_of(path).get("monopile", {}).get("diameter", np.nan))
-    ended = str(table["ended"].iloc[last]) if len(table) and "ended" in table else ""
+    table = phases(path)
+    ended = str(table["ended"].iloc[-1]) if len(table) and table["ended"].iloc[-1] else ""
     return LoadTest(label or attrs.get("title", str(path)), settlement, load, diameter, ended)

@@ -10,7 +10,7 @@ import tomllib
 
 import numpy as np
 
-from .files import history_path, plain, read_only, text
+from .files import RunFileError, history_path, plain, read_only, text
 
 COLUMNS = ("name", "start", "end", "ended")
 
@@ -31,6 +31,18 @@ def phases(path):
     frame["end"] = frame["end"].astype(float)
     frame.index.name = "phase"
     return frame
+
+
+def last_phase_rows(path, phase, what):
+    """The rows of the case's last phase in the /phase series `phase`, and the row before them (where
+    the phase began; the first row when there is none). The case's phases, not the rows', say which
+    is last, so that a run stopped before it is refused, naming `what` the phase is."""
+    table = phases(path)
+    last = len(table) - 1 if len(table) else int(phase.max(initial=0))
+    rows = np.flatnonzero(phase == last)
+    if not rows.size:
+        raise RunFileError(f"{path} has no rows of its last phase (index {last:g}), {what}")
+    return rows, (rows[0] - 1 if rows[0] > 0 else rows[0])
 
 
 def _table(path):

@@ -13,7 +13,7 @@ import numpy as np
 
 from .files import RunFileError, history_path
 from .history import attributes, list_datasets, read_series
-from .phase_table import phases
+from .phase_table import last_phase_rows
 
 
 @dataclass
@@ -51,14 +51,8 @@ def radiation(path, body="pile", monitors=None, label=None):
             elif component != "v_theta":
                 raise RunFileError(f"{path} has no dataset /monitors/{monitor}/{component}")
     series = read_series(path, names)
-    phase = series["/phase"]
-    table = phases(path)
-    last = len(table) - 1 if len(table) else int(phase.max(initial=0))
-    rows = np.flatnonzero(phase == last)
-    if not rows.size:
-        raise RunFileError(f"{path} has no rows of its last phase (index {last:g}), the installation")
     # The installation starts where the row before it ended.
-    before = rows[0] - 1 if rows[0] > 0 else rows[0]
+    rows, before = last_phase_rows(path, series["/phase"], "the installation")
     penetration = series[f"/bodies/{body}/penetration"]
     gained = float(penetration[rows[-1]] - penetration[before])
     radiated = np.nan
