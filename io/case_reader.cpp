@@ -10,6 +10,7 @@
 #include "io/region_reader.hpp"
 #include "io/toml_reader.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -819,8 +820,18 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
     body_bytes.push_back(n * particle_bytes);
     particles_bytes += body_bytes.back();
   }
-  const double physical =
+  double physical =
       static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  // A process limited in address space (ulimit -v, a batch system's memory limit) has less: the
+  // budget is three quarters of the limit, the rest left to the program, its libraries and the
+  // threads' stacks.
+  std::string whose = "this machine's";
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+      0.75 * static_cast<double>(limit.rlim_cur) < physical) {
+    physical = 0.75 * static_cast<double>(limit.rlim_cur);
+    whose = "three quarters of this process's address-space limit,";
+  }
   const double total = grid_bytes + particles_bytes;
   if (!(physical > 0.0) || total <= physical) {
     return;
@@ -828,7 +839,7 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
   std::ostringstream why;
   why << std::setprecision(3) << "the case needs about " << total / 1e9 << " GB ("
       << axes.r.cell_count() << " x " << axes.y.cell_count() << " cells: " << grid_bytes / 1e9
-      << " GB; particles: " << particles_bytes / 1e9 << " GB), more than this machine's "
+      << " GB; particles: " << particles_bytes / 1e9 << " GB), more than " << whose << " "
       << physical / 1e9 << " GB";
   if (grid_bytes >= particles_bytes || grid_bytes > physical) {
     if (top.has("monopile")) {
@@ -1163,7 +1174,18 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
 
 CaseSpec read_case_file(const std::string& path, const std::vector<std::string>& overrides) {
   ComposedCase composed = compose_case(path, overrides);
-  CaseSpec spec = read_case_tree(composed.root, composed.text, path);
+  CaseSpec spec;
+  try {
+    spec = read_case_tree(composed.root, composed.text, path);
+  } catch (const CaseError& e) {
+    // A value in a base file is reported where it is written; the case that was read says how it
+    // got there (its own value may be the cause: a phase it renamed).
+    const std::string message = e.what();
+    if (message.rfind(path, 0) != 0 && message.rfind("--set", 0) != 0) {
+      throw CaseError(message + " (read as a base of " + path + ")");
+    }
+    throw;
+  }
   spec.resolved = std::move(composed.resolved);
   spec.overrides = overrides;
   spec.bases = std::move(composed.bases);

@@ -135,6 +135,10 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   } catch (const CaseError& e) {
     err << "mpile: " << e.what() << '\n';
     return exit_bad_input;
+  } catch (const std::bad_alloc&) {
+    err << "mpile: " << options.case_path
+        << ": out of memory while building the case: it needs more than this process may use\n";
+    return exit_bad_input;
   } catch (const std::exception& e) {
     err << "mpile: " << options.case_path << ": " << e.what() << '\n';
     return exit_bad_input;

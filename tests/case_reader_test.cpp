@@ -527,9 +527,18 @@ std::vector<BadInput> bad_monopile_inputs() {
        "monopile.soil_width: must exceed the pile's outer radius", "soil_width"},
       {"tip below the bottom", monopile_edited("embedment = 3.0", "embedment = 9.9"),
        "monopile.band_below: the moving band reaches the bottom of the soil", ""},
+      // A mistyped extent: billions of cells, refused before any node list is built (it took
+      // minutes and gigabytes).
+      {"soil width of billions of cells",
+       monopile_edited("soil_width = 5.0", "soil_width = 4294967304"),
+       "monopile.soil_width: the grid could take up to 2.70124e+11 cells", "soil_width"},
       {"monopile cells past the memory budget",
-       monopile_edited("fine_cell = ", "fine_cell = 1e-6 #"),
+       monopile_edited("fine_cell = ", "fine_cell = 1e-5 #"),
        "monopile.fine_cell: the case needs about", "fine_cell"},
+      {"monopile cells past what an axis may hold",
+       monopile_edited("fine_cell = ", "fine_cell = 1e-6 #"),
+       "monopile.fine_cell: the grid could take up to 1.1e+07 cells of 1e-06 m across 11 m",
+       "fine_cell"},
       {"tip below the soil", monopile_edited("embedment = 3.0", "embedment = 12.0"),
        "monopile.embedment: must be less than soil_depth (10 m): the tip would start below the "
        "soil",

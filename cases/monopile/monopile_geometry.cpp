@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace mpile {
 
@@ -144,6 +145,30 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
   require(p.head_room > 0.0, "head_room", "must be positive");
   require(p.band_below > 0.0, "band_below", "must be positive");
   require(p.band_above > 0.0, "band_above", "must be positive");
+  require(std::isfinite(p.soil_width), "soil_width", "must be finite");
+  require(std::isfinite(p.soil_depth), "soil_depth", "must be finite");
+  // The axes' nodes are built one cell at a time: no axis may hold more cells than its extent in
+  // its smallest cells, and a mistyped extent or cell (soil_width = 4e9 m) would take minutes and
+  // gigabytes before the memory budget could refuse the grid. The cap is far above any mesh that
+  // fits in memory with a cell that small across the other axis.
+  {
+    constexpr double max_cells = 1e7;
+    const double smallest = std::min(p.fine_cell, p.wall_thickness / p.wall_cells);
+    for (const auto& [extent, key, usual] :
+         {std::tuple{p.soil_width, "soil_width", 5.0},
+          std::tuple{p.soil_depth + p.head_room, "soil_depth", 11.0}}) {
+      if (extent / smallest > max_cells) {
+        // Blame whichever of the extent and the cell is further from its usual size.
+        const bool extent_is_odd =
+            std::abs(std::log(extent / usual)) > std::abs(std::log(0.05 / smallest));
+        std::ostringstream why;
+        why << "the grid could take up to " << extent / smallest << " cells of " << smallest
+            << " m across " << extent << " m (at most " << max_cells
+            << " along an axis): check soil_width, soil_depth and fine_cell";
+        require(false, extent_is_odd ? key : "fine_cell", why.str());
+      }
+    }
+  }
 
   MonopileGeometry g;
   g.outer_radius = p.diameter / 2.0;
