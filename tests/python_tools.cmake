@@ -110,7 +110,7 @@ set_tests_properties(Convergence.RecoversTheLimitAndOrderOfAKnownSeries PROPERTI
                      PASS_REGULAR_EXPRESSION "\nall ok\n")
 
 # Mutants of every shipped case file through `mpile check`: each accepted (exit 0) or refused with
-# a message naming the file (exit 2) within 5 s and 1 GiB of address space, none crashing
+# a message naming the file (exit 2) within 5 s of CPU time and 1 GiB of address space, none crashing
 # (tools/fuzz_cases.py; docs/reliability.md). A fixed seed, so a failure replays. Under
 # AddressSanitizer fewer mutants and no address-space bound (ASan reserves terabytes of it);
 # ThreadSanitizer adds nothing to a single-threaded reader.

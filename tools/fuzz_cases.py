@@ -23,6 +23,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -111,27 +112,65 @@ def command(mpile, path):
 
 
 # A loaded machine slows a check without its doing more work: the time bound is on CPU seconds
-# (the process is killed past it), and the wall clock only catches a check that waits without
-# computing (a FIFO read), at this many times the bound.
-WALL_FACTOR = 6
+# (the process is killed past it). A check that waits without computing (a FIFO read) is caught
+# by the wall clock: past the bound, it fails once it has gone this long without using the CPU.
+IDLE_SECONDS = 10.0
+
+
+def cpu_seconds(pid):
+    """User plus system CPU time of a process and its threads so far (s), or None once it is gone."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+    except (OSError, IndexError, ValueError):
+        return None
+
+
+def run_bounded(argv, timeout, memory_mib):
+    """(returncode, stderr bytes), or None for a process that waited IDLE_SECONDS without computing
+    after `timeout` s of wall time."""
+    with subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                          preexec_fn=limits(memory_mib, int(timeout))) as process:
+        # stderr is read by a thread so that a long message cannot block the process.
+        chunks = []
+        reader = threading.Thread(target=lambda: chunks.append(process.stderr.read()))
+        reader.start()
+        start = time.monotonic()
+        last_cpu, last_change = 0.0, start
+        while True:
+            try:
+                process.wait(timeout=0.5)
+                break
+            except subprocess.TimeoutExpired:
+                now = time.monotonic()
+                cpu = cpu_seconds(process.pid)
+                if cpu is not None and cpu > last_cpu:
+                    last_cpu, last_change = cpu, now
+                if now - start > timeout and now - last_change > IDLE_SECONDS:
+                    process.kill()
+                    process.wait()
+                    reader.join()
+                    return None
+        reader.join()
+        return process.returncode, b"".join(chunks)
 
 
 def check(mpile, path, timeout, memory_mib):
     """One mutant read: ("accepted" | "refused", None), or ("failed", what went wrong)."""
-    try:
-        done = subprocess.run(command(mpile, path), capture_output=True, timeout=WALL_FACTOR * timeout,
-                              preexec_fn=limits(memory_mib, int(timeout)))
-    except subprocess.TimeoutExpired:
-        return "failed", f"no answer within {WALL_FACTOR * timeout:g} s of wall time"
-    err = done.stderr.decode("utf-8", "replace")
-    if done.returncode == -signal.SIGXCPU or done.returncode == -signal.SIGKILL:
+    done = run_bounded(command(mpile, path), timeout, memory_mib)
+    if done is None:
+        return "failed", f"no answer: it waited {IDLE_SECONDS:g} s without computing"
+    returncode, stderr = done
+    err = stderr.decode("utf-8", "replace")
+    if returncode == -signal.SIGXCPU or returncode == -signal.SIGKILL:
         return "failed", f"more than {int(timeout)} s of CPU time: {err.strip()[-300:]}"
-    if done.returncode < 0:
-        return "failed", f"killed by signal {-done.returncode}: {err.strip()[-300:]}"
-    if done.returncode == 0:
+    if returncode < 0:
+        return "failed", f"killed by signal {-returncode}: {err.strip()[-300:]}"
+    if returncode == 0:
         return "accepted", None
-    if done.returncode != 2:
-        return "failed", f"exit {done.returncode}: {err.strip()[-300:]}"
+    if returncode != 2:
+        return "failed", f"exit {returncode}: {err.strip()[-300:]}"
     lines = [line for line in err.splitlines() if line.strip()]
     # The message's first line names the file (a TOML syntax error then shows the line with a caret).
     if not lines or not lines[0].startswith("mpile: ") or "internal error" in err:
@@ -148,7 +187,8 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--timeout", type=float, default=5.0,
-                        help="CPU seconds one check may take (the wall clock allows 6 times as much)")
+                        help="CPU seconds one check may take (on the wall clock it may take longer "
+                             "while it computes, and fails once it waits 10 s without computing)")
     parser.add_argument("--memory", type=int, default=1024,
                         help="MiB of address space per check (0: no limit, for sanitizer builds)")
     parser.add_argument("--all-cases", action="store_true", help="include the slow case files")
