@@ -54,6 +54,8 @@ struct CaseRun {
   explicit CaseRun(const std::string& text) : spec(read_case_text(text, "test.toml")) {
     scene = build_scene(spec);
     solver = std::make_unique<ExplicitSolver>(*scene, phase_settings(spec, spec.phases[0]), log);
+    // As `mpile run` does at the first phase's start (the K0 procedure is left to the test).
+    switch_on_absorbing_faces(*solver, spec, 0);
   }
   template <class F> void run(F&& after_step) {
     while (solver->time() < spec.phases[0].duration * (1.0 - 1e-12)) {
