@@ -713,16 +713,17 @@ TEST(RunCommand, AbsorbingFacesRadiateAndRestartBitwiseIdentically) {
 }
 
 /// A rigid block driven down above soil it never touches, under a moving mesh whose band may
-/// travel 0.2 m: a first phase of 0.2 s at 0.5 m/s (0.1 m), then a load test with its own drive
-/// at 0.25 m/s and a settlement stop.
+/// travel 0.2 m: a first phase of 0.05 s at 2 m/s (0.1 m; its own drive replaces the block's
+/// 0.5 m/s), then a load test with its own drive at 1 m/s and a settlement stop.
 std::string load_test_case(double settlement) {
   return std::string(block_above_soil) + R"([[phases]]
 name = "install"
-duration = 0.2
+duration = 0.05
+drive = { body = "block", velocity_y = -2.0 }
 [[phases]]
 name = "load_test"
 duration = 1.0
-drive = { body = "block", velocity_y = -0.25 }
+drive = { body = "block", velocity_y = -1.0 }
 stop_at = { body = "block", settlement = )" +
          std::to_string(settlement) + R"( }
 [output]
@@ -745,22 +746,23 @@ TEST(RunCommand, ALoadTestPhaseStopsAtItsSettlementOrAtTheBandsTravel) {
     const auto v_y = history.read_doubles("/bodies/block/v_y");
     const auto phase = history.read_doubles("/phase");
     const std::string ended = history.string_attribute("/phases/1", "ended");
-    // The first phase: 0.2 s at 0.5 m/s.
+    // The first phase: 0.05 s at 2 m/s.
     const auto first_test_row = std::find(phase.begin(), phase.end(), 1.0) - phase.begin();
     const double start = depth[static_cast<std::size_t>(first_test_row) - 1];
     EXPECT_NEAR(start, 0.1, 1e-9);
-    // The phase's own drive: 0.25 m/s from its start.
-    EXPECT_NEAR(v_y.back(), -0.25, 1e-12);
+    // The phase's own drive: 1 m/s from its start.
+    EXPECT_NEAR(v_y.back(), -1.0, 1e-12);
     if (settlement == 0.05) {
-      // Ends on the step that reaches the settlement: within one step (0.25 m/s x dt) past it.
+      // Ends on the step that reaches the settlement: within one step (1 m/s x dt, dt < 1e-3 s)
+      // past it.
       EXPECT_GE(depth.back() - start, 0.05);
-      EXPECT_LT(depth.back() - start, 0.05 + 0.25 * 1e-3);
+      EXPECT_LT(depth.back() - start, 0.05 + 1.0 * 1e-3);
       EXPECT_EQ(ended.rfind("at block settlement 0.05", 0), 0u) << ended;
     } else {
       // 0.1 + 0.15 m is past the band's 0.2 m of travel: the test ends before the step that
       // would carry the band beyond it, and says so.
       EXPECT_LT(depth.back(), 0.2);
-      EXPECT_GT(depth.back(), 0.2 - 0.25 * 2e-3);
+      EXPECT_GT(depth.back(), 0.2 - 1.0 * 2e-3);
       EXPECT_EQ(ended.rfind("at the moving band's travel (0.2 m) with block settlement", 0), 0u)
           << ended;
     }
