@@ -110,7 +110,10 @@ HardeningSoil::HardeningSoil(const HardeningSoilParameters& p) : parameters_(p) 
   require(p.power >= 0.0 && p.power < 1.0, "power must lie in [0, 1)");
   require(p.poisson_ur > -1.0 && p.poisson_ur < 0.5, "poisson_ur must lie in (-1, 0.5)");
   require(p.k0_nc > 0.0 && p.k0_nc < 1.0, "k0_nc must lie in (0, 1)");
-  require(p.failure_ratio > 0.0 && p.failure_ratio < 1.0, "failure_ratio must lie in (0, 1)");
+  // Below 1e-3 the hyperbola's asymptote q_a = q_f / R_f is a thousand times the strength or
+  // more (typical R_f: 0.75 to 1), and at 1e-308 it overflows: every return then fell back to
+  // its bracketed roots, and `mpile check` ran for minutes.
+  require(p.failure_ratio >= 1e-3 && p.failure_ratio < 1.0, "failure_ratio must lie in [0.001, 1)");
   require(p.p_ref > 0.0, "p_ref must be positive");
   require(p.friction_angle > 0.0 && p.friction_angle < 90.0,
           "friction_angle must lie in (0, 90) degrees");

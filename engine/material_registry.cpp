@@ -42,7 +42,7 @@ const std::vector<MaterialType>& material_types() {
         {"power", "-", "m, the stress dependency of stiffness, in [0, 1)", std::nullopt},
         {"poisson_ur", "-", "unloading/reloading Poisson ratio", 0.2},
         {"k0_nc", "-", "K0 of normally consolidated soil, in (0, 1)", std::nullopt},
-        {"failure_ratio", "-", "Rf = qf / qa, in (0, 1)", 0.9},
+        {"failure_ratio", "-", "Rf = qf / qa, in [0.001, 1)", 0.9},
         {"p_ref", "Pa", "reference stress of the stiffness laws", 100e3},
         {"friction_angle", "degrees", "friction angle phi", std::nullopt},
         {"dilatancy_angle", "degrees", "ultimate dilatancy angle psi, in [0, phi]", 0.0},

@@ -77,6 +77,15 @@ struct Point {
   double volumetric_strain_total = 0.0;
 };
 
+TEST(HardeningSoil, AFailureRatioWhoseAsymptoteOverflowsIsRefused) {
+  // R_f = 1e-308 made q_a = q_f / R_f infinite and every return slow (found by the fuzz run).
+  HardeningSoilParameters p = seed_parameters();
+  p.failure_ratio = 1e-308;
+  EXPECT_THROW(HardeningSoil{p}, std::invalid_argument);
+  p.failure_ratio = 1e-3;
+  EXPECT_NO_THROW(HardeningSoil{p});
+}
+
 TEST(HardeningSoil, CapShapeAndModulusFollowFromK0ncAndEoedRef) {
   const HardeningSoil model(seed_parameters());
   EXPECT_NEAR(model.alpha(), 1.0198, 5e-4);            // hardening_soil.md 1.6
