@@ -143,16 +143,8 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
     for (const MonitorSpec& monitor : spec.output.monitors) {
       monitored_particle(monitor, *scene);
     }
-  } catch (const CaseError& e) {
-    err << "mpile: " << e.what() << '\n';
-    return exit_bad_input;
-  } catch (const std::bad_alloc&) {
-    err << "mpile: " << options.case_path
-        << ": out of memory while building the case: it needs more than this process may use\n";
-    return exit_bad_input;
-  } catch (const std::exception& e) {
-    err << "mpile: " << options.case_path << ": " << e.what() << '\n';
-    return exit_bad_input;
+  } catch (const std::exception&) {
+    return refuse_case(err, options.case_path);
   }
   out << spec.file << ": " << spec.title << " ("
       << (spec.mode == GeometryMode::axisymmetric ? "axisymmetric" : "plane strain") << ")\n";

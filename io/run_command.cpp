@@ -100,6 +100,20 @@ std::string format_time(double t) {
 
 } // namespace
 
+int refuse_case(std::ostream& err, const std::string& case_path) {
+  try {
+    throw;
+  } catch (const CaseError& e) {
+    err << "mpile: " << e.what() << '\n';
+  } catch (const std::bad_alloc&) {
+    err << "mpile: " << case_path
+        << ": out of memory while building the case: it needs more than this process may use\n";
+  } catch (const std::exception& e) {
+    err << "mpile: " << case_path << ": " << e.what() << '\n';
+  }
+  return exit_bad_input;
+}
+
 int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   // First of all, so that a SIGINT or SIGTERM while the case is read and built (seconds for a
   // large one) stops the run cleanly instead of killing it.
@@ -132,16 +146,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         restored.progress.phase = spec.phases.size() - 1;
       }
     }
-  } catch (const CaseError& e) {
-    err << "mpile: " << e.what() << '\n';
-    return exit_bad_input;
-  } catch (const std::bad_alloc&) {
-    err << "mpile: " << options.case_path
-        << ": out of memory while building the case: it needs more than this process may use\n";
-    return exit_bad_input;
-  } catch (const std::exception& e) {
-    err << "mpile: " << options.case_path << ": " << e.what() << '\n';
-    return exit_bad_input;
+  } catch (const std::exception&) {
+    return refuse_case(err, options.case_path);
   }
 
   RunLog log(&out);

@@ -33,6 +33,11 @@ enum ExitStatus : int {
 /// checkpoints, and reports progress. Returns an ExitStatus.
 int run_case(const RunOptions& options, std::ostream& out, std::ostream& err);
 
+/// Called from a catch block around reading and building a case: writes why the case at
+/// case_path cannot be run (a CaseError as it stands, as it names file, line and key; running out
+/// of memory; anything else after the case's path) and returns exit_bad_input.
+int refuse_case(std::ostream& err, const std::string& case_path);
+
 /// `mpile check`: validates the case and prints the grid, particle counts, the time step, the
 /// estimated number of steps, run time and memory. Returns an ExitStatus.
 int check_case(const RunOptions& options, std::ostream& out, std::ostream& err);

@@ -12,21 +12,14 @@ namespace mpile::passes {
 
 namespace {
 
-/// One face node's dashpot coefficients (force per velocity; theta: torque per angular velocity)
-/// and holding force (theta: torque), summed over the faces it lies on.
-struct FaceNodeTerms {
-  int node = 0;
-  std::array<double, 3> dashpot{0.0, 0.0, 0.0};
-  std::array<double, 3> holding{0.0, 0.0, 0.0};
-};
-
 /// Node k's share of the weights of the segments beside it.
 double node_weight(const std::vector<std::array<double, 2>>& weights, std::size_t k) {
   return (k > 0 ? weights[k - 1][1] : 0.0) + (k < weights.size() ? weights[k][0] : 0.0);
 }
 
-/// Every active face's nodes with their terms now, merged at shared corner nodes, in node order.
-std::vector<FaceNodeTerms> face_node_terms(const Scene& scene) {
+} // namespace
+
+std::vector<FaceNodeTerms> absorbing_face_terms(const Scene& scene) {
   const Grid& grid = scene.grid;
   const WeightPowers powers = weight_powers(scene.mode);
   const bool theta = has_theta(scene.mode);
@@ -80,16 +73,12 @@ std::vector<FaceNodeTerms> face_node_terms(const Scene& scene) {
   return merged;
 }
 
-} // namespace
-
-double apply_holding_tractions(Scene& scene, const StepParameters& step) {
+double apply_holding_tractions(Scene& scene, const std::vector<FaceNodeTerms>& terms,
+                               const StepParameters& step) {
   double squares = 0.0;
-  if (scene.boundaries.absorbing.empty()) {
-    return squares;
-  }
   Grid& grid = scene.grid;
   const int dofs = has_theta(scene.mode) ? 3 : 2;
-  for (const FaceNodeTerms& t : face_node_terms(scene)) {
+  for (const FaceNodeTerms& t : terms) {
     GridNode& node = grid.nodes[static_cast<std::size_t>(t.node)];
     if (node.mass <= step.mass_floor) {
       continue;
@@ -106,19 +95,16 @@ double apply_holding_tractions(Scene& scene, const StepParameters& step) {
   return squares;
 }
 
-AbsorbedWork absorb_at_faces(Scene& scene, const SolverSettings& settings,
-                             const StepParameters& step) {
+AbsorbedWork absorb_at_faces(Scene& scene, const std::vector<FaceNodeTerms>& terms,
+                             const SolverSettings& settings, const StepParameters& step) {
   AbsorbedWork work;
-  if (scene.boundaries.absorbing.empty()) {
-    return work;
-  }
   Grid& grid = scene.grid;
   const int dofs = has_theta(scene.mode) ? 3 : 2;
   // Mass scaling multiplies the density by beta and divides the wave speeds by sqrt(beta): the
   // impedance rho c grows by sqrt(beta).
   const double impedance_scale = std::sqrt(settings.mass_scaling);
   const double dt_over_beta = step.dt / settings.mass_scaling;
-  for (const FaceNodeTerms& t : face_node_terms(scene)) {
+  for (const FaceNodeTerms& t : terms) {
     GridNode& node = grid.nodes[static_cast<std::size_t>(t.node)];
     if (node.mass <= step.mass_floor) {
       continue;

@@ -326,7 +326,8 @@ double ExplicitSolver::unbalanced_force_ratio() {
   const Grid& grid = scene_.grid;
   // The holding forces of absorbing faces, like loads, are part of f_ext and among the forces
   // that hold the state.
-  const double holding_squared = passes::apply_holding_tractions(scene_, now);
+  const double holding_squared =
+      passes::apply_holding_tractions(scene_, passes::absorbing_face_terms(scene_), now);
   const int dofs = has_theta(scene_.mode) ? 3 : 2;
   const double g2 =
       settings_.gravity[0] * settings_.gravity[0] + settings_.gravity[1] * settings_.gravity[1];
@@ -381,7 +382,7 @@ void ExplicitSolver::switch_on_absorbing(const std::vector<std::size_t>& faces) 
   particle_to_grid();
   const passes::StepParameters now{time_, 0.0, mass_floor_};
   passes::apply_nodal_loads(scene_, now);
-  passes::apply_holding_tractions(scene_, now);
+  passes::apply_holding_tractions(scene_, passes::absorbing_face_terms(scene_), now);
   passes::switch_on_absorbing_faces(scene_, faces, now);
   static const char* names[] = {"r_min", "r_max", "y_min", "y_max"};
   for (const std::size_t f : faces) {
@@ -471,11 +472,13 @@ void ExplicitSolver::step_in_mode(double dt) {
   {
     PassTimer timer(timings_.grid_update);
     passes::apply_nodal_loads(scene_, step);
-    passes::apply_holding_tractions(scene_, step);
+    // Absorbing faces' terms from the grid's coordinates this step, for both of their passes.
+    const std::vector<passes::FaceNodeTerms> faces = passes::absorbing_face_terms(scene_);
+    passes::apply_holding_tractions(scene_, faces, step);
     const passes::GridUpdateResult grid =
         passes::update_grid_velocities<mode>(scene_, settings_, step);
     energy_.damping += grid.damping_dissipation;
-    const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, settings_, step);
+    const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, faces, settings_, step);
     energy_.radiated += absorbed.radiated;
     energy_.external_work += absorbed.holding;
     if (grid.node_nonfinite >= 0) {

@@ -11,8 +11,10 @@
 #include "engine/shape_functions.hpp"
 #include "solver/solver_settings.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace mpile::passes {
 
@@ -37,10 +39,23 @@ template <GeometryMode mode>
 GridUpdateResult update_grid_velocities(Scene& scene, const SolverSettings& settings,
                                         const StepParameters& step);
 
+/// One absorbing-face node's dashpot coefficients (force per velocity; theta: torque per angular
+/// velocity) and holding force (theta: torque), summed over the faces it lies on.
+struct FaceNodeTerms {
+  int node = 0;
+  std::array<double, 3> dashpot{0.0, 0.0, 0.0};
+  std::array<double, 3> holding{0.0, 0.0, 0.0};
+};
+
+/// Every active absorbing face's nodes with their terms at the grid's coordinates now, merged at
+/// shared corner nodes, in node order (empty without active faces).
+std::vector<FaceNodeTerms> absorbing_face_terms(const Scene& scene);
+
 /// Adds the forces (theta: torques) that absorbing faces hold their nodes with to the soil's node
 /// forces, as loads are added. Returns the sum of their squares (a torque counted as a force at the
 /// node's radius of gyration), for the equilibrium check's measure of the forces that hold.
-double apply_holding_tractions(Scene& scene, const StepParameters& step);
+double apply_holding_tractions(Scene& scene, const std::vector<FaceNodeTerms>& terms,
+                               const StepParameters& step);
 
 struct AbsorbedWork {
   double radiated = 0.0; // taken by the dashpots over the step (J)
@@ -49,8 +64,8 @@ struct AbsorbedWork {
 
 /// After the momentum balance: the dashpots of the active absorbing faces, taken implicitly, on the
 /// soil's free DOFs of their nodes.
-AbsorbedWork absorb_at_faces(Scene& scene, const SolverSettings& settings,
-                             const StepParameters& step);
+AbsorbedWork absorb_at_faces(Scene& scene, const std::vector<FaceNodeTerms>& terms,
+                             const SolverSettings& settings, const StepParameters& step);
 
 /// Switches absorbing faces on from the node forces f_ext - f_int now (a particle-to-grid map with
 /// loads and the holding forces of faces already on): their supports give way, each node keeps
