@@ -755,17 +755,16 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
         // Equal is refused too: the phase stops after the step that reaches the depth, and that
         // step has already carried the band past its travel.
         std::ostringstream why;
-        why << "reaches the travel of the moving band (" << spec.moving_mesh->travel
-            << " m): below that depth the soil is seeded for coarser cells than the band's, and "
-               "the step that reaches it carries the band past it; stop short of it or raise "
-            << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
         if (settlement) {
-          why.str("");
           why << "with the " << s.penetration - s.settlement
               << " m an earlier phase stops at, reaches the travel of the moving band ("
-              << spec.moving_mesh->travel << " m); settle less or raise "
-              << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
+              << spec.moving_mesh->travel << " m); settle less";
+        } else {
+          why << "reaches the travel of the moving band (" << spec.moving_mesh->travel
+              << " m): below that depth the soil is seeded for coarser cells than the band's, and "
+                 "the step that reaches it carries the band past it; stop short of it";
         }
+        why << " or raise " << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
         stop->fail(settlement ? "settlement" : "penetration", why.str());
       }
       s.at_rest = stop->boolean_or("at_rest", false);
@@ -1079,7 +1078,8 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
   std::vector<TomlTable> body_tables; // empty with [monopile], whose bodies are never empty
   Axes axes;
-  std::optional<TomlTable> monopile_table;
+  // The table `absorbing` was read from, for its phase's check once the phases are read.
+  std::optional<TomlTable> absorbing_table;
   if (std::optional<TomlTable> monopile = top.optional_table("monopile")) {
     for (const char* key : {"grid", "bodies", "contact", "boundaries", "moving_mesh"}) {
       if (top.has(key)) {
@@ -1091,7 +1091,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     if (std::optional<TomlTable> drive = read_monopile(*monopile, spec)) {
       rigid_tables.emplace_back(spec.bodies.size() - 1, std::move(*drive));
     }
-    monopile_table = *monopile;
+    absorbing_table = *monopile;
     axes = axes_of(spec);
   } else {
     TomlTable grid = top.table("grid");
@@ -1105,11 +1105,6 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     axes = axes_of(spec);
     read_materials(top, spec);
     rigid_tables = read_bodies(top, spec, axes, body_tables);
-  }
-  // The table `absorbing` was read from, for its phase's check once the phases are read.
-  std::optional<TomlTable> absorbing_table;
-  if (monopile_table) {
-    absorbing_table = *monopile_table;
   }
   if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
     read_absorbing_faces(*boundaries, spec,

@@ -481,38 +481,31 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
             const RigidBody& pile = rigid_body_named(*scene, stop.body);
             const double depth = penetration_of(pile);
             const double speed = std::abs(pile.velocity[RIGID_Y]);
-            if (stop.settlement > 0.0) {
-              // A load test: the settlement since the phase began.
-              const double start = progress.phase_start_depths.at(progress.phase);
-              const double settled = depth - start;
-              goal = {"settlement", settled, stop.settlement, "m", t, phase_end};
-              const double travel = scene->moving_mesh ? scene->moving_mesh->travel : 0.0;
-              if (settled >= stop.settlement && (!stop.at_rest || speed < rest_speed)) {
-                std::ostringstream why;
-                why << "at " << stop.body << " settlement " << std::setprecision(4) << settled
-                    << " m (penetration " << depth << " m)" << (stop.at_rest ? " and at rest" : "");
-                ended = why.str();
-                break;
+            // A load test counts its settlement since the phase began, others the penetration.
+            const bool settles = stop.settlement > 0.0;
+            const double measured =
+                settles ? depth - progress.phase_start_depths.at(progress.phase) : depth;
+            const double target = settles ? stop.settlement : stop.penetration;
+            goal = {settles ? "settlement" : "penetration", measured, target, "m", t, phase_end};
+            std::ostringstream why;
+            why << std::setprecision(4);
+            if (measured >= target && (!stop.at_rest || speed < rest_speed)) {
+              why << "at " << stop.body << (settles ? " settlement " : " penetration ") << measured
+                  << " m";
+              if (settles) {
+                why << " (penetration " << depth << " m)";
               }
-              // The band may not be carried past its travel: the test ends there, short of its
-              // settlement, and says so.
-              if (travel > 0.0 && depth + speed * solver->stable_time_step() >= travel) {
-                std::ostringstream why;
-                why << "at the moving band's travel (" << travel << " m) with " << stop.body
-                    << " settlement " << std::setprecision(4) << settled << " m of "
-                    << stop.settlement;
-                ended = why.str();
-                break;
-              }
-            } else {
-              goal = {"penetration", depth, stop.penetration, "m", t, phase_end};
-              if (depth >= stop.penetration && (!stop.at_rest || speed < rest_speed)) {
-                std::ostringstream why;
-                why << "at " << stop.body << " penetration " << std::setprecision(4) << depth
-                    << " m" << (stop.at_rest ? " and at rest" : "");
-                ended = why.str();
-                break;
-              }
+              ended = why.str() + (stop.at_rest ? " and at rest" : "");
+              break;
+            }
+            // The band may not be carried past its travel: a load test ends there, short of its
+            // settlement, and says so (a penetration stop beyond it is refused when read).
+            const double travel = scene->moving_mesh ? scene->moving_mesh->travel : 0.0;
+            if (settles && travel > 0.0 && depth + speed * solver->stable_time_step() >= travel) {
+              why << "at the moving band's travel (" << travel << " m) with " << stop.body
+                  << " settlement " << measured << " m of " << stop.settlement;
+              ended = why.str();
+              break;
             }
           }
           reporter.update(phase.name, solver->step_count(), goal);
