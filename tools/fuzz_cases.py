@@ -5,6 +5,7 @@ bound, and never crashes, hangs or reports an internal error.
 
   tools/fuzz_cases.py --mutants 300                 # a seeded run, as the test suite does
   tools/fuzz_cases.py --mutants 100000 --seed 7     # a long run; failures are kept for replay
+  tools/fuzz_cases.py --mutants 100000 --seed 7 --first 80000   # the same run's last 20 000
 
 Each mutant applies one to three edits to a case file chosen at random: a number replaced by an
 extreme or invalid one, a line deleted, duplicated or swapped, a key misspelt, a string value
@@ -185,6 +186,9 @@ def main():
     parser.add_argument("--mpile", default=os.path.join(ROOT, "build/release/bin/mpile"))
     parser.add_argument("--mutants", type=int, default=300)
     parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--first", type=int, default=0,
+                        help="check only the mutants from this index on (the earlier ones are still drawn, "
+                             "so a long run cut short is finished with the same mutants)")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--timeout", type=float, default=5.0,
                         help="CPU seconds one check may take (on the wall clock it may take longer "
@@ -219,6 +223,8 @@ def main():
         for _ in range(rng.randint(1, 3)):
             text, kind = mutate(text, rng)
             edits.append(kind)
+        if i < args.first:
+            continue
         os.makedirs(os.path.join(work, folder), exist_ok=True)
         path = os.path.join(work, folder, f"m{i:06d}_{name}")
         with open(path, "w", encoding="utf-8", errors="surrogatepass") as f:
@@ -247,13 +253,13 @@ def main():
             if problem is not None:
                 failures.append((path, name, edits, problem))
                 keep(path, name, edits, problem)
-            if done % 10000 == 0 and done < len(jobs):
+            if (args.first + done) % 10000 == 0 and done < len(jobs):
                 # A long run says where it is, so that one cut short still has counts.
-                print(f"{done} of {len(jobs)} mutants in {time.monotonic() - start:.0f} s: "
+                print(f"{args.first + done} of {args.mutants} mutants in {time.monotonic() - start:.0f} s: "
                       f"{counts['accepted']} accepted, {counts['refused']} refused, "
                       f"{len(failures)} failures so far", flush=True)
     elapsed = time.monotonic() - start
-    print(f"{len(jobs)} mutants of {len(cases)} case files (seed {args.seed}) in {elapsed:.0f} s: "
+    print(f"{len(jobs)} mutants (from {args.first} to {args.mutants - 1}) of {len(cases)} case files (seed {args.seed}) in {elapsed:.0f} s: "
           f"{counts['accepted']} accepted, {counts['refused']} refused, {len(failures)} failures")
     shutil.rmtree(work)
     sys.exit(1 if failures else 0)

@@ -79,8 +79,13 @@ def case(
     k0=0.5,
     bbar=True,
     particles_per_cell=2,
+    normals="outline",
+    sand=None,
 ):
-    """The case text; flat, friction, speed and mass_scaling vary it for docs/cpt.md's study."""
+    """The case text; the keywords vary it for docs/cpt.md's study. `sand` holds Hardening Soil
+    keys set beside Table 5 (the model's own settings: ocr, stiffness_floor, cap_floor) or over it
+    (dilatancy_angle, a sensitivity row only)."""
+    sand = dict(sand or {})
     h = RADIUS / n
     tip = SURFACE - EMBEDMENT
     shoulder = tip + (0.0 if flat else CONE_HEIGHT)
@@ -118,6 +123,20 @@ def case(
     # Written only when varied, so that the shipped cases keep their defaults implicit.
     ppc_line = "" if particles_per_cell == 2 else f"particles_per_cell = {particles_per_cell}\n"
     bbar_line = "" if bbar else "bbar = false\n"
+    # Mass-gradient normals know no outline, so no named surfaces and no q_c: the rod's total force.
+    outlined = normals == "outline"
+    surfaces_line = (
+        'surfaces = ["cone", "sleeve", "shaft", "", ""]\n'
+        if outlined
+        else f'normals = "{normals}"\nsurface = "rod"\n'
+    )
+    cpt_output = (
+        '\n[output.cpt]  # /cpt/q_c, f_s and R_f in history.h5\nbody = "cone"\ncone = "cone"\nsleeve = "sleeve"\n'
+        if outlined
+        else ""
+    )
+    dilatancy = sand.pop("dilatancy_angle", 0.0)
+    sand_lines = "".join(f"{k} = {v:g}\n" for k, v in sand.items())
     polygon = lambda pts: "[" + ", ".join(f"[{f(r)}, {f(y)}]" for r, y in pts) + "]"  # noqa: E731
     return f"""# CPT in a calibration chamber, {n} cells per cone radius. Written by cases/cpt/make_cases.py
 # (its docstring gives the set-up); docs/cpt.md has the runs and what sets q_c.
@@ -143,9 +162,9 @@ k0_nc = 0.5
 failure_ratio = 0.91
 p_ref = 100e3
 friction_angle = 37.5
-dilatancy_angle = 0.0
+dilatancy_angle = {float(dilatancy)}
 density = 1656.25
-
+{sand_lines}
 [materials.steel]
 type = "linear_elastic"
 young_modulus = 210e9
@@ -170,8 +189,7 @@ velocity_y = {{ type = "ramp", value = {-speed}, duration = 0.01 }}
 [[contact]]
 structure = "cone"
 friction = {friction}     # tan 21.8 deg, as the seed's pile
-surfaces = ["cone", "sleeve", "shaft", "", ""]
-
+{surfaces_line}
 [moving_mesh]
 body = "cone"
 band = [{f(band_bottom)}, {f(band_top)}]
@@ -209,12 +227,7 @@ mass_scaling = {mass_scaling}
 [output]
 history_interval = 0.002
 snapshot_penetrations = {[d for d in (0.1, 0.3, 0.6) if d <= penetration]}
-
-[output.cpt]  # /cpt/q_c, f_s and R_f in history.h5
-body = "cone"
-cone = "cone"
-sleeve = "sleeve"
-"""
+{cpt_output}"""
 
 
 if __name__ == "__main__":
@@ -223,10 +236,13 @@ if __name__ == "__main__":
     if len(sys.argv) > 1:  # a variant: make_cases.py OUT.toml N PENETRATION [key=value ...]
         options = dict(arg.split("=") for arg in sys.argv[4:])
         flags = ("flat", "bbar")
+        sand = {k[len("sand."):]: float(v) for k, v in options.items() if k.startswith("sand.")}
         options = {
-            k: (v == "true") if k in flags else int(v) if k == "particles_per_cell" else float(v)
-            for k, v in options.items()
+            k: (v == "true") if k in flags else int(v) if k == "particles_per_cell"
+            else v if k == "normals" else float(v)
+            for k, v in options.items() if not k.startswith("sand.")
         }
+        options["sand"] = sand
         pathlib.Path(sys.argv[1]).write_text(case(int(sys.argv[2]), float(sys.argv[3]), **options))
         sys.exit(0)
     here = pathlib.Path(__file__).parent
