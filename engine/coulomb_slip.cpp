@@ -34,4 +34,22 @@ SlipKept coulomb_slip(double slip_plane, double slip_theta, double mass, double 
   return {x / (x + c_plane), x / (x + c_theta)};
 }
 
+ContactCorrection contact_correction(const std::array<double, 3>& relative,
+                                     const std::array<double, 2>& n, double mass, double theta_mass,
+                                     double friction, double adhesion_impulse) {
+  const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
+  const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
+                                         relative[1] - normal_velocity * n[1], relative[2]};
+  const double limit = friction * mass * std::abs(normal_velocity) + adhesion_impulse;
+  ContactCorrection out;
+  out.keep = coulomb_slip(std::hypot(tangential[0], tangential[1]), std::abs(tangential[2]), mass,
+                          theta_mass, limit);
+  const std::array<double, 3> kept{out.keep.plane, out.keep.plane, out.keep.theta};
+  out.change = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
+  for (std::size_t d = 0; d < 3; ++d) {
+    out.change[d] -= (1.0 - kept[d]) * tangential[d];
+  }
+  return out;
+}
+
 } // namespace mpile

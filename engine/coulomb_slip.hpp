@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+
 namespace mpile {
 
 /// The fraction of each tangential relative velocity a contact node keeps after its Coulomb
@@ -19,5 +21,19 @@ struct SlipKept {
 /// sum t_d^2 / (x + c_d)^2 = 1. With equal inertias x = |t| - c, the isotropic rule.
 SlipKept coulomb_slip(double slip_plane, double slip_theta, double mass, double theta_mass,
                       double limit);
+
+/// The contact law at one node (physics.md section 5), as a change of the soil's velocity. The
+/// soil's velocity relative to the structure is `relative` (r, y, theta) and n the structure's
+/// outward unit normal in r-y; the node's soil has mass m (r-y DOFs) and theta_mass (J / r^2).
+/// The approach along n is removed (no interpenetration; the caller decides separation), and the
+/// tangential slip (r-y and theta together) is reduced by Coulomb friction on that normal impulse
+/// plus an adhesive impulse (c_a A dt / beta): mu m |v_n| + adhesion_impulse.
+struct ContactCorrection {
+  std::array<double, 3> change{}; // soil velocity change (r, y, theta)
+  SlipKept keep;                  // fractions of the tangential slips left (0: sticks)
+};
+ContactCorrection contact_correction(const std::array<double, 3>& relative,
+                                     const std::array<double, 2>& n, double mass, double theta_mass,
+                                     double friction, double adhesion_impulse);
 
 } // namespace mpile

@@ -222,22 +222,14 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     if (normal_velocity > 0.0 && !bonded) {
       return; // separating: no tension, and no tangential force either
     }
-    const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
-                                           relative[1] - normal_velocity * n[1], relative[2]};
     // Coulomb friction on the normal impulse plus adhesion over the node's area, as impulses per
-    // beta. The theta slip has its own inertia (J / r^2, not m): a sliding node's friction
-    // impulse has the magnitude of the limit and opposes the slip left after it (coulomb_slip).
-    // (The normal impulse is a pull only at a bonded node.)
-    const double limit =
-        pair.friction * s.mass * std::abs(normal_velocity) + adhesion_impulse * area;
+    // beta (engine/coulomb_slip.hpp). The theta slip has its own inertia (J / r^2, not m). (The
+    // normal impulse is a pull only at a bonded node.)
     const double theta_mass = at.count == 3 ? inertia(s, 2, at) : s.mass;
-    const SlipKept keep = coulomb_slip(std::hypot(tangential[0], tangential[1]),
-                                       std::abs(tangential[2]), s.mass, theta_mass, limit);
-    const std::array<double, 3> kept{keep.plane, keep.plane, keep.theta};
-    std::array<double, 3> change{-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
-    for (std::size_t d = 0; d < 3; ++d) {
-      change[d] -= (1.0 - kept[d]) * tangential[d];
-    }
+    const ContactCorrection correction =
+        contact_correction(relative, n, s.mass, theta_mass, pair.friction, adhesion_impulse * area);
+    const SlipKept keep = correction.keep;
+    const std::array<double, 3>& change = correction.change;
     // The energy the correction takes is the work of its impulse m_s dv at the mean relative
     // velocity over the step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, times kappa = 1 where the
     // structure's DOF moves as prescribed (rigid or held) and 1 + m_s / m_k where both fields

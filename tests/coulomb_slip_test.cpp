@@ -1,4 +1,5 @@
-// Coulomb friction at a contact node whose theta DOF has its own inertia (engine/coulomb_slip.hpp):
+// Coulomb friction at a contact node whose theta DOF has its own inertia, and the contact law
+// built on it (engine/coulomb_slip.hpp):
 // the node sticks when the impulse that stops its slip is within the limit; a sliding node's
 // friction impulse has the magnitude of the limit and opposes the slip left after it.
 #include "engine/coulomb_slip.hpp"
@@ -44,6 +45,44 @@ TEST(CoulombSlip, UnequalInertiasGiveTheLimitOpposingTheSlipLeft) {
     EXPECT_NEAR(f_plane * s_theta - f_theta * s_plane, 0.0, 1e-14 * limit) << "not parallel";
     EXPECT_GT(s_plane * t_plane + s_theta * t_theta, 0.0) << "the slip turned back";
   }
+}
+
+// The whole law at a node (contact_correction): a shaft node whose normal is (1, 0) into the
+// soil; relative velocity of the soil (approaching at 0.2 m/s, slipping 0.3 m/s down and 0.4 m/s
+// round).
+
+TEST(ContactLaw, FrictionlessRemovesTheApproachOnly) {
+  const ContactCorrection c = contact_correction({-0.2, -0.3, 0.4}, {1.0, 0.0}, 2.0, 2.2, 0.0, 0.0);
+  EXPECT_DOUBLE_EQ(c.change[0], 0.2);
+  EXPECT_EQ(c.change[1], 0.0);
+  EXPECT_EQ(c.change[2], 0.0);
+}
+
+TEST(ContactLaw, StickingRemovesTheWholeRelativeVelocity) {
+  // mu = 10: the limit 10 * 2 * 0.2 = 4 exceeds the impulse that stops both slips (1.065).
+  const ContactCorrection c =
+      contact_correction({-0.2, -0.3, 0.4}, {1.0, 0.0}, 2.0, 2.2, 10.0, 0.0);
+  EXPECT_EQ(c.keep.plane, 0.0);
+  EXPECT_EQ(c.keep.theta, 0.0);
+  EXPECT_DOUBLE_EQ(c.change[0], 0.2);
+  EXPECT_DOUBLE_EQ(c.change[1], 0.3);
+  EXPECT_DOUBLE_EQ(c.change[2], -0.4);
+}
+
+TEST(ContactLaw, SlidingFrictionAndAdhesionGiveTheLimitAsTheTangentialImpulse) {
+  // mu = 0.4 on the normal impulse 2 * 0.2 = 0.4, plus an adhesive impulse of 0.05: the tangential
+  // impulse m dv_t (r-y with m = 2, theta with 2.2) has magnitude 0.16 + 0.05 = 0.21, to rounding.
+  const double m = 2.0, m_theta = 2.2;
+  const ContactCorrection c =
+      contact_correction({-0.2, -0.3, 0.4}, {1.0, 0.0}, m, m_theta, 0.4, 0.05);
+  EXPECT_DOUBLE_EQ(c.change[0], 0.2);
+  EXPECT_NEAR(std::hypot(m * c.change[1], m_theta * c.change[2]), 0.21, 1e-14);
+  EXPECT_GT(c.keep.plane, 0.0);
+  // Adhesion alone acts on soil at rest in the normal direction.
+  const ContactCorrection a =
+      contact_correction({0.0, -0.3, 0.0}, {1.0, 0.0}, m, m_theta, 0.4, 0.05);
+  EXPECT_EQ(a.change[0], 0.0);
+  EXPECT_NEAR(m * a.change[1], 0.05, 1e-15);
 }
 
 } // namespace
