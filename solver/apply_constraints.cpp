@@ -40,7 +40,8 @@ void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_
 } // namespace
 
 double apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                         bool record_reactions, ConstraintFields fields) {
+                         CorrectionPass pass, ConstraintFields fields) {
+  const bool record_reactions = pass == CorrectionPass::after_balance;
   Grid& grid = scene.grid;
   const bool angular = has_theta(scene.mode);
   double work = 0.0;

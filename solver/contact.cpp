@@ -382,7 +382,8 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
 
 template <GeometryMode mode>
 double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                       bool record) {
+                       CorrectionPass pass) {
+  const bool record = pass == CorrectionPass::after_balance;
   if (record) {
     for (ContactPair& pair : scene.contacts) {
       if (pair.outline) {
@@ -433,8 +434,8 @@ void move_rigid_bodies(Scene& scene, const StepParameters& step) {
 }
 
 template double resolve_contact<GeometryMode::axisymmetric>(Scene&, const SolverSettings&,
-                                                            const StepParameters&, bool);
+                                                            const StepParameters&, CorrectionPass);
 template double resolve_contact<GeometryMode::plane_strain>(Scene&, const SolverSettings&,
-                                                            const StepParameters&, bool);
+                                                            const StepParameters&, CorrectionPass);
 
 } // namespace mpile::passes

@@ -19,13 +19,14 @@ void prepare_contact(Scene& scene);
 std::vector<std::array<double, 3>>
 predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step);
 
-/// The Bardenhagen correction at every node both the soil and a structure occupy. With record,
-/// also the FLIP increments, the per-node and per-surface forces and the rigid-body reactions
-/// (and the outlines' nodal areas are refreshed first), and returns the kinetic energy the
-/// correction took (J [/rad]); without record, 0.
+/// The Bardenhagen correction at every node both the soil and a structure occupy. After the
+/// momentum balance, also the FLIP increments, the per-node and per-surface forces and the
+/// rigid-body reactions (the outlines' nodal areas are refreshed first), and returns the kinetic
+/// energy the correction took (J [/rad]); after the remap, the same kind of correction at the same
+/// nodes, and 0.
 template <GeometryMode mode>
 double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                       bool record);
+                       CorrectionPass pass);
 
 /// Force-driven DOFs take the contact reactions; fields are set to the final rigid motion.
 void finish_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step,

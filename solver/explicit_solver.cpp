@@ -35,6 +35,13 @@ private:
   std::chrono::steady_clock::time_point start_;
 };
 
+/// "step N, t = T s: ", the prefix of every message about a step.
+std::string at_step(long step, double time) {
+  std::ostringstream s;
+  s << "step " << step << ", t = " << time << " s: ";
+  return s.str();
+}
+
 std::string position_of(const Particles& p, std::size_t i) {
   std::ostringstream s;
   s << "particle " << i << " at (r, y) = (" << p.r[i] << ", " << p.y[i] << ")";
@@ -169,7 +176,7 @@ double ExplicitSolver::move_mesh() {
     scene_.grid.set_y_nodes(mesh.lines_at(body.displacement[RIGID_Y]));
   } catch (const std::runtime_error& e) {
     std::ostringstream s;
-    s << "step " << steps_ << ", t = " << time_ << " s: " << e.what();
+    s << at_step(steps_, time_) << e.what();
     throw SimulationError(s.str());
   }
   // Particles keep their positions; the lines moved under them, so their cells may have changed.
@@ -202,9 +209,8 @@ double ExplicitSolver::move_mesh() {
       });
   if (relocation.first_outside >= 0) {
     std::ostringstream s;
-    s << "step " << steps_ << ", t = " << time_
-      << " s: " << position_of(p, static_cast<std::size_t>(relocation.first_outside))
-      << " left the grid";
+    s << at_step(steps_, time_)
+      << position_of(p, static_cast<std::size_t>(relocation.first_outside)) << " left the grid";
     throw SimulationError(s.str());
   }
   rebin();
@@ -221,15 +227,15 @@ void ExplicitSolver::set_stable_time_step(double step_crossing_time, double cros
   const double courant = dt_taken / step_crossing_time;
   if (courant > 1.0) {
     std::ostringstream s;
-    s << "step " << steps_ << ", t = " << time_ << " s: the Courant number reached " << courant
-      << " (dt = " << dt_taken << " s against a crossing time of " << step_crossing_time
+    s << at_step(steps_, time_) << "the Courant number reached " << courant << " (dt = " << dt_taken
+      << " s against a crossing time of " << step_crossing_time
       << " s): above 1 the explicit step is unstable; lower courant_number or max_time_step";
     throw SimulationError(s.str());
   }
   stable_dt_ = std::min(settings_.courant_number * crossing_time, settings_.max_time_step);
   if (stable_dt_ < min_dt_) {
     std::ostringstream s;
-    s << "step " << steps_ << ", t = " << time_ << " s: the time step collapsed to " << stable_dt_
+    s << at_step(steps_, time_) << "the time step collapsed to " << stable_dt_
       << " s, below the floor of " << min_dt_
       << " s (min_time_step): a particle's wave speed or velocity has run away";
     throw SimulationError(s.str());
@@ -269,8 +275,8 @@ void ExplicitSolver::drop_rigid_particles_outside() {
   for (std::size_t b = 0; b < dropped.size(); ++b) {
     if (dropped[b] > 0) {
       std::ostringstream s;
-      s << "step " << steps_ + 1 << ", t = " << time_ << " s: " << dropped[b]
-        << " particles of rigid body '" << scene_.body_names[b]
+      s << at_step(steps_ + 1, time_) << dropped[b] << " particles of rigid body '"
+        << scene_.body_names[b]
         << "' left the grid and were dropped (the body moves on; they no longer mark its nodes)";
       log_.info(s.str());
     }
@@ -408,8 +414,7 @@ void ExplicitSolver::step(double max_dt) {
   const double dt = std::min(stable_dt_, max_dt);
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     std::ostringstream s;
-    s << "step " << steps_ << ", t = " << time_ << " s: the time step is " << dt
-      << " s (not a positive finite number)";
+    s << at_step(steps_, time_) << "the time step is " << dt << " s (not a positive finite number)";
     throw SimulationError(s.str());
   }
   const bool contact = scene_.has_contact();
@@ -484,7 +489,7 @@ void ExplicitSolver::step_in_mode(double dt) {
     if (grid.node_nonfinite >= 0) {
       const int node = static_cast<int>(grid.node_nonfinite);
       std::ostringstream s;
-      s << "step " << steps_ + 1 << ", t = " << time_ << " s: node " << node << " at (r, y) = ("
+      s << at_step(steps_ + 1, time_) << "node " << node << " at (r, y) = ("
         << scene_.grid.node_r(node) << ", " << scene_.grid.node_y(node)
         << ") has a non-finite velocity: the run went unstable";
       throw SimulationError(s.str());
@@ -494,16 +499,18 @@ void ExplicitSolver::step_in_mode(double dt) {
       contact ? passes::ConstraintFields::soil : passes::ConstraintFields::all;
   if constexpr (contact) {
     PassTimer timer(timings_.contact);
-    energy_.external_work += passes::apply_constraints(scene_, settings_, step, true,
-                                                       passes::ConstraintFields::structures);
+    energy_.external_work +=
+        passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_balance,
+                                  passes::ConstraintFields::structures);
     const auto predicted = passes::predict_rigid_bodies(scene_, settings_, step);
-    energy_.contact += passes::resolve_contact<mode>(scene_, settings_, step, true);
+    energy_.contact += passes::resolve_contact<mode>(scene_, settings_, step,
+                                                     passes::CorrectionPass::after_balance);
     passes::finish_rigid_bodies(scene_, settings_, step, predicted);
   }
   {
     PassTimer timer(timings_.grid_update);
-    energy_.external_work +=
-        passes::apply_constraints(scene_, settings_, step, true, soil_constraints);
+    energy_.external_work += passes::apply_constraints(
+        scene_, settings_, step, passes::CorrectionPass::after_balance, soil_constraints);
     if (!scene_.boundaries.loads.empty()) {
       energy_.external_work += passes::nodal_load_work(scene_, step);
     }
@@ -523,12 +530,13 @@ void ExplicitSolver::step_in_mode(double dt) {
     PassTimer timer(timings_.momentum_remap);
     passes::remap_momentum<mode, contact, shape>(scene_, bins_, step);
     if constexpr (contact) {
-      passes::apply_constraints(scene_, settings_, step, false,
+      passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
                                 passes::ConstraintFields::structures);
       passes::reset_rigid_fields(scene_, step);
-      passes::resolve_contact<mode>(scene_, settings_, step, false);
+      passes::resolve_contact<mode>(scene_, settings_, step, passes::CorrectionPass::after_remap);
     }
-    passes::apply_constraints(scene_, settings_, step, false, soil_constraints);
+    passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
+                              soil_constraints);
   }
   passes::StressPassResult result;
   {
@@ -566,15 +574,15 @@ void ExplicitSolver::step_in_mode(double dt) {
   energy_.internal_work += result.internal_work;
   if (result.particle_nonfinite >= 0) {
     std::ostringstream s;
-    s << "step " << steps_ << ", t = " << time_ << " s: "
+    s << at_step(steps_, time_)
       << position_of(scene_.particles, static_cast<std::size_t>(result.particle_nonfinite))
       << " has a non-finite stress or velocity: the run went unstable";
     throw SimulationError(s.str());
   }
   if (result.particle_outside >= 0) {
     std::ostringstream s;
-    s << "step " << steps_ << ", t = " << time_
-      << " s: " << position_of(scene_.particles, static_cast<std::size_t>(result.particle_outside))
+    s << at_step(steps_, time_)
+      << position_of(scene_.particles, static_cast<std::size_t>(result.particle_outside))
       << " left the grid";
     throw SimulationError(s.str());
   }

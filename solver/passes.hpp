@@ -79,11 +79,16 @@ void switch_on_absorbing_faces(Scene& scene, const std::vector<std::size_t>& fac
 /// after it.
 enum class ConstraintFields { all, soil, structures };
 
-/// Sets constrained DOFs to their prescribed velocities. With record_reactions, also the velocity
-/// increment and the reaction of each constraint (after the momentum balance) and returns the work
-/// the reactions do over the step; without, only the velocities (after the MUSL remap).
+/// The two passes of a step that correct nodal velocities (supports, contact): the one after the
+/// momentum balance, which decides contact and records reactions, forces and FLIP increments, and
+/// its repeat on the velocities the MUSL remap gives, which only applies the same corrections.
+enum class CorrectionPass { after_balance, after_remap };
+
+/// Sets constrained DOFs to their prescribed velocities. After the momentum balance, also the
+/// velocity increment and the reaction of each constraint, and returns the work the reactions do
+/// over the step; after the remap, only the velocities (and returns 0).
 double apply_constraints(Scene& scene, const SolverSettings& settings, const StepParameters& step,
-                         bool record_reactions, ConstraintFields fields = ConstraintFields::all);
+                         CorrectionPass pass, ConstraintFields fields = ConstraintFields::all);
 
 /// Work of the nodal loads over the step, from the updated nodal velocities.
 double nodal_load_work(const Scene& scene, const StepParameters& step);
