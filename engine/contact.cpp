@@ -96,6 +96,7 @@ OutlineDistance::OutlineDistance(const StructureOutline& outline) {
       const double n_r = (b[1] - a[1]) / length;
       const double n_y = -(b[0] - a[0]) / length;
       lines_.push_back({n_r, n_y, n_r * a[0] + n_y * a[1]});
+      surface_line_.push_back(e < outline.edge_surface.size() && outline.edge_surface[e] >= 0);
     }
   }
 }

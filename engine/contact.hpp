@@ -62,8 +62,33 @@ public:
     return distance;
   }
 
+  /// The way out of the outline for a point inside it: the signed distance (as operator()) and the
+  /// outward normal and distance of the nearest contact-surface edge's line. For a point inside a
+  /// convex outline, moving it by -surface_distance along that normal puts it on that edge. Edges
+  /// of no surface (a pile head, a sphere's edge along the axis) are never the way out: soil does
+  /// not reach them, and the axis edge would send a point onto the axis.
+  struct Exit {
+    double distance;
+    double surface_distance;
+    double n_r, n_y;
+  };
+  Exit exit(double r, double y) const {
+    Exit out{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+             0.0, 0.0};
+    for (std::size_t k = 0; k < lines_.size(); ++k) {
+      const auto& [n_r, n_y, offset] = lines_[k];
+      const double d = n_r * r + n_y * y - offset;
+      out.distance = std::max(out.distance, d);
+      if (surface_line_[k] && d > out.surface_distance) {
+        out = {out.distance, d, n_r, n_y};
+      }
+    }
+    return out;
+  }
+
 private:
   std::vector<std::array<double, 3>> lines_; // outward unit normal and offset of each edge
+  std::vector<bool> surface_line_;           // whether the edge belongs to a contact surface
 };
 
 /// Contact between the soil (field 0) and one structure with a field of its own (physics.md

@@ -568,6 +568,14 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
     history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
                   residual_summary());
+    if (solver->soil_moved_out() > 0) {
+      // Contact acts at nodes; how often soil crossed a rigid outline between them tells whether
+      // the mesh resolves the structure's corners (docs/design.md, "Contact and rigid bodies", step
+      // 8).
+      to_log_file("soil particles put back on a rigid outline " +
+                  std::to_string(solver->soil_moved_out()) +
+                  " times in this run (their centres had crossed it between the nodes)");
+    }
     std::ostringstream done;
     done << "mpile: " << spec.title << (doubtful ? " done, but with a doubtful" : " done")
          << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "

@@ -37,4 +37,16 @@ void reset_rigid_fields(Scene& scene, const StepParameters& step);
 /// Rigid bodies' centres and outlines follow their motion over the step.
 void move_rigid_bodies(Scene& scene, const StepParameters& step);
 
+struct SoilExclusion {
+  std::int64_t moved = 0;    // soil particles put back on a rigid outline
+  double gravity_work = 0.0; // sum of m g . (the move) over them
+  bool block_changed = false;
+  bool cell_changed = false;
+};
+
+/// Every soil particle whose centre lies inside a rigid body's outline (after move_rigid_bodies)
+/// is moved onto the nearest contact surface along its normal; cells are updated, bins are not.
+SoilExclusion keep_soil_out_of_rigid_bodies(Scene& scene, const ParticleBins& bins,
+                                            const SolverSettings& settings);
+
 } // namespace mpile::passes

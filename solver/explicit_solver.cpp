@@ -538,6 +538,12 @@ void ExplicitSolver::step_in_mode(double dt) {
   }
   if constexpr (contact) {
     passes::move_rigid_bodies(scene_, step);
+    const passes::SoilExclusion excluded =
+        passes::keep_soil_out_of_rigid_bodies(scene_, bins_, settings_);
+    result.gravity_work += excluded.gravity_work;
+    result.block_changed = result.block_changed || excluded.block_changed;
+    result.cell_changed = result.cell_changed || excluded.cell_changed;
+    soil_moved_out_ += excluded.moved;
     if (result.rigid_left_grid && result.particle_nonfinite < 0 && result.particle_outside < 0) {
       drop_rigid_particles_outside();
       result.block_changed = true; // the bins index the particles: rebuild them

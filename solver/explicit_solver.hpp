@@ -7,6 +7,7 @@
 #include "solver/solver_settings.hpp"
 #include "solver/xpic.hpp"
 
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -76,6 +77,9 @@ public:
   double stable_time_step() const { return stable_dt_; }
   /// Length of the last step taken (s).
   double last_time_step() const { return last_dt_; }
+  /// Soil particles this solver has put back on a rigid body's outline (their centres had crossed
+  /// it between the nodes; solver/soil_exclusion.cpp), counted once per step each.
+  std::int64_t soil_moved_out() const { return soil_moved_out_; }
   SolverState state() const { return {time_, steps_, stable_dt_, last_dt_, min_dt_, energy_}; }
   const SolverSettings& settings() const { return settings_; }
   /// Replaces the settings between phases (damping on or off, for example).
@@ -131,6 +135,7 @@ private:
   std::vector<double> signal_speed_;
   double last_dt_ = 0.0;
   long steps_ = 0;
+  std::int64_t soil_moved_out_ = 0; // soil particles put back on rigid outlines since construction
 };
 
 } // namespace mpile

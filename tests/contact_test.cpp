@@ -5,6 +5,7 @@
 #include "engine/parallel.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_spec.hpp"
+#include "solver/contact_passes.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"
 #include "tests/bitwise.hpp"
@@ -258,6 +259,126 @@ TEST(ContactDeformablePile, SteelPileTipCrossesIntoTheNextRowOfCellsStably) {
   EXPECT_LT(peak_residual, 0.02);
   // The stored energy grows with the push to about 40 J by 0.025 s; the blow-ups passed 1000 J.
   EXPECT_LT(peak_elastic, 100.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Soil kept out of rigid bodies (solver/soil_exclusion.cpp).
+
+TEST(SoilExclusion, SoilInsideARigidSphereGoesBackOntoItsSurfaceAlongTheNormal) {
+  // Elastic soil below y = 0.3 m and a rigid sphere of radius R = 0.1 m centred on the axis at
+  // y = 0.41, clear of it; the sphere (its particles and its outline) is then moved 8 cm down, so
+  // that its lower part holds soil particle centres, as a crossing between nodes leaves them. The
+  // pass must put each of them on the outline (the 64-gon inscribed in the circle: its edges lie
+  // between R cos(pi / 64) and R from the centre) by the shortest move along the nearest edge's
+  // normal (within pi / 64 of the radial direction), never through the edge along the axis, and
+  // leave every other particle bitwise where it was.
+  const std::string text = R"(
+title = "soil under a rigid sphere"
+geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 0.5, cells = 25 }]
+y = [{ start = 0.0, end = 0.6, cells = 30 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 1e6
+poisson_ratio = 0.3
+density = 2000.0
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 210e9
+poisson_ratio = 0.3
+density = 7850.0
+[[bodies]]
+name = "soil"
+material = "soil"
+region = { r = [0.0, 0.5], y = [0.0, 0.3] }
+[[bodies]]
+name = "ball"
+material = "steel"
+region = { circle = { centre = [0.0, 0.41], radius = 0.1 } }
+[bodies.rigid]
+velocity_y = 0.0
+[[contact]]
+structure = "ball"
+surface = "ball"
+[boundaries]
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+block_cells = 2
+[[phases]]
+name = "one"
+duration = 1e-3
+)";
+  const CaseSpec spec = read_case_text(text, "test.toml");
+  const std::unique_ptr<Scene> scene = build_scene(spec);
+  const SolverSettings settings = phase_settings(spec, spec.phases[0]);
+  Particles& p = scene->particles;
+  constexpr double radius = 0.1;
+  constexpr double drop = 0.08;
+  const double centre_y = 0.41 - drop;
+  const auto ball = static_cast<std::uint16_t>(1);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] == ball) {
+      p.y[i] -= drop;
+    }
+    p.cell_r[i] = scene->grid.r_axis().locate(p.r[i]);
+    p.cell_y[i] = scene->grid.y_axis().locate(p.y[i]);
+  }
+  scene->contacts.at(0).outline->translate(0.0, -drop);
+  ParticleBins bins;
+  bins.configure(scene->grid.cells_r(), scene->grid.cells_y(), settings.block_cells);
+  bins.rebuild(p.cell_r, p.cell_y);
+  passes::find_structure_reach(*scene, bins);
+
+  const Particles before = p;
+  std::int64_t deep = 0; // soil centres surely inside: nearer the centre than any edge
+  const double inscribed = radius * std::cos(std::numbers::pi / circle_outline_edges);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] != ball && std::hypot(p.r[i], p.y[i] - centre_y) < inscribed) {
+      ++deep;
+    }
+  }
+  ASSERT_GT(deep, 20); // the drop puts 7 cm (3.5 cells) of the soil under the sphere inside
+
+  const passes::SoilExclusion excluded =
+      passes::keep_soil_out_of_rigid_bodies(*scene, bins, settings);
+  EXPECT_GE(excluded.moved, deep);
+  std::int64_t moved = 0;
+  double gravity_work = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double dr = p.r[i] - before.r[i];
+    const double dy = p.y[i] - before.y[i];
+    if (dr == 0.0 && dy == 0.0) {
+      // Untouched: outside the outline, or part of the sphere.
+      if (p.body[i] != ball) {
+        EXPECT_GE(std::hypot(p.r[i], p.y[i] - centre_y), inscribed) << "particle " << i;
+      }
+      continue;
+    }
+    ++moved;
+    ASSERT_NE(p.body[i], ball);
+    const double distance = std::hypot(p.r[i], p.y[i] - centre_y);
+    // On an edge: between the inscribed circle and the circle, to round-off.
+    EXPECT_GE(distance, inscribed - 1e-12) << "particle " << i;
+    EXPECT_LE(distance, radius + 1e-12) << "particle " << i;
+    EXPECT_GT(p.r[i], 0.0) << "particle " << i;
+    // Outward along the radial direction to within half an edge's angle.
+    const double radial_r = before.r[i];
+    const double radial_y = before.y[i] - centre_y;
+    const double cosine =
+        (dr * radial_r + dy * radial_y) / (std::hypot(dr, dy) * std::hypot(radial_r, radial_y));
+    EXPECT_GT(cosine, std::cos(std::numbers::pi / circle_outline_edges) - 1e-12)
+        << "particle " << i;
+    EXPECT_EQ(p.cell_r[i], scene->grid.r_axis().locate(p.r[i]));
+    EXPECT_EQ(p.cell_y[i], scene->grid.y_axis().locate(p.y[i]));
+    gravity_work += p.mass[i] * -9.81 * dy;
+  }
+  EXPECT_EQ(moved, excluded.moved);
+  EXPECT_TRUE(excluded.cell_changed);
+  // Summed in another order than the pass's: equal to round-off.
+  EXPECT_NEAR(excluded.gravity_work, gravity_work, 1e-12 * std::abs(gravity_work));
+  EXPECT_GT(gravity_work, 0.0); // out through the lower half, downwards: gravity does work
 }
 
 // ---------------------------------------------------------------------------------------------
