@@ -108,6 +108,7 @@ void ContactPair::allocate(std::size_t node_count) {
   node_dissipation.assign(node_count, 0.0);
   state.assign(node_count, 0);
   contact_normal.assign(node_count, {0.0, 0.0});
+  corner.assign(node_count, 0);
   written = {};
   gap.assign(outline ? node_count : 0, 0.0);
   // Sums of the last step survive (a restart restores them before the solver sizes the rest).

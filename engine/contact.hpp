@@ -97,6 +97,9 @@ struct ContactPair {
   // opening or a slip the positions never made, and feed energy into the soil.
   std::vector<std::uint8_t> state;
   std::vector<std::array<double, 2>> contact_normal;
+  /// Per node where two outline surfaces meet: which of them held the soil this step (a
+  /// CornerActive), so that its force is booked to the right surface.
+  std::vector<std::uint8_t> corner;
   /// The nodes where node_force, node_dissipation, state and contact_normal were last written;
   /// outside it they are zero (free), as allocate leaves them.
   NodeBox written;

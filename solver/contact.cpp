@@ -5,10 +5,12 @@
 // sums use a deterministic reduction, so results do not depend on the thread count.
 #include "solver/contact_passes.hpp"
 
+#include "engine/corner_contact.hpp"
 #include "engine/coulomb_slip.hpp"
 #include "engine/parallel.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace mpile::passes {
 
@@ -18,6 +20,8 @@ constexpr std::size_t max_surfaces = max_contact_surfaces;
 constexpr std::uint8_t contact_free = 0;
 constexpr std::uint8_t contact_slide = 1;
 constexpr std::uint8_t contact_stick = 2;
+constexpr std::uint8_t contact_corner =
+    3; // held in r-y by both surfaces of a corner, theta sliding
 
 /// Below this share of a node's mass a deformable structure's field is not tested for separation
 /// there: the soil keeps the normal velocity of the centre of mass, pulling as well as pushing.
@@ -41,6 +45,41 @@ double node_spacing(const GradedAxis& axis, int i) {
     return axis.cell_size(i - 1);
   }
   return 0.5 * (axis.cell_size(i - 1) + axis.cell_size(i));
+}
+
+/// A node whose outline area lies on exactly two contact surfaces with different normals (a pile
+/// tip's corner), with the normals of those surfaces' edges nearest the node; first < 0 otherwise.
+struct NodeCorner {
+  int first = -1;
+  int second = -1;
+  std::array<double, 2> n_first{};
+  std::array<double, 2> n_second{};
+};
+
+NodeCorner node_corner(const ContactPair& pair, std::size_t i, double r, double y) {
+  const std::size_t surfaces = pair.surface_count();
+  NodeCorner corner;
+  int found = 0;
+  for (std::size_t q = 0; q < surfaces; ++q) {
+    if (pair.surface_area[i * surfaces + q] > 0.0) {
+      (found == 0 ? corner.first : corner.second) = static_cast<int>(q);
+      if (++found > 2) {
+        return {};
+      }
+    }
+  }
+  if (found != 2) {
+    return {};
+  }
+  int unused = 0;
+  corner.n_first = nearest_edge_normal(*pair.outline, r, y, unused, corner.first);
+  corner.n_second = nearest_edge_normal(*pair.outline, r, y, unused, corner.second);
+  // Surfaces in line (one straight face named twice) make no corner.
+  if (std::abs(corner.n_first[0] * corner.n_second[1] - corner.n_first[1] * corner.n_second[0]) <
+      1e-9) {
+    return {};
+  }
+  return corner;
 }
 
 /// Sets a rigid body's field to the rigid motion of DOF velocities u (its spin as every node's
@@ -168,6 +207,8 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
         const auto& n = pair.contact_normal[i];
         const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
         change = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
+      } else if (pair.state[i] == contact_corner) {
+        change[2] = 0.0;
       }
       apply(i, at, s, k, change, false);
     });
@@ -181,6 +222,7 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     pair.node_force[i] = {0.0, 0.0, 0.0};
     pair.node_dissipation[i] = 0.0;
     pair.state[i] = contact_free;
+    pair.corner[i] = static_cast<std::uint8_t>(CornerActive::none);
     if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
       return;
     }
@@ -217,26 +259,53 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     }
     const NodeDofs at = dofs_at(i);
     const auto relative = relative_velocity(i, at, s, k);
-    const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
     const bool bonded = !rigid && k.mass < structure_bonded_share * (s.mass + k.mass);
-    if (normal_velocity > 0.0 && !bonded) {
+    // At a corner the soil may approach neither surface (engine/corner_contact.hpp): contact on
+    // one of them goes on below with that surface's normal; held by both, the soil moves with the
+    // structure in r-y and only its theta slip is left to friction.
+    CornerActive corner_active = CornerActive::none;
+    if (pair.outline && area > 0.0 && !bonded && pair.surface_count() > 1) {
+      const NodeCorner corner =
+          node_corner(pair, i, grid.node_r(static_cast<int>(i)), grid.node_y(static_cast<int>(i)));
+      if (corner.first >= 0) {
+        corner_active =
+            project_on_corner({relative[0], relative[1]}, corner.n_first, corner.n_second).active;
+        if (corner_active == CornerActive::none) {
+          return; // separating from both surfaces
+        }
+        if (corner_active != CornerActive::both) {
+          n = corner_active == CornerActive::first ? corner.n_first : corner.n_second;
+        }
+      }
+    }
+    const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
+    if (normal_velocity > 0.0 && !bonded && corner_active == CornerActive::none) {
       return; // separating: no tension, and no tangential force either
     }
-    const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
-                                           relative[1] - normal_velocity * n[1], relative[2]};
     // Coulomb friction on the normal impulse plus adhesion over the node's area, as impulses per
     // beta. The theta slip has its own inertia (J / r^2, not m): a sliding node's friction
     // impulse has the magnitude of the limit and opposes the slip left after it (coulomb_slip).
     // (The normal impulse is a pull only at a bonded node.)
-    const double limit =
-        pair.friction * s.mass * std::abs(normal_velocity) + adhesion_impulse * area;
     const double theta_mass = at.count == 3 ? inertia(s, 2, at) : s.mass;
-    const SlipKept keep = coulomb_slip(std::hypot(tangential[0], tangential[1]),
-                                       std::abs(tangential[2]), s.mass, theta_mass, limit);
-    const std::array<double, 3> kept{keep.plane, keep.plane, keep.theta};
-    std::array<double, 3> change{-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
-    for (std::size_t d = 0; d < 3; ++d) {
-      change[d] -= (1.0 - kept[d]) * tangential[d];
+    std::array<double, 3> change{};
+    SlipKept keep;
+    if (corner_active == CornerActive::both) {
+      const double approach = std::hypot(relative[0], relative[1]);
+      const double limit = pair.friction * s.mass * approach + adhesion_impulse * area;
+      keep = coulomb_slip(0.0, std::abs(relative[2]), s.mass, theta_mass, limit);
+      change = {-relative[0], -relative[1], -(1.0 - keep.theta) * relative[2]};
+    } else {
+      const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
+                                             relative[1] - normal_velocity * n[1], relative[2]};
+      const double limit =
+          pair.friction * s.mass * std::abs(normal_velocity) + adhesion_impulse * area;
+      keep = coulomb_slip(std::hypot(tangential[0], tangential[1]), std::abs(tangential[2]), s.mass,
+                          theta_mass, limit);
+      const std::array<double, 3> kept{keep.plane, keep.plane, keep.theta};
+      change = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
+      for (std::size_t d = 0; d < 3; ++d) {
+        change[d] -= (1.0 - kept[d]) * tangential[d];
+      }
     }
     // The energy the correction takes is the work of its impulse m_s dv at the mean relative
     // velocity over the step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, times kappa = 1 where the
@@ -270,7 +339,12 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
       const auto u = static_cast<std::size_t>(d);
       pair.node_force[i][u] = -beta_per_dt * inertia(s, d, at) * change[u];
     }
-    pair.state[i] = keep.plane == 0.0 && keep.theta == 0.0 ? contact_stick : contact_slide;
+    pair.corner[i] = static_cast<std::uint8_t>(corner_active);
+    if (corner_active == CornerActive::both) {
+      pair.state[i] = keep.theta == 0.0 ? contact_stick : contact_corner;
+    } else {
+      pair.state[i] = keep.plane == 0.0 && keep.theta == 0.0 ? contact_stick : contact_slide;
+    }
     pair.contact_normal[i] = n;
   });
 
@@ -315,8 +389,34 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
             sum.surface[4 * surface + 2] += share * f[2];
             sum.surface[4 * surface + 3] += share * torque;
           };
+          // A corner node's r-y force belongs to the surface that held the soil, or is split
+          // along the two normals when both did; its theta force and torque by area shares.
+          auto add_corner = [&](const NodeCorner& corner, CornerActive active) {
+            std::array<double, 2> first{f[0], f[1]};
+            std::array<double, 2> second{0.0, 0.0};
+            if (active == CornerActive::second) {
+              second = first;
+              first = {0.0, 0.0};
+            } else if (active == CornerActive::both) {
+              const auto [a, b] = split_on_normals({f[0], f[1]}, corner.n_first, corner.n_second);
+              first = {a * corner.n_first[0], a * corner.n_first[1]};
+              second = {b * corner.n_second[0], b * corner.n_second[1]};
+            }
+            for (const auto& [q, part] :
+                 {std::pair{corner.first, first}, std::pair{corner.second, second}}) {
+              const auto u = static_cast<std::size_t>(q);
+              const double share = pair.surface_area[i * surfaces + u] / pair.area[i];
+              sum.surface[4 * u] += part[0];
+              sum.surface[4 * u + 1] += part[1];
+              sum.surface[4 * u + 2] += share * f[2];
+              sum.surface[4 * u + 3] += share * torque;
+            }
+          };
+          const auto active = static_cast<CornerActive>(pair.corner[i]);
           if (!pair.outline) {
             add(0, 1.0);
+          } else if (active != CornerActive::none) {
+            add_corner(node_corner(pair, i, r, y), active);
           } else if (pair.area[i] > 0.0) {
             for (std::size_t q = 0; q < surfaces; ++q) {
               const double share = pair.surface_area[i * surfaces + q] / pair.area[i];
