@@ -109,6 +109,12 @@ add_test(NAME Convergence.RecoversTheLimitAndOrderOfAKnownSeries
 set_tests_properties(Convergence.RecoversTheLimitAndOrderOfAKnownSeries PROPERTIES
                      PASS_REGULAR_EXPRESSION "\nall ok\n")
 
+# fuzz_cases.py --first: a run from mutant N draws exactly the whole run's mutants from N on.
+add_test(NAME Fuzz.FirstDrawsTheWholeRunsMutantsFromThere
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/fuzz_first_test.py)
+set_tests_properties(Fuzz.FirstDrawsTheWholeRunsMutantsFromThere PROPERTIES
+                     PASS_REGULAR_EXPRESSION "\nok\n|^ok\n")
+
 # Mutants of every shipped case file through `mpile check`: each accepted (exit 0) or refused with
 # a message naming the file (exit 2) within 5 s of CPU time and 1 GiB of address space, none crashing
 # (tools/fuzz_cases.py; docs/reliability.md). A fixed seed, so a failure replays. Under

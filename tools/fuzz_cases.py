@@ -181,6 +181,20 @@ def check(mpile, path, timeout, memory_mib):
     return "refused", None
 
 
+def draw_mutants(cases, seed, count, first=0):
+    """Mutants first to count - 1 of the seeded sequence, as (index, (name, folder, text, edits)).
+    The earlier ones are drawn too, so a run from `first` checks what a whole run would there."""
+    rng = random.Random(seed)
+    for i in range(count):
+        name, folder, text = rng.choice(cases)
+        edits = []
+        for _ in range(rng.randint(1, 3)):
+            text, kind = mutate(text, rng)
+            edits.append(kind)
+        if i >= first:
+            yield i, (name, folder, text, edits)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--mpile", default=os.path.join(ROOT, "build/release/bin/mpile"))
@@ -198,6 +212,8 @@ def main():
     parser.add_argument("--all-cases", action="store_true", help="include the slow case files")
     parser.add_argument("--keep", default=os.path.join(tempfile.gettempdir(), "mpile-fuzz-failures"))
     args = parser.parse_args()
+    if not 0 <= args.first < args.mutants:
+        parser.error(f"--first must be at least 0 and below --mutants ({args.mutants})")
 
     cases = []
     for directory, _, files in os.walk(os.path.join(ROOT, "cases")):
@@ -211,20 +227,12 @@ def main():
                     folder = os.path.relpath(directory, os.path.join(ROOT, "cases"))
                     cases.append((name, folder, f.read()))
     cases.sort()
-    rng = random.Random(args.seed)
     work = tempfile.mkdtemp(prefix="mpile-fuzz-")
     # A mutant sits where its case does among copies of all the shipped files, so that a base
     # (`base = "base/..."`) and a sweep's case (`case = "../monopile/..."`) resolve.
     shutil.copytree(os.path.join(ROOT, "cases"), work, dirs_exist_ok=True)
     jobs = []
-    for i in range(args.mutants):
-        name, folder, text = rng.choice(cases)
-        edits = []
-        for _ in range(rng.randint(1, 3)):
-            text, kind = mutate(text, rng)
-            edits.append(kind)
-        if i < args.first:
-            continue
+    for i, (name, folder, text, edits) in draw_mutants(cases, args.seed, args.mutants, args.first):
         os.makedirs(os.path.join(work, folder), exist_ok=True)
         path = os.path.join(work, folder, f"m{i:06d}_{name}")
         with open(path, "w", encoding="utf-8", errors="surrogatepass") as f:
