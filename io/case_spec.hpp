@@ -10,6 +10,7 @@
 #include "engine/particle_fill.hpp"
 #include "engine/rigid_body.hpp"
 #include "engine/time_function.hpp"
+#include "solver/run_phase.hpp"
 #include "solver/solver_settings.hpp"
 
 #include <array>
@@ -102,18 +103,6 @@ struct K0Spec {
   double surcharge = 0.0; // Pa on the surface (a calibration chamber's vertical stress)
 };
 
-/// Ends a phase once a rigid body has gone down by `penetration` (m, its total downward
-/// displacement) or, with settlement > 0, by `settlement` since the phase started (a load test),
-/// and, with at_rest, once it has also come to rest (before the next blow).
-struct PenetrationStop {
-  std::string body;
-  /// With a settlement, the depth the phase is expected to end at (the deepest earlier stop plus
-  /// the settlement), for the travel check and run-time estimates.
-  double penetration = 0.0;
-  double settlement = 0.0;
-  bool at_rest = false;
-};
-
 /// A rigid body's drives from a phase's start on (a load test after an installation): the DOFs
 /// given are driven, the others free (force 0), as a body's own drives once their phase starts.
 struct PhaseDrive {
@@ -121,18 +110,16 @@ struct PhaseDrive {
   std::array<std::optional<RigidDrive>, 3> drive; // RigidDof order
 };
 
-struct PhaseSpec {
-  std::string name;
-  double duration = 0.0;
+/// A phase of the case: what the phase runner needs (name, duration, end criteria) and the
+/// settings and initial conditions the phase brings.
+struct PhaseSpec : RunPhase {
   double local_damping = 0.0;
   bool gravity = true;
-  std::optional<double> equilibrium_tolerance;
   std::optional<double> flip_fraction;
   std::optional<int> xpic_order;
   std::optional<double> mass_scaling;
   std::optional<double> courant_number;
   std::vector<K0Spec> k0;
-  std::optional<PenetrationStop> stop_at;
   std::optional<PhaseDrive> drive;
 };
 

@@ -265,7 +265,8 @@ Hdf5Series& HistoryWriter::series(Hdf5File& file, const std::string& name, const
   return found->second;
 }
 
-EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase) {
+void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase,
+                           const EnergyBalance& energy) {
   const Scene& scene = solver.scene();
   series_.at("/time").append(solver.time());
   series_.at("/dt").append(solver.last_time_step());
@@ -275,7 +276,6 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count());
   series_.at("/step").append(static_cast<double>(solver.step_count()));
   series_.at("/phase").append(static_cast<double>(phase));
-  const EnergyBalance energy = solver.energy_balance();
   series_.at("/energy/external_work").append(energy.external_work);
   series_.at("/energy/kinetic").append(energy.kinetic);
   series_.at("/energy/elastic").append(energy.elastic);
@@ -347,7 +347,6 @@ EnergyBalance HistoryWriter::record(const ExplicitSolver& solver, std::size_t ph
   }
   ++rows_;
   flush_if_due();
-  return energy;
 }
 
 void HistoryWriter::phase_started(std::size_t index, const std::string& name, double start) {

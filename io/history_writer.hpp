@@ -24,8 +24,8 @@ public:
   HistoryWriter(const std::string& path, const CaseSpec& spec, const Scene& scene, int threads,
                 std::size_t rows = 0);
 
-  /// Appends a row; returns the energy balance it recorded.
-  EnergyBalance record(const ExplicitSolver& solver, std::size_t phase);
+  /// Appends a row of the solver's state, with its energy balance (solver.energy_balance()).
+  void record(const ExplicitSolver& solver, std::size_t phase, const EnergyBalance& energy);
   /// The table of phases, /phases/<index> with attributes name and start (s), and once the phase
   /// has ended end (s) and ended (why it ended).
   void phase_started(std::size_t index, const std::string& name, double start);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "solver/run_phase.hpp"
+
 #include <chrono>
 #include <functional>
 #include <iosfwd>
@@ -7,17 +9,6 @@
 #include <string_view>
 
 namespace mpile {
-
-/// What a phase runs towards, in its own terms: the simulated time to its end, or a rigid body's
-/// penetration for a phase that stops at one (which also ends, at the latest, at its end time).
-struct PhaseGoal {
-  std::string_view quantity = "t"; // "t" or "penetration"
-  double value = 0.0;              // now
-  double target = 0.0;             // where the phase ends
-  std::string_view unit = "s";
-  double time = 0.0;     // simulated time now
-  double end_time = 0.0; // the phase's end time, the latest it can end
-};
 
 /// The run's progress for the user: on a terminal, one line rewritten in place (the phase's goal
 /// and how far it is, steps per second, ETA); otherwise a log line every few seconds. The ETA is

@@ -92,7 +92,8 @@ std::array<double, 2> fit_two_functions(const std::vector<double>& f1,
                                         const std::vector<double>& f2,
                                         const std::vector<double>& y);
 
-/// Quasi-static cases are relaxed until kinetic energy < this times the elastic energy.
+/// Quasi-static cases are relaxed until the out-of-balance force ratio and the kinetic energy
+/// relative to the external work are both below this (solver/equilibrium.hpp).
 inline constexpr double equilibrium_tolerance = 1e-9;
 
 /// The check that a quasi-static case reached equilibrium before it was compared.
