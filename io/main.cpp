@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
       return mpile::element_test_command(element_options, std::cout, std::cerr);
     }
     if (list) {
-      for (const auto& c : mpile::verification::all_cases()) {
+      for (const auto& c : mpile::verification_cases()) {
         std::cout << c.id << "\t" << c.title << '\n';
       }
       return 0;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "cases/verification/verification_case.hpp"
+#include "io/verification_files.hpp"
 
 #include <iosfwd>
 #include <string>

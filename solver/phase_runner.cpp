@@ -300,12 +300,12 @@ PhaseRunner::Outcome PhaseRunner::run(const PhaseSetUp& set_up, const StopReques
       solver_.step(landing_step(limit, solver_.stable_time_step()));
       ++steps; // every step counts, the one that ends a phase too
       outputs_after_step();
-      if (ends_phase(phase, ended)) {
-        break;
-      }
       const PhaseGoal now = goal(phase, phase_end);
       for (RunObserver* observer : observers_) {
         observer->stepped(phase, solver_.step_count(), now);
+      }
+      if (ends_phase(phase, ended)) {
+        break;
       }
       if (stop(steps)) {
         return Outcome::interrupted;

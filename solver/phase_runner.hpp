@@ -28,7 +28,7 @@ public:
   virtual void snapshot_due(double /*time*/) {}
   /// A checkpoint is due (the progress is up to date).
   virtual void checkpoint_due() {}
-  /// After every step (a progress display).
+  /// After every step, the one that ends a phase too (a progress display).
   virtual void stepped(const RunPhase& /*phase*/, long /*steps*/, const PhaseGoal& /*goal*/) {}
   /// The phase ended at `end`, for the reason `why` ("after its duration", "at equilibrium ...").
   virtual void phase_ended(std::size_t /*phase*/, double /*end*/, const std::string& /*why*/) {}

@@ -5,6 +5,7 @@
 #include "engine/parallel.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_spec.hpp"
+#include "io/verification_files.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"
 #include "tests/bitwise.hpp"
@@ -303,8 +304,13 @@ TEST(V9TorsionWithAdhesion, RigidPileAtTheCaseFileResolution) {
   // the same code; the accuracy at this resolution is checked by the release and ASan builds.
   GTEST_SKIP() << "accuracy check, run in the release and ASan configurations";
 #endif
-  const std::string text = read_text(source / "cases/verification/v9_torsion_adhesion.toml");
-  expect_seed_torsion(torsion_reactions(text), "V9, 40 x 40 cells");
+  // `mpile verify V9`: the case file built into the program, run through the phase runner.
+  const verification::Report report = run_torsion_with_adhesion({});
+  ASSERT_EQ(report.checks.size(), 4u);
+  expect_seed_torsion(
+      {report.checks[0].measured, report.checks[1].measured, report.checks[2].measured},
+      "V9, 40 x 40 cells");
+  EXPECT_TRUE(report.passed());
 }
 
 TEST(V9TorsionWithAdhesion, RigidPileAtTwoCoarserResolutions) {
