@@ -10,7 +10,8 @@
 namespace mpile {
 
 /// One grid node in one cache line, so that a particle's scatter to its four nodes touches four
-/// lines. The grid update converts the accumulated momentum and force in place:
+/// lines. The grid update converts the accumulated momentum and force in place (the passes after
+/// it read and write them through velocity() and velocity_increment()):
 ///   during particle-to-grid:  momentum = sum N m v,   force = f_ext - f_int
 ///   after the grid update:    momentum = velocity v^{n+1},  force = velocity increment v^{n+1} -
 ///   v^n
@@ -25,6 +26,12 @@ struct alignas(64) GridNode {
   double momentum[3] = {0.0, 0.0, 0.0};
   double force[3] = {0.0, 0.0, 0.0};
   double inertia = 0.0; // rotational inertia about the axis (kg m^2 per radian); 0 in plane strain
+
+  // The slots by what they hold after the grid update, for the passes that come after it.
+  double* velocity() { return momentum; }
+  const double* velocity() const { return momentum; }
+  double* velocity_increment() { return force; }
+  const double* velocity_increment() const { return force; }
 };
 static_assert(sizeof(GridNode) == 64);
 

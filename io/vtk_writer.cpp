@@ -194,8 +194,8 @@ void write_grid_vtr(const Scene& scene, const std::string& path) {
     const GridNode& node = g.nodes[static_cast<std::size_t>(k)];
     mass->SetValue(k, node.mass);
     // The theta unknown of a node is its angular velocity: v_theta = omega r.
-    velocity->SetTuple3(k, node.momentum[0], node.momentum[1],
-                        has_theta(scene.mode) ? node.momentum[2] * g.node_r(static_cast<int>(k))
+    velocity->SetTuple3(k, node.velocity()[0], node.velocity()[1],
+                        has_theta(scene.mode) ? node.velocity()[2] * g.node_r(static_cast<int>(k))
                                               : 0.0);
   }
   grid->GetPointData()->AddArray(mass);

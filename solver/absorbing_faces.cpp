@@ -120,10 +120,10 @@ AbsorbedWork absorb_at_faces(Scene& scene, const std::vector<FaceNodeTerms>& ter
       // gives v^{n+1} = v* / (1 + dt C / (beta m)) from the velocity v* the momentum balance
       // reached without it, stable for any C (an explicit dashpot needs dt < 2 beta m / C, which
       // a boundary node holding a sliver of soil would break).
-      const double before = node.momentum[d] - node.force[d];
-      const double after = node.momentum[d] / (1.0 + dt_over_beta * dashpot / inertia);
-      node.momentum[d] = after;
-      node.force[d] = after - before;
+      const double before = node.velocity()[d] - node.velocity_increment()[d];
+      const double after = node.velocity()[d] / (1.0 + dt_over_beta * dashpot / inertia);
+      node.velocity()[d] = after;
+      node.velocity_increment()[d] = after - before;
       // The dashpot's work at the mean velocity over the step; the holding force's as a load's.
       work.radiated += dashpot * after * 0.5 * (before + after) * step.dt;
       work.holding += t.holding[dof] * after * step.dt;

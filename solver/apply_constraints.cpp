@@ -30,9 +30,9 @@ void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_
     }
     for (std::size_t d = 0; d < 3; ++d) {
       if (record_increment) {
-        node.force[d] = v[d] - v_before[d];
+        node.velocity_increment()[d] = v[d] - v_before[d];
       }
-      node.momentum[d] = v[d];
+      node.velocity()[d] = v[d];
     }
   }
 }
@@ -105,9 +105,9 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
           const double scale =
               angular_dof && !c.theta_is_rotation ? (r > 0.0 ? 1.0 / r : 0.0) : 1.0;
           const double target = prescribed[d] * scale;
-          const double change = target - node.momentum[d];
+          const double change = target - node.velocity()[d];
           if (record_reactions) {
-            node.force[d] = prescribed_change[d] * scale;
+            node.velocity_increment()[d] = prescribed_change[d] * scale;
             // A force, or for the angular DOF a torque; its work is the same product.
             const double reaction =
                 (angular_dof ? node.inertia : node.mass) * change * inertia_per_dt;
@@ -120,7 +120,7 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
               c.reaction[static_cast<std::size_t>(d)] += reaction;
             }
           }
-          node.momentum[d] = target;
+          node.velocity()[d] = target;
         }
       }
     }
@@ -138,7 +138,7 @@ double nodal_load_work(const Scene& scene, const StepParameters& step) {
     for (std::size_t k = 0; k < load.nodes.size(); ++k) {
       const GridNode& node = scene.grid.nodes[static_cast<std::size_t>(load.nodes[k])];
       // A force times a velocity, or a theta load's torque times the angular velocity.
-      work += load.weight[k] * traction * node.momentum[load.component] * step.dt;
+      work += load.weight[k] * traction * node.velocity()[load.component] * step.dt;
     }
   }
   return work;

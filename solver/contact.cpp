@@ -61,11 +61,11 @@ void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double,
     if (record_increment) {
       const auto v_before = body.node_motion(u_before, r, y);
       for (std::size_t d = 0; d < 3; ++d) {
-        node.force[d] = v[d] - v_before[d];
+        node.velocity_increment()[d] = v[d] - v_before[d];
       }
     }
     for (std::size_t d = 0; d < 3; ++d) {
-      node.momentum[d] = v[d];
+      node.velocity()[d] = v[d];
     }
   });
 }
@@ -110,7 +110,7 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     return dofs == 3 && r > 0.0 ? NodeDofs{3, r, 1.0 / r} : NodeDofs{2, r, 0.0};
   };
   auto velocity = [](const GridNode& node, int d, const NodeDofs& at) {
-    return d == 2 ? at.r * node.momentum[2] : node.momentum[d];
+    return d == 2 ? at.r * node.velocity()[2] : node.velocity()[d];
   };
   auto inertia = [](const GridNode& node, int d, const NodeDofs& at) {
     return d == 2 ? node.inertia * at.lever * at.lever : node.mass;
@@ -139,15 +139,15 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     for (int d = 0; d < at.count; ++d) {
       const double to_unknown = d == 2 ? at.lever : 1.0;
       const double dv = change[static_cast<std::size_t>(d)] * to_unknown;
-      s.momentum[d] += dv;
+      s.velocity()[d] += dv;
       if (increment) {
-        s.force[d] += dv;
+        s.velocity_increment()[d] += dv;
       }
       if (!rigid && (held[i] & (1u << d)) == 0) {
         const double dk = inertia(s, d, at) / inertia(k, d, at) * dv;
-        k.momentum[d] -= dk;
+        k.velocity()[d] -= dk;
         if (increment) {
-          k.force[d] -= dk;
+          k.velocity_increment()[d] -= dk;
         }
       }
     }
@@ -241,7 +241,7 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     auto start_of_step = [](const GridNode& node) {
       GridNode start = node;
       for (std::size_t d = 0; d < 3; ++d) {
-        start.momentum[d] -= node.force[d];
+        start.velocity()[d] -= node.velocity_increment()[d];
       }
       return start;
     };

@@ -51,8 +51,8 @@ double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSett
       for (int k = 0; k < w.size; ++k) {
         const GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
         for (int d = 0; d < dofs; ++d) {
-          velocity[d] += w.N[k] * node.momentum[d];
-          increment[d] += w.N[k] * node.force[d];
+          velocity[d] += w.N[k] * node.velocity()[d];
+          increment[d] += w.N[k] * node.velocity_increment()[d];
         }
       }
       const double r = has_theta(mode) ? p.r[i] : 0.0;

@@ -74,9 +74,9 @@ update_field_velocities(std::vector<GridNode>& nodes, const std::vector<std::uin
               damping * (velocity + 0.5 * dt_over_beta * force * inverse_inertia[d]) * step.dt;
         }
         const double increment = dt_over_beta * force * inverse_inertia[d];
-        node.momentum[d] = velocity + increment;
-        node.force[d] = increment;
-        finite_check += node.momentum[d];
+        node.velocity()[d] = velocity + increment;
+        node.velocity_increment()[d] = increment;
+        finite_check += node.velocity()[d];
       }
       if (!std::isfinite(finite_check) && result.node_nonfinite < 0) {
         result.node_nonfinite = static_cast<std::int64_t>(i);

@@ -28,10 +28,11 @@ void momentum_to_velocity(std::vector<GridNode>& nodes, const NodeBox& box, int 
     GridNode& node = nodes[i];
     const bool occupied = node.mass > mass_floor;
     const double inverse_mass = occupied ? 1.0 / node.mass : 0.0;
-    node.momentum[0] *= inverse_mass;
-    node.momentum[1] *= inverse_mass;
+    // In place: the remapped momentum becomes the node's velocity (angular velocity for theta).
+    node.velocity()[0] = node.momentum[0] * inverse_mass;
+    node.velocity()[1] = node.momentum[1] * inverse_mass;
     if constexpr (dofs == 3) {
-      node.momentum[2] *= occupied ? 1.0 / node.inertia : 0.0;
+      node.velocity()[2] = node.momentum[2] * (occupied ? 1.0 / node.inertia : 0.0);
     }
   });
 }

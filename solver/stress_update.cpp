@@ -124,14 +124,14 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
       double dwr = 0.0, dwy = 0.0; // gradient of the angular velocity
       for (int n = 0; n < w.size; ++n) {
         const GridNode& node = nodes[static_cast<std::size_t>(w.node[n])];
-        drr += w.dN_dr[n] * node.momentum[0];
-        dry += w.dN_dy[n] * node.momentum[0];
-        dyr += w.dN_dr[n] * node.momentum[1];
-        dyy += w.dN_dy[n] * node.momentum[1];
+        drr += w.dN_dr[n] * node.velocity()[0];
+        dry += w.dN_dy[n] * node.velocity()[0];
+        dyr += w.dN_dr[n] * node.velocity()[1];
+        dyy += w.dN_dy[n] * node.velocity()[1];
         if constexpr (has_theta(mode)) {
-          vr += w.N[n] * node.momentum[0];
-          dwr += w.dN_dr[n] * node.momentum[2];
-          dwy += w.dN_dy[n] * node.momentum[2];
+          vr += w.N[n] * node.velocity()[0];
+          dwr += w.dN_dr[n] * node.velocity()[2];
+          dwy += w.dN_dy[n] * node.velocity()[2];
         }
       }
       StrainIncrement& de = scratch.strain[k];

@@ -104,7 +104,9 @@ void extrapolate_xpic(const Scene& scene, const ParticleBins& bins, int order,
       fields.correction[f][i] = {0.0, 0.0, 0.0};
       fields.smoothed[f][i] = {0.0, 0.0, 0.0};
       for (int d = 0; d < 3; ++d) {
-        term[d] = node.mass > step.mass_floor && d < dofs ? node.momentum[d] - node.force[d] : 0.0;
+        term[d] = node.mass > step.mass_floor && d < dofs
+                      ? node.velocity()[d] - node.velocity_increment()[d]
+                      : 0.0;
       }
     });
   }
