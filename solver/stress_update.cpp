@@ -50,218 +50,219 @@ double stress_power(const Stress& s, const StrainIncrement& de) {
          s[RT] * de[RT];
 }
 
-} // namespace
+/// The B-bar sum a particle adds to: its cell in its block, per velocity field. A cell the soil
+/// and a structure share holds two independent velocity fields: averaged together, the
+/// structure's particles took the soil's volumetric strain (a steel pile tip entering a cell of
+/// sand grew 1.4 GPa of hoop tension in 0.8 ms while moving inwards, and the run blew up).
+template <bool contact> struct CellSlots {
+  const Scene& scene;
+  const Particles& p;
+  int cr0, cy0, block_cells;
+  bool mixed;
+  std::size_t cells() const { return static_cast<std::size_t>(block_cells * block_cells); }
+  std::size_t fields() const {
+    return mixed ? static_cast<std::size_t>(scene.grid.field_count()) : 1;
+  }
+  std::size_t operator()(std::size_t i) const {
+    std::size_t field = 0;
+    if constexpr (contact) {
+      field = mixed ? static_cast<std::size_t>(scene.field_of(p.body[i])) : 0;
+    }
+    return field * cells() +
+           static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
+  }
+};
 
+/// One block's sums, reduced serially afterwards: no shared writes, and a fixed order.
+struct BlockResult {
+  double min_time = std::numeric_limits<double>::infinity();
+  double step_time = std::numeric_limits<double>::infinity();
+  bool changed = false;
+  bool cell_changed = false;
+  bool rigid_outside = false;
+  std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
+  double gravity_work = 0.0;
+  double internal_work = 0.0;
+  std::int64_t first_nonfinite = std::numeric_limits<std::int64_t>::max();
+};
+
+/// 1. Strain increment and spin from the nodal velocities at x^n (physics.md section 2), and the
+/// B-bar sums of each cell.
 template <GeometryMode mode, bool contact, ShapeFunctions shape>
-StressPassResult
-update_stress_and_positions(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
-                            const StepParameters& step, std::span<double> signal_speed) {
-  Grid& grid = scene.grid;
+void strain_increments(const Grid& grid, const Particles& p,
+                       const std::optional<ParticleFields>& fields,
+                       std::span<const std::int32_t> particles, const CellSlots<contact>& slot,
+                       bool bbar, double dt, BlockScratch& scratch) {
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const auto i = static_cast<std::size_t>(particles[k]);
+    const GridNode* nodes = grid.nodes.data();
+    if constexpr (contact) {
+      if (slot.mixed) {
+        nodes = fields->nodes(p.body[i]);
+      }
+    }
+    const auto w = particle_weights<shape>(grid, p, i);
+    double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
+    double dwr = 0.0, dwy = 0.0; // gradient of the angular velocity
+    for (int n = 0; n < w.size; ++n) {
+      const GridNode& node = nodes[static_cast<std::size_t>(w.node[n])];
+      drr += w.dN_dr[n] * node.velocity()[0];
+      dry += w.dN_dy[n] * node.velocity()[0];
+      dyr += w.dN_dr[n] * node.velocity()[1];
+      dyy += w.dN_dy[n] * node.velocity()[1];
+      if constexpr (has_theta(mode)) {
+        vr += w.N[n] * node.velocity()[0];
+        dwr += w.dN_dr[n] * node.velocity()[2];
+        dwy += w.dN_dy[n] * node.velocity()[2];
+      }
+    }
+    StrainIncrement& de = scratch.strain[k];
+    if constexpr (has_theta(mode)) {
+      // v_theta = r omega: gamma_ytheta = r d(omega)/dy and gamma_rtheta = dv_theta/dr -
+      // v_theta/r = r d(omega)/dr, zero for a rigid spin whatever the cell.
+      const double r = p.r[i];
+      const double inverse_r = 1.0 / r;
+      de = {dt * drr, dt * dyy, dt * vr * inverse_r, dt * (dry + dyr), dt * r * dwy, dt * r * dwr};
+    } else {
+      de = {dt * drr, dt * dyy, 0.0, dt * (dry + dyr), 0.0, 0.0};
+    }
+    scratch.spin[k] = 0.5 * dt * (dry - dyr);
+    if (bbar) {
+      const std::size_t cell = slot(i);
+      scratch.cell_volumetric[cell] += p.volume[i] * (de[RR] + de[YY] + de[TT]);
+      scratch.cell_weight[cell] += p.volume[i];
+    }
+  }
+}
+
+/// 2. B-bar: the volumetric part (hoop included) becomes the cell's volume-weighted mean.
+template <bool contact>
+void apply_bbar(std::span<const std::int32_t> particles, const CellSlots<contact>& slot,
+                BlockScratch& scratch) {
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const std::size_t cell = slot(static_cast<std::size_t>(particles[k]));
+    StrainIncrement& de = scratch.strain[k];
+    const double correction =
+        (scratch.cell_volumetric[cell] / scratch.cell_weight[cell] - (de[RR] + de[YY] + de[TT])) /
+        3.0;
+    de[RR] += correction;
+    de[YY] += correction;
+    de[TT] += correction;
+  }
+}
+
+/// 3. Objective rate: co-rotate the stress with the in-plane spin before the increment. The
+/// internal work over the step is the trapezoidal rule on sigma : d eps (the co-rotation does no
+/// work), so it needs the stress before the update too.
+void corotate(Particles& p, std::span<const std::int32_t> particles, bool jaumann_rate,
+              BlockScratch& scratch) {
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    Stress& stress = p.stress[static_cast<std::size_t>(particles[k])];
+    if (jaumann_rate) {
+      rotate_in_plane(stress, scratch.spin[k]);
+    }
+    scratch.work_before[k] = stress_power(stress, scratch.strain[k]);
+  }
+}
+
+/// 4. Constitutive update, one call per run of particles with the same material.
+void update_materials(Scene& scene, std::span<const std::int32_t> particles,
+                      BlockScratch& scratch) {
   Particles& p = scene.particles;
-  const double dt = step.dt;
-  const int block_cells = bins.block_cells();
+  for (std::size_t begin = 0; begin < particles.size();) {
+    const std::uint16_t material = p.material[static_cast<std::size_t>(particles[begin])];
+    std::size_t end = begin + 1;
+    while (end < particles.size() &&
+           p.material[static_cast<std::size_t>(particles[end])] == material) {
+      ++end;
+    }
+    const std::size_t count = end - begin;
+    StressUpdateBatch batch;
+    batch.particles = particles.subspan(begin, count);
+    batch.strain = std::span<const StrainIncrement>(scratch.strain.data() + begin, count);
+    batch.constrained_modulus = std::span<double>(scratch.modulus.data() + begin, count);
+    batch.stress = p.stress.data();
+    batch.state = p.state.data();
+    batch.state_stride = p.state_stride;
+    scene.materials[material]->update_stress(batch);
+    begin = end;
+  }
+}
+
+/// 5. Volume and position, the new cell, and the particle's limit on the next time step.
+template <GeometryMode mode, bool contact>
+void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, int block,
+                    std::span<const std::int32_t> particles, bool mixed,
+                    const std::vector<char>& rigid_material, const SolverSettings& settings,
+                    const BlockScratch& scratch, std::span<double> signal_speed, BlockResult& out) {
   const double inverse_beta = 1.0 / settings.mass_scaling;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
-  [[maybe_unused]] const auto fields =
-      contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
-  // Gravity on a rigid body acts on its DOFs (RigidBody), not on its particles.
-  const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
-
-  // One result per block, reduced serially afterwards: no shared writes, and a fixed order.
-  struct BlockResult {
-    double min_time = std::numeric_limits<double>::infinity();
-    double step_time = std::numeric_limits<double>::infinity();
-    bool changed = false;
-    bool cell_changed = false;
-    bool rigid_outside = false;
-    std::int64_t first_outside = std::numeric_limits<std::int64_t>::max();
-    double gravity_work = 0.0;
-    double internal_work = 0.0;
-    std::int64_t first_nonfinite = std::numeric_limits<std::int64_t>::max();
-  };
-  std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
-
-  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
-    thread_local BlockScratch scratch;
-    scratch.resize(particles.size());
-    const auto [cr0, cy0] = bins.block_origin(block);
-    // A block of soil particles only reads field 0 (and carries no rigid particle).
-    [[maybe_unused]] const bool mixed = contact && bins.block_tag(block) != 0;
-
-    // B-bar averages over the particles of a cell that share a velocity field. A cell the soil
-    // and a structure share holds two independent velocity fields: averaged together, the
-    // structure's particles took the soil's volumetric strain (a steel pile tip entering a cell
-    // of sand grew 1.4 GPa of hoop tension in 0.8 ms while moving inwards, and the run blew up).
-    const auto cells = static_cast<std::size_t>(block_cells * block_cells);
-    const std::size_t field_count = mixed ? static_cast<std::size_t>(grid.field_count()) : 1;
-    auto cell_slot = [&](std::size_t i) {
-      std::size_t field = 0;
-      if constexpr (contact) {
-        field = mixed ? static_cast<std::size_t>(scene.field_of(p.body[i])) : 0;
-      }
-      return field * cells +
-             static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
-    };
-    std::vector<double>& cell_volumetric = scratch.cell_volumetric;
-    std::vector<double>& cell_weight = scratch.cell_weight;
-    if (settings.bbar) {
-      cell_volumetric.assign(field_count * cells, 0.0);
-      cell_weight.assign(field_count * cells, 0.0);
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const auto i = static_cast<std::size_t>(particles[k]);
+    const StrainIncrement& de = scratch.strain[k];
+    const double volume_before = p.volume[i];
+    p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
+    const Stress& s = p.stress[i];
+    out.internal_work +=
+        0.25 * (volume_before + p.volume[i]) * (scratch.work_before[k] + stress_power(s, de));
+    // A run going unstable shows here first: catch it at the particle, with its position.
+    double finite_check = s[RR] + s[YY] + s[TT] + s[RY] + s[YT] + s[RT] + p.v_r[i] + p.v_y[i];
+    if constexpr (has_theta(mode)) {
+      finite_check += p.v_theta[i];
     }
-
-    // 1. Strain increment and spin from the nodal velocities at x^n (physics.md section 2).
-    for (std::size_t k = 0; k < particles.size(); ++k) {
-      const auto i = static_cast<std::size_t>(particles[k]);
-      const GridNode* nodes = grid.nodes.data();
+    if (!std::isfinite(finite_check)) {
+      out.first_nonfinite = std::min(out.first_nonfinite, static_cast<std::int64_t>(i));
+    }
+    // Gravity on a rigid body acts on its DOFs (RigidBody), not on its particles.
+    bool carries_gravity = true;
+    if constexpr (contact) {
+      carries_gravity = !mixed || rigid_material[p.material[i]] == 0;
+    }
+    if (carries_gravity) {
+      out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
+    }
+    const double step_cell_size = grid.cell_min_size(p.cell_r[i], p.cell_y[i]);
+    p.r[i] += p.du_r[i];
+    p.y[i] += p.du_y[i];
+    const int cr = grid.r_axis().locate(p.r[i]);
+    const int cy = grid.y_axis().locate(p.y[i]);
+    if (cr < 0 || cy < 0) {
+      // A rigid body's particle only marks the nodes its body occupies (its motion is the
+      // body's): one that leaves the grid is dropped after the pass, not an error.
+      bool rigid = false;
       if constexpr (contact) {
-        if (mixed) {
-          nodes = fields->nodes(p.body[i]);
-        }
+        rigid = mixed && rigid_material[p.material[i]] != 0;
       }
-      const auto w = particle_weights<shape>(grid, p, i);
-      double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
-      double dwr = 0.0, dwy = 0.0; // gradient of the angular velocity
-      for (int n = 0; n < w.size; ++n) {
-        const GridNode& node = nodes[static_cast<std::size_t>(w.node[n])];
-        drr += w.dN_dr[n] * node.velocity()[0];
-        dry += w.dN_dy[n] * node.velocity()[0];
-        dyr += w.dN_dr[n] * node.velocity()[1];
-        dyy += w.dN_dy[n] * node.velocity()[1];
-        if constexpr (has_theta(mode)) {
-          vr += w.N[n] * node.velocity()[0];
-          dwr += w.dN_dr[n] * node.velocity()[2];
-          dwy += w.dN_dy[n] * node.velocity()[2];
-        }
-      }
-      StrainIncrement& de = scratch.strain[k];
-      if constexpr (has_theta(mode)) {
-        // v_theta = r omega: gamma_ytheta = r d(omega)/dy and gamma_rtheta = dv_theta/dr -
-        // v_theta/r = r d(omega)/dr, zero for a rigid spin whatever the cell.
-        const double r = p.r[i];
-        const double inverse_r = 1.0 / r;
-        de = {dt * drr,         dt * dyy,     dt * vr * inverse_r,
-              dt * (dry + dyr), dt * r * dwy, dt * r * dwr};
+      if (rigid) {
+        p.cell_r[i] = -1;
+        out.rigid_outside = true;
       } else {
-        de = {dt * drr, dt * dyy, 0.0, dt * (dry + dyr), 0.0, 0.0};
+        out.first_outside = std::min(out.first_outside, static_cast<std::int64_t>(i));
       }
-      scratch.spin[k] = 0.5 * dt * (dry - dyr);
-      if (settings.bbar) {
-        const std::size_t cell = cell_slot(i);
-        cell_volumetric[cell] += p.volume[i] * (de[RR] + de[YY] + de[TT]);
-        cell_weight[cell] += p.volume[i];
-      }
+      continue;
     }
-
-    // 2. B-bar: the volumetric part (hoop included) becomes the cell's volume-weighted mean.
-    if (settings.bbar) {
-      for (std::size_t k = 0; k < particles.size(); ++k) {
-        const auto i = static_cast<std::size_t>(particles[k]);
-        const std::size_t cell = cell_slot(i);
-        StrainIncrement& de = scratch.strain[k];
-        const double correction =
-            (cell_volumetric[cell] / cell_weight[cell] - (de[RR] + de[YY] + de[TT])) / 3.0;
-        de[RR] += correction;
-        de[YY] += correction;
-        de[TT] += correction;
-      }
+    out.changed = out.changed || bins.block_of(cr, cy) != block;
+    out.cell_changed = out.cell_changed || cr != p.cell_r[i] || cy != p.cell_y[i];
+    p.cell_r[i] = cr;
+    p.cell_y[i] = cy;
+    const double density = p.mass[i] / p.volume[i];
+    const double wave_speed = std::sqrt(scratch.modulus[k] * inverse_beta / density);
+    double speed = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
+    if constexpr (has_theta(mode)) {
+      speed += p.v_theta[i] * p.v_theta[i];
     }
-
-    // 3. Objective rate: co-rotate the stress with the in-plane spin before the increment. The
-    // internal work over the step is the trapezoidal rule on sigma : d eps (the co-rotation does
-    // no work), so it needs the stress before the update too.
-    for (std::size_t k = 0; k < particles.size(); ++k) {
-      Stress& stress = p.stress[static_cast<std::size_t>(particles[k])];
-      if (settings.jaumann_rate) {
-        rotate_in_plane(stress, scratch.spin[k]);
-      }
-      scratch.work_before[k] = stress_power(stress, scratch.strain[k]);
+    const double particle_speed = wave_speed + std::sqrt(speed);
+    if (!signal_speed.empty()) {
+      signal_speed[i] = particle_speed;
     }
+    out.min_time = std::min(out.min_time, grid.cell_min_size(cr, cy) / particle_speed);
+    out.step_time = std::min(out.step_time, step_cell_size / particle_speed);
+  }
+}
 
-    // 4. Constitutive update, one call per run of particles with the same material.
-    for (std::size_t begin = 0; begin < particles.size();) {
-      const std::uint16_t material = p.material[static_cast<std::size_t>(particles[begin])];
-      std::size_t end = begin + 1;
-      while (end < particles.size() &&
-             p.material[static_cast<std::size_t>(particles[end])] == material) {
-        ++end;
-      }
-      const std::size_t count = end - begin;
-      StressUpdateBatch batch;
-      batch.particles = particles.subspan(begin, count);
-      batch.strain = std::span<const StrainIncrement>(scratch.strain.data() + begin, count);
-      batch.constrained_modulus = std::span<double>(scratch.modulus.data() + begin, count);
-      batch.stress = p.stress.data();
-      batch.state = p.state.data();
-      batch.state_stride = p.state_stride;
-      scene.materials[material]->update_stress(batch);
-      begin = end;
-    }
-
-    // 5. Volume and position, the new cell, and the particle's limit on the next time step.
-    BlockResult& out = block_results[static_cast<std::size_t>(block)];
-    for (std::size_t k = 0; k < particles.size(); ++k) {
-      const auto i = static_cast<std::size_t>(particles[k]);
-      const StrainIncrement& de = scratch.strain[k];
-      const double volume_before = p.volume[i];
-      p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
-      const Stress& s = p.stress[i];
-      out.internal_work +=
-          0.25 * (volume_before + p.volume[i]) * (scratch.work_before[k] + stress_power(s, de));
-      // A run going unstable shows here first: catch it at the particle, with its position.
-      double finite_check = s[RR] + s[YY] + s[TT] + s[RY] + s[YT] + s[RT] + p.v_r[i] + p.v_y[i];
-      if constexpr (has_theta(mode)) {
-        finite_check += p.v_theta[i];
-      }
-      if (!std::isfinite(finite_check)) {
-        out.first_nonfinite = std::min(out.first_nonfinite, static_cast<std::int64_t>(i));
-      }
-      bool carries_gravity = true;
-      if constexpr (contact) {
-        carries_gravity = !mixed || rigid_material[p.material[i]] == 0;
-      }
-      if (carries_gravity) {
-        out.gravity_work += p.mass[i] * (g_r * p.du_r[i] + g_y * p.du_y[i]);
-      }
-      const double step_cell_size = grid.cell_min_size(p.cell_r[i], p.cell_y[i]);
-      p.r[i] += p.du_r[i];
-      p.y[i] += p.du_y[i];
-      const int cr = grid.r_axis().locate(p.r[i]);
-      const int cy = grid.y_axis().locate(p.y[i]);
-      if (cr < 0 || cy < 0) {
-        // A rigid body's particle only marks the nodes its body occupies (its motion is the
-        // body's): one that leaves the grid is dropped after the pass, not an error.
-        bool rigid = false;
-        if constexpr (contact) {
-          rigid = mixed && rigid_material[p.material[i]] != 0;
-        }
-        if (rigid) {
-          p.cell_r[i] = -1;
-          out.rigid_outside = true;
-        } else {
-          out.first_outside = std::min(out.first_outside, static_cast<std::int64_t>(i));
-        }
-        continue;
-      }
-      out.changed = out.changed || bins.block_of(cr, cy) != block;
-      out.cell_changed = out.cell_changed || cr != p.cell_r[i] || cy != p.cell_y[i];
-      p.cell_r[i] = cr;
-      p.cell_y[i] = cy;
-      const double density = p.mass[i] / p.volume[i];
-      const double wave_speed = std::sqrt(scratch.modulus[k] * inverse_beta / density);
-      double speed = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
-      if constexpr (has_theta(mode)) {
-        speed += p.v_theta[i] * p.v_theta[i];
-      }
-      const double particle_speed = wave_speed + std::sqrt(speed);
-      if (!signal_speed.empty()) {
-        signal_speed[i] = particle_speed;
-      }
-      out.min_time = std::min(out.min_time, grid.cell_min_size(cr, cy) / particle_speed);
-      out.step_time = std::min(out.step_time, step_cell_size / particle_speed);
-    }
-  });
-
+/// The blocks' sums in block order, whatever thread ran which block.
+StressPassResult reduce(const ParticleBins& bins, const std::vector<BlockResult>& block_results) {
   StressPassResult result;
   result.min_crossing_time = std::numeric_limits<double>::infinity();
   result.step_crossing_time = std::numeric_limits<double>::infinity();
@@ -284,6 +285,44 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   result.particle_nonfinite =
       first_nonfinite == std::numeric_limits<std::int64_t>::max() ? -1 : first_nonfinite;
   return result;
+}
+
+} // namespace
+
+template <GeometryMode mode, bool contact, ShapeFunctions shape>
+StressPassResult
+update_stress_and_positions(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                            const StepParameters& step, std::span<double> signal_speed) {
+  Grid& grid = scene.grid;
+  Particles& p = scene.particles;
+  const auto fields =
+      contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
+  const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
+  std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
+
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    thread_local BlockScratch scratch;
+    scratch.resize(particles.size());
+    const auto [cr0, cy0] = bins.block_origin(block);
+    // A block of soil particles only reads field 0 (and carries no rigid particle).
+    const bool mixed = contact && bins.block_tag(block) != 0;
+    const CellSlots<contact> slot{scene, p, cr0, cy0, bins.block_cells(), mixed};
+    if (settings.bbar) {
+      scratch.cell_volumetric.assign(slot.fields() * slot.cells(), 0.0);
+      scratch.cell_weight.assign(slot.fields() * slot.cells(), 0.0);
+    }
+    strain_increments<mode, contact, shape>(grid, p, fields, particles, slot, settings.bbar,
+                                            step.dt, scratch);
+    if (settings.bbar) {
+      apply_bbar(particles, slot, scratch);
+    }
+    corotate(p, particles, settings.jaumann_rate, scratch);
+    update_materials(scene, particles, scratch);
+    move_particles<mode, contact>(grid, p, bins, block, particles, mixed, rigid_material, settings,
+                                  scratch, signal_speed,
+                                  block_results[static_cast<std::size_t>(block)]);
+  });
+  return reduce(bins, block_results);
 }
 
 template StressPassResult
