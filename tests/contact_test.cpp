@@ -238,7 +238,7 @@ TEST(ContactDeformablePile, SteelPileTipCrossesIntoTheNextRowOfCellsStably) {
   // fixes the run blew up there within a millisecond: B-bar averaged the tip particles'
   // volumetric strain with the sand's in the cell they entered, and the separation test at the
   // nodes where the pile has only a sliver of mass rectified the tip's stress into the soil
-  // (solver/contact.cpp, structure_bonded_share). Run to 0.025 s, past the crossing.
+  // (solver/contact_passes.cpp, structure_bonded_share). Run to 0.025 s, past the crossing.
   std::string text = read_text(source / "cases/stability/steel_pile.toml");
   text = replaced(text, "duration = 0.11", "duration = 0.025");
   CaseRun run(text);
