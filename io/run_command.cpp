@@ -72,12 +72,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string format_time(double t) {
-  std::ostringstream s;
-  s << std::setprecision(6) << t;
-  return s.str();
-}
-
 } // namespace
 
 int refuse_case(std::ostream& err, const std::string& case_path) {

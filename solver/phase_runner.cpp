@@ -33,12 +33,6 @@ constexpr long guard_steps = 20;
 /// Equilibrium is checked on a fixed step grid, so that a restarted run checks the same steps.
 constexpr long equilibrium_steps = 20;
 
-std::string format_time(double t) {
-  std::ostringstream s;
-  s << std::setprecision(6) << t;
-  return s.str();
-}
-
 } // namespace
 
 double penetration_of(const RigidBody& body) {
@@ -189,7 +183,7 @@ void PhaseRunner::outputs_after_step() {
     check_energy_residual(solver_.energy_balance(), false);
   }
   bool snapshot_due = reached(t, progress_.next_snapshot_time, dt);
-  while (reached(t, progress_.next_snapshot_time, dt)) {
+  while (schedule_.snapshot_interval > 0.0 && reached(t, progress_.next_snapshot_time, dt)) {
     progress_.next_snapshot_time += schedule_.snapshot_interval;
   }
   const auto& listed = schedule_.snapshot_times;
@@ -205,7 +199,7 @@ void PhaseRunner::outputs_after_step() {
     take_snapshot(t);
   }
   if (reached(t, progress_.next_checkpoint_time, dt)) {
-    while (reached(t, progress_.next_checkpoint_time, dt)) {
+    while (schedule_.checkpoint_interval > 0.0 && reached(t, progress_.next_checkpoint_time, dt)) {
       progress_.next_checkpoint_time += schedule_.checkpoint_interval;
     }
     for (RunObserver* observer : observers_) {
@@ -234,7 +228,7 @@ PhaseGoal PhaseRunner::goal(const RunPhase& phase, double phase_end) const {
 }
 
 // Whether the phase ends after this step before its duration, and why.
-bool PhaseRunner::ends_phase(const RunPhase& phase, std::string& why) {
+bool PhaseRunner::ends_phase(const RunPhase& phase, const PhaseGoal& now, std::string& why) {
   if (phase.equilibrium_tolerance && solver_.step_count() % equilibrium_steps == 0) {
     const EquilibriumMeasure measure = measure_equilibrium(solver_, *phase.equilibrium_tolerance);
     if (measure.reached) {
@@ -249,14 +243,14 @@ bool PhaseRunner::ends_phase(const RunPhase& phase, std::string& why) {
   if (!phase.stop_at) {
     return false;
   }
+  // The goal measures the stop: the penetration, or a load test's settlement since its start.
   const PenetrationStop& stop = *phase.stop_at;
   const RigidBody& pile = rigid_body_named(solver_.scene(), stop.body);
   const double depth = penetration_of(pile);
   const double speed = std::abs(pile.velocity[RIGID_Y]);
   const bool settles = stop.settlement > 0.0;
-  const double measured =
-      settles ? depth - progress_.phase_start_depths.at(progress_.phase) : depth;
-  const double target = settles ? stop.settlement : stop.penetration;
+  const double measured = now.value;
+  const double target = now.target;
   std::ostringstream s;
   s << std::setprecision(4);
   if (measured >= target && (!stop.at_rest || speed < rest_speed)) {
@@ -304,7 +298,7 @@ PhaseRunner::Outcome PhaseRunner::run(const PhaseSetUp& set_up, const StopReques
       for (RunObserver* observer : observers_) {
         observer->stepped(phase, solver_.step_count(), now);
       }
-      if (ends_phase(phase, ended)) {
+      if (ends_phase(phase, now, ended)) {
         break;
       }
       if (stop(steps)) {

@@ -80,7 +80,7 @@ private:
   EnergyBalance record_row();
   void check_energy_residual(const EnergyBalance& energy, bool recorded);
   void outputs_after_step();
-  bool ends_phase(const RunPhase& phase, std::string& why);
+  bool ends_phase(const RunPhase& phase, const PhaseGoal& now, std::string& why);
   PhaseGoal goal(const RunPhase& phase, double phase_end) const;
   void take_snapshot(double time);
   bool skip_reached_depths();

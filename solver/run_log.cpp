@@ -1,8 +1,16 @@
 #include "solver/run_log.hpp"
 
+#include <iomanip>
 #include <ostream>
+#include <sstream>
 
 namespace mpile {
+
+std::string format_time(double t) {
+  std::ostringstream s;
+  s << std::setprecision(6) << t;
+  return s.str();
+}
 
 void RunLog::write(const std::string& line) {
   if (stream_ != nullptr) {

@@ -6,6 +6,9 @@
 
 namespace mpile {
 
+/// A simulated time as the run's messages give it (6 significant digits).
+std::string format_time(double t);
+
 /// Messages of a run for the user: information and warnings, written to a stream (or nowhere) and
 /// kept, so that tests and the command line can see what was said.
 class RunLog {
