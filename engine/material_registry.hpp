@@ -1,6 +1,7 @@
 #pragma once
 
 #include "engine/material.hpp"
+#include "engine/parameter_range.hpp"
 
 #include <functional>
 #include <map>
@@ -19,6 +20,7 @@ struct MaterialParameterSpec {
   std::string unit;
   std::string meaning;
   std::optional<double> default_value; // empty: required
+  ParameterRange range;                // the values the model accepts on their own
 };
 
 /// A material type as the case layer sees it: its name, its parameters, and how to build it.

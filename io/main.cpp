@@ -1,4 +1,5 @@
 // mpile: the command line.
+#include "io/describe_command.hpp"
 #include "io/element_test.hpp"
 #include "io/run_command.hpp"
 #include "io/sweep_command.hpp"
@@ -66,6 +67,20 @@ int main(int argc, char** argv) {
   element->add_option("file", element_options.file, "the element-test file (TOML)")->required();
   element->add_option("--out", element_options.csv, "CSV file (default: out/<file name>.csv)");
 
+  mpile::DescribeOptions describe_options;
+  auto* describe = app.add_subcommand(
+      "describe", "print the case format: every table's keys with type, unit, default, range");
+  describe->add_option("table", describe_options.table,
+                       "one table (solver, phases, phases.stop_at, [[bodies]], ...) or material "
+                       "type (hardening_soil); default: all");
+  describe->add_flag("--json-schema", describe_options.json_schema,
+                     "print a JSON Schema of case files (for TOML editors)");
+  describe->add_option("--update-doc", describe_options.update_doc,
+                       "rewrite the generated key tables of a Markdown file "
+                       "(docs/case-format.md)");
+  describe->add_option("--check-doc", describe_options.check_doc,
+                       "exit 1 when a Markdown file's generated key tables are stale");
+
   auto* verify = app.add_subcommand("verify", "run verification cases against their references");
   std::vector<std::string> ids{"all"};
   bool list = false;
@@ -118,6 +133,9 @@ int main(int argc, char** argv) {
     }
     if (sweep->parsed()) {
       return mpile::sweep_command(sweep_options, std::cout, std::cerr);
+    }
+    if (describe->parsed()) {
+      return mpile::describe_command(describe_options, std::cout, std::cerr);
     }
     if (element->parsed()) {
       return mpile::element_test_command(element_options, std::cout, std::cerr);

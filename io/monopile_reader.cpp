@@ -50,35 +50,21 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
                       {"band_above", &p.band_above},
                       {"travel", &p.travel}};
   for (const Key& key : keys) {
-    *key.value = table.number_or(key.name, *key.value);
+    *key.value = table.number(key.name);
   }
-  const long wall_cells = table.integer_or("wall_cells", p.wall_cells);
-  if (wall_cells < 1 || wall_cells > 16) {
-    table.fail("wall_cells", "must lie between 1 and 16, got " + std::to_string(wall_cells));
-  }
-  p.wall_cells = static_cast<int>(wall_cells);
+  p.wall_cells = static_cast<int>(table.integer("wall_cells"));
   const MaterialSpec& soil = material_named(table, spec, "soil_material");
   const MaterialSpec& pile_material = material_named(table, spec, "pile_material");
-  const long per_direction = table.integer_or("particles_per_cell", 2);
-  if (per_direction < 1 || per_direction > 8) {
-    table.fail("particles_per_cell",
-               "must lie between 1 and 8, got " + std::to_string(per_direction));
-  }
+  const long per_direction = table.integer("particles_per_cell");
   ContactSpec contact;
   contact.structure = "pile";
-  contact.friction = table.number_or("friction", 0.4);
-  if (!(contact.friction >= 0.0)) {
-    table.fail("friction", "must be >= 0 (mu = tan delta)");
-  }
-  contact.adhesion = table.number_or("adhesion", 0.0);
-  if (!(contact.adhesion >= 0.0)) {
-    table.fail("adhesion", "must be >= 0 (Pa)");
-  }
+  contact.friction = table.number("friction");
+  contact.adhesion = table.number("adhesion");
   // The pile head is above the ground: its top edge is not a contact surface.
   contact.surfaces = {"tip", "external_shaft", "", "internal_shaft"};
   std::optional<TomlTable> drive = table.optional_table("drive");
   // A fixed grid instead, for comparison: the tip then leaves its grid line as it penetrates.
-  const bool moving = table.boolean_or("moving_mesh", true);
+  const bool moving = table.boolean("moving_mesh");
   read_absorbing_faces(table, spec, true);
 
   MonopileGeometry g;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 namespace mpile {
@@ -144,8 +145,82 @@ TomlValue parse_toml(const std::string& text, const std::string& file) {
   }
 }
 
-TomlTable::TomlTable(const TomlValue& table, std::string path, std::string file)
-    : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
+TomlTable::TomlTable(const TomlValue& table, std::string path, std::string file,
+                     const TableSpec* spec)
+    : table_(&table), path_(std::move(path)), file_(std::move(file)), spec_(spec) {}
+
+const KeySpec* TomlTable::declared(const std::string& key) const {
+  if (spec_ == nullptr) {
+    return nullptr;
+  }
+  const KeySpec* k = spec_->key(key);
+  if (k == nullptr && !spec_->material_parameters) {
+    throw std::logic_error("the reader of " + table_heading(*spec_) + " reads '" + key +
+                           "', which io/case_format.cpp does not declare");
+  }
+  return k;
+}
+
+const TableSpec* TomlTable::child_spec(const std::string& key, bool star) const {
+  const KeySpec* k = declared(key);
+  if (k == nullptr) {
+    return nullptr;
+  }
+  if (k->kind == ValueKind::time_function) {
+    return find_table_spec("time_function");
+  }
+  const std::string path =
+      (spec_->path.empty() ? key : spec_->path + "." + key) + (star ? ".*" : "");
+  const TableSpec* child = find_table_spec(path);
+  if (child == nullptr) {
+    throw std::logic_error("the reader reads the table " + path +
+                           ", which io/case_format.cpp does not declare");
+  }
+  return child;
+}
+
+void TomlTable::refuse_second_default(const std::string& key) const {
+  const KeySpec* k = declared(key);
+  if (k != nullptr && !std::holds_alternative<std::monostate>(k->fallback)) {
+    throw std::logic_error("the reader gives '" + key_path(key) +
+                           "' a default, which io/case_format.cpp declares already");
+  }
+}
+
+void TomlTable::check_range(const std::string& key, double x, bool integer) const {
+  const KeySpec* k = declared(key);
+  if (k == nullptr || k->range.contains(x)) {
+    return;
+  }
+  const ParameterRange& r = k->range;
+  std::string bound;
+  if (integer && r.lower && r.upper) {
+    bound =
+        "must lie between " + format_bound(r.lower->value) + " and " + format_bound(r.upper->value);
+  } else if (r.lower && r.upper) {
+    bound = "must lie " + r.text(integer);
+  } else {
+    bound = "must be " + r.text(integer);
+  }
+  fail(key, bound + (k->unit.empty() || k->unit == "-" ? "" : " " + k->unit) + ", got " +
+                format_bound(x));
+}
+
+void TomlTable::check_choice(const std::string& key, const std::string& x) const {
+  const KeySpec* k = declared(key);
+  if (k == nullptr || k->choices.empty() ||
+      std::find(k->choices.begin(), k->choices.end(), x) != k->choices.end()) {
+    return;
+  }
+  std::string list;
+  for (std::size_t i = 0; i < k->choices.size(); ++i) {
+    list += (i == 0                       ? ""
+             : i + 1 == k->choices.size() ? " or "
+                                          : ", ") +
+            ("\"" + k->choices[i] + "\"");
+  }
+  fail(key, "must be " + list + ", got \"" + x + "\"");
+}
 
 bool TomlTable::has(const std::string& key) const {
   return table_->as_table().count(key) > 0;
@@ -200,10 +275,16 @@ const TomlValue& TomlTable::value(const std::string& key) {
 }
 
 const TomlValue& TomlTable::raw(const std::string& key) {
+  declared(key);
   return value(key);
 }
 
 double TomlTable::number(const std::string& key) {
+  if (const KeySpec* k = declared(key); k != nullptr && !has(key)) {
+    if (const double* x = std::get_if<double>(&k->fallback)) {
+      return *x;
+    }
+  }
   const TomlValue& v = value(key);
   if (!is_number(v)) {
     type_error(key, "a number");
@@ -212,6 +293,7 @@ double TomlTable::number(const std::string& key) {
   if (!std::isfinite(x)) {
     fail(key, "must be a finite number");
   }
+  check_range(key, x, false);
   return x;
 }
 
@@ -220,36 +302,55 @@ std::optional<double> TomlTable::optional_number(const std::string& key) {
 }
 
 double TomlTable::number_or(const std::string& key, double fallback) {
+  refuse_second_default(key);
   return has(key) ? number(key) : fallback;
 }
 
 long TomlTable::integer(const std::string& key) {
+  if (const KeySpec* k = declared(key); k != nullptr && !has(key)) {
+    if (const long* x = std::get_if<long>(&k->fallback)) {
+      return *x;
+    }
+  }
   const TomlValue& v = value(key);
   if (!v.is_integer()) {
     type_error(key, "an integer");
   }
-  return static_cast<long>(v.as_integer());
+  const auto x = static_cast<long>(v.as_integer());
+  check_range(key, static_cast<double>(x), true);
+  return x;
 }
 
 long TomlTable::integer_or(const std::string& key, long fallback) {
+  refuse_second_default(key);
   return has(key) ? integer(key) : fallback;
 }
 
 std::string TomlTable::string(const std::string& key) {
+  if (const KeySpec* k = declared(key); k != nullptr && !has(key)) {
+    if (const std::string* x = std::get_if<std::string>(&k->fallback)) {
+      return *x;
+    }
+  }
   const TomlValue& v = value(key);
   if (!v.is_string()) {
     type_error(key, "a string");
   }
-  return v.as_string().str;
+  std::string x = v.as_string().str;
+  check_choice(key, x);
+  return x;
 }
 
 std::string TomlTable::string_or(const std::string& key, const std::string& fallback) {
+  refuse_second_default(key);
   return has(key) ? string(key) : fallback;
 }
 
-bool TomlTable::boolean_or(const std::string& key, bool fallback) {
-  if (!has(key)) {
-    return fallback;
+bool TomlTable::boolean(const std::string& key) {
+  if (const KeySpec* k = declared(key); k != nullptr && !has(key)) {
+    if (const bool* x = std::get_if<bool>(&k->fallback)) {
+      return *x;
+    }
   }
   const TomlValue& v = value(key);
   if (!v.is_boolean()) {
@@ -258,7 +359,15 @@ bool TomlTable::boolean_or(const std::string& key, bool fallback) {
   return v.as_boolean();
 }
 
+bool TomlTable::boolean_or(const std::string& key, bool fallback) {
+  refuse_second_default(key);
+  return has(key) ? boolean(key) : fallback;
+}
+
 std::vector<double> TomlTable::numbers(const std::string& key, std::size_t expected_size) {
+  if (const KeySpec* k = declared(key); k != nullptr && expected_size == 0) {
+    expected_size = k->count;
+  }
   const TomlValue& v = value(key);
   if (!v.is_array()) {
     type_error(key, "an array of numbers");
@@ -282,6 +391,7 @@ std::vector<double> TomlTable::numbers(const std::string& key, std::size_t expec
 }
 
 std::vector<double> TomlTable::numbers_or(const std::string& key, std::vector<double> fallback) {
+  refuse_second_default(key);
   return has(key) ? numbers(key) : fallback;
 }
 
@@ -290,7 +400,7 @@ TomlTable TomlTable::table(const std::string& key) {
   if (!v.is_table()) {
     type_error(key, "a table");
   }
-  return TomlTable(v, key_path(key), file_);
+  return TomlTable(v, key_path(key), file_, child_spec(key));
 }
 
 std::optional<TomlTable> TomlTable::optional_table(const std::string& key) {
@@ -311,7 +421,8 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key) {
     if (!items[i].is_table()) {
       fail(key, "expected tables, found " + type_name(items[i]) + " in the array");
     }
-    out.emplace_back(items[i], key_path(key) + "[" + std::to_string(i) + "]", file_);
+    out.emplace_back(items[i], key_path(key) + "[" + std::to_string(i) + "]", file_,
+                     child_spec(key));
   }
   return out;
 }
@@ -329,7 +440,8 @@ std::vector<std::pair<std::string, TomlTable>> TomlTable::named_tables(const std
     if (!item.is_table()) {
       TomlTable(v, key_path(key), file_).fail(name, "expected a table, got " + type_name(item));
     }
-    out.emplace_back(name, TomlTable(item, key_path(key) + "." + name, file_));
+    out.emplace_back(name,
+                     TomlTable(item, key_path(key) + "." + name, file_, child_spec(key, true)));
   }
   return out;
 }
@@ -337,7 +449,14 @@ std::vector<std::pair<std::string, TomlTable>> TomlTable::named_tables(const std
 void TomlTable::finish() const {
   for (const auto& [key, v] : table_->as_table()) {
     if (read_.count(key) == 0) {
-      fail(key, "unknown key (check its spelling in docs/case-format.md)");
+      if (spec_ == nullptr || spec_->material_parameters) {
+        fail(key, "unknown key (check its spelling in docs/case-format.md)");
+      }
+      std::string known;
+      for (const KeySpec& k : spec_->keys) {
+        known += (known.empty() ? "" : ", ") + k.name;
+      }
+      fail(key, "unknown key (" + table_heading(*spec_) + " has " + known + ")");
     }
   }
 }

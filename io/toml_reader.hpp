@@ -2,8 +2,12 @@
 
 // A strict reader over one TOML table: every key must be read (unknown keys are errors), every
 // value must have the expected type, and every error names the file, line and dotted key.
+// A table of the case format carries its declaration (io/case_format.hpp): an absent key then
+// takes its declared default, a value outside its declared range or choices is refused, and
+// reading a key the declaration lacks is a programming error (std::logic_error).
 
 #include "io/case_error.hpp"
+#include "io/case_format.hpp"
 
 #include <toml.hpp>
 
@@ -20,7 +24,8 @@ using TomlValue = toml::basic_value<toml::discard_comments, std::map, std::vecto
 
 class TomlTable {
 public:
-  TomlTable(const TomlValue& table, std::string path, std::string file);
+  TomlTable(const TomlValue& table, std::string path, std::string file,
+            const TableSpec* spec = nullptr);
 
   bool has(const std::string& key) const;
   const TomlValue& raw(const std::string& key); // marks the key as read
@@ -32,6 +37,7 @@ public:
   long integer_or(const std::string& key, long fallback);
   std::string string(const std::string& key);
   std::string string_or(const std::string& key, const std::string& fallback);
+  bool boolean(const std::string& key);
   bool boolean_or(const std::string& key, bool fallback);
   std::vector<double> numbers(const std::string& key, std::size_t expected_size = 0);
   std::vector<double> numbers_or(const std::string& key, std::vector<double> fallback);
@@ -55,6 +61,8 @@ public:
   /// The file a key's value came from (a base case file, or "--set ..."), else this table's file.
   std::string file_of(const std::string& key) const;
   const std::string& file() const { return file_; }
+  /// The declaration this table is read against, or nullptr.
+  const TableSpec* spec() const { return spec_; }
 
   /// Checks of a number just read; fail with the reason otherwise.
   double positive(const std::string& key);
@@ -63,10 +71,20 @@ public:
 private:
   const TomlValue& value(const std::string& key);
   [[noreturn]] void type_error(const std::string& key, const std::string& expected) const;
+  /// The key's declaration (nullptr for a table without one, or a material's parameter); throws
+  /// std::logic_error for a key the declaration lacks.
+  const KeySpec* declared(const std::string& key) const;
+  /// The declaration of the table held under `key` (`star`: the tables are named by the user).
+  const TableSpec* child_spec(const std::string& key, bool star = false) const;
+  /// A caller's fallback for a key whose default is declared would be a second declaration.
+  void refuse_second_default(const std::string& key) const;
+  void check_range(const std::string& key, double x, bool integer) const;
+  void check_choice(const std::string& key, const std::string& x) const;
 
   const TomlValue* table_;
   std::string path_;
   std::string file_;
+  const TableSpec* spec_ = nullptr;
   std::set<std::string> read_;
 };
 

@@ -299,7 +299,7 @@ struct BadInput {
 TEST(ElementTest, BadInputIsRejectedWithFileLineAndKey) {
   const std::vector<BadInput> cases = {
       {"young_modulus = 40e6", "young_modulus = -40e6", "material.young_modulus", "young_modulus",
-       "must be positive"},
+       "must be > 0 Pa, got -40000000"},
       {"friction_angle = 30.0", "friction_angle = 95.0", "material.friction_angle",
        "friction_angle", "[0, 90)"},
       {"cohesion = 5e3", "cohesion = 5e3\ndilatancy_angle = 40.0", "material.dilatancy_angle",

@@ -76,7 +76,7 @@ TEST(MaterialRegistry, BuildsByNameAndNamesWhatIsWrong) {
               create_material(
                   "linear_elastic",
                   {{"young_modulus", -5.0}, {"poisson_ratio", 0.2}, {"density", 1500.0}});
-            }).find("young_modulus must be positive"),
+            }).find("linear_elastic: young_modulus must be > 0 Pa, got -5"),
             std::string::npos);
 }
 

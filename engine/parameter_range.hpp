@@ -1,0 +1,28 @@
+#pragma once
+
+// The interval a parameter may take, declared with the parameter (io/case_format.hpp for case
+// keys, engine/material_registry.hpp for material parameters) and checked by the readers.
+
+#include <optional>
+#include <string>
+
+namespace mpile {
+
+struct Bound {
+  double value = 0.0;
+  bool inclusive = true;
+};
+
+struct ParameterRange {
+  std::optional<Bound> lower;
+  std::optional<Bound> upper;
+
+  bool contains(double x) const;
+  /// "> 0", ">= 1", "<= 2", "in (0, 2]", empty without bounds. Integer ranges read "1 to 8".
+  std::string text(bool integer = false) const;
+};
+
+/// A number as the documentation and the messages write it: shortest form that reads back.
+std::string format_bound(double x);
+
+} // namespace mpile

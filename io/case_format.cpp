@@ -1,0 +1,658 @@
+// Every table and key of a case file, declared once. Defaults that the engine's own structs hold
+// (SolverSettings, MonopileParameters, the output and contact settings) are taken from a default-
+// constructed struct, so the number lives in one place.
+#include "io/case_format.hpp"
+
+#include "cases/monopile/monopile_geometry.hpp"
+#include "engine/material_registry.hpp"
+#include "engine/particle_bins.hpp"
+#include "io/case_spec.hpp"
+#include "solver/solver_settings.hpp"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace mpile {
+
+KeySpec KeySpec::needed() && {
+  required = true;
+  return std::move(*this);
+}
+KeySpec KeySpec::or_default(DefaultValue value) && {
+  fallback = std::move(value);
+  return std::move(*this);
+}
+KeySpec KeySpec::or_computed(std::string text) && {
+  default_text = std::move(text);
+  return std::move(*this);
+}
+KeySpec KeySpec::above(double value) && {
+  range.lower = Bound{value, false};
+  return std::move(*this);
+}
+KeySpec KeySpec::at_least(double value) && {
+  range.lower = Bound{value, true};
+  return std::move(*this);
+}
+KeySpec KeySpec::below(double value) && {
+  range.upper = Bound{value, false};
+  return std::move(*this);
+}
+KeySpec KeySpec::at_most(double value) && {
+  range.upper = Bound{value, true};
+  return std::move(*this);
+}
+KeySpec KeySpec::one_of(std::vector<std::string> values) && {
+  choices = std::move(values);
+  return std::move(*this);
+}
+KeySpec KeySpec::length(std::size_t n) && {
+  count = n;
+  return std::move(*this);
+}
+
+std::string KeySpec::default_description() const {
+  if (required) {
+    return "required";
+  }
+  struct Text {
+    std::string operator()(std::monostate) const { return ""; }
+    std::string operator()(double x) const { return format_bound(x); }
+    std::string operator()(long x) const { return std::to_string(x); }
+    std::string operator()(bool x) const { return x ? "true" : "false"; }
+    std::string operator()(const std::string& x) const { return "\"" + x + "\""; }
+  };
+  const std::string given = std::visit(Text{}, fallback);
+  if (!given.empty()) {
+    return given;
+  }
+  return default_text.empty() ? "none" : default_text;
+}
+
+namespace {
+
+KeySpec make(std::string name, ValueKind kind, std::string unit, std::string meaning) {
+  KeySpec k;
+  k.name = std::move(name);
+  k.kind = kind;
+  k.unit = std::move(unit);
+  k.meaning = std::move(meaning);
+  return k;
+}
+
+} // namespace
+
+KeySpec number(std::string name, std::string unit, std::string meaning) {
+  return make(std::move(name), ValueKind::number, std::move(unit), std::move(meaning));
+}
+KeySpec integer(std::string name, std::string meaning) {
+  return make(std::move(name), ValueKind::integer, "", std::move(meaning));
+}
+KeySpec boolean(std::string name, std::string meaning) {
+  return make(std::move(name), ValueKind::boolean, "", std::move(meaning));
+}
+KeySpec string(std::string name, std::string meaning) {
+  return make(std::move(name), ValueKind::string, "", std::move(meaning));
+}
+KeySpec numbers(std::string name, std::string unit, std::string meaning) {
+  return make(std::move(name), ValueKind::numbers, std::move(unit), std::move(meaning));
+}
+KeySpec time_function(std::string name, std::string unit, std::string meaning) {
+  return make(std::move(name), ValueKind::time_function, std::move(unit), std::move(meaning));
+}
+KeySpec table(std::string name, std::string meaning) {
+  return make(std::move(name), ValueKind::table, "", std::move(meaning));
+}
+KeySpec tables(std::string name, std::string meaning) {
+  return make(std::move(name), ValueKind::tables, "", std::move(meaning));
+}
+KeySpec named_tables(std::string name, std::string meaning) {
+  return make(std::move(name), ValueKind::named_tables, "", std::move(meaning));
+}
+KeySpec strings(std::string name, std::string meaning) {
+  return make(std::move(name), ValueKind::strings, "", std::move(meaning));
+}
+KeySpec any(std::string name, std::string unit, std::string meaning) {
+  return make(std::move(name), ValueKind::any, std::move(unit), std::move(meaning));
+}
+
+const KeySpec* TableSpec::key(std::string_view name) const {
+  const auto found =
+      std::find_if(keys.begin(), keys.end(), [&](const KeySpec& k) { return k.name == name; });
+  return found == keys.end() ? nullptr : &*found;
+}
+
+namespace {
+
+const char* const first_phase = "the first phase";
+
+/// The drive keys of a rigid body: one per DOF, a velocity or a force.
+std::vector<KeySpec> drive_keys() {
+  return {
+      time_function("velocity_y", "m/s",
+                    "prescribed vertical velocity (the force it takes is recorded); or force_y"),
+      time_function("force_y", "N/rad", "applied vertical force (N/m in plane strain)"),
+      time_function("angular_velocity", "rad/s",
+                    "prescribed spin about the axis (in plane strain, in-plane about the centre); "
+                    "or torque"),
+      time_function("torque", "N m/rad",
+                    "applied torque about the axis, per radian: the seed's \"kN m/rad\""),
+      time_function("velocity_r", "m/s", "plane strain only: prescribed horizontal velocity"),
+      time_function("force_r", "N/m", "plane strain only: applied horizontal force"),
+  };
+}
+
+std::vector<KeySpec> zone_keys() {
+  return {number("start", "m", "where the zone starts").needed(),
+          number("end", "m", "where it ends, greater than start").needed(),
+          integer("cells", "uniform cells in the zone").needed().at_least(1).at_most(100000)};
+}
+
+std::vector<KeySpec> node_line_keys() {
+  return {any("r", "m",
+              "a grid line r = value (the nodes along it), or with y = value a range [from, to]"),
+          any("y", "m",
+              "a grid line y = value (the nodes along it), or with r = value a range [from, to]")};
+}
+
+std::vector<TableSpec> declare() {
+  const SolverSettings solver;
+  const MonopileParameters pile;
+  const OutputSpec output;
+  const OutputSpec::Cpt cpt;
+  std::vector<std::string> material_names;
+  for (const MaterialType& type : material_types()) {
+    material_names.push_back(type.name);
+  }
+  std::vector<std::string> faces{"free", "roller", "fixed"};
+
+  std::vector<TableSpec> t;
+  t.push_back(
+      {"",
+       "The top level of a case file.",
+       {string("base", "a case file this one is read over (relative to this file): tables merge "
+                       "key by key, other values replace the base's")
+            .or_computed("none"),
+        string("title", "shown in the log and stored in history.h5").or_computed("the file name"),
+        string("geometry", "\"axisymmetric\" (with the theta DOF; outputs per radian) or "
+                           "\"plane_strain\" (outputs per metre)")
+            .or_default(std::string("axisymmetric"))
+            .one_of({"axisymmetric", "plane_strain"}),
+        table("grid", "the grid's zones along r and y; required unless [monopile] builds it"),
+        named_tables("materials", "the materials, by name").needed(),
+        tables("bodies", "the bodies; required unless [monopile] builds them"),
+        tables("contact", "soil-structure contact, one entry per structure"),
+        table("monopile", "the seed's monopile model from a few parameters, instead of grid, "
+                          "bodies, contact, boundaries and moving_mesh"),
+        table("boundaries", "conditions on the grid's faces"), table("solver", "numerical choices"),
+        table("moving_mesh", "y-lines that follow a rigid body"),
+        tables("prescribed", "prescribed velocities on a grid line"),
+        tables("loads", "distributed tractions on a grid line"),
+        tables("phases", "the phases, run in order").needed(),
+        table("output", "what is written, and when")},
+       false});
+  t.push_back({"grid",
+               "The grid: zones of uniform cells along r (x in plane strain) and y, contiguous.",
+               {tables("r", "zones along r, from the smallest r").needed(),
+                tables("y", "zones along y, from the bottom").needed()},
+               false});
+  t.push_back({"grid.r", "A zone of the grid along r.", zone_keys(), false});
+  t.push_back({"grid.y", "A zone of the grid along y.", zone_keys(), false});
+  t.push_back({"materials.*",
+               "A material: its model (`type`) and that model's parameters (below).",
+               {string("type", "the material model").needed().one_of(material_names)},
+               true});
+  t.push_back(
+      {"bodies",
+       "A body: a region of one material filled with particles.",
+       {string("name", "unique name").needed(), string("material", "a [materials.<name>]").needed(),
+        table("region", "its shape, inside the grid").needed(),
+        integer("particles_per_cell", "particles per cell direction (2 gives 4 per cell)")
+            .or_default(2L)
+            .at_least(1)
+            .at_most(8),
+        numbers("velocity", "m/s", "initial velocity (v_r, v_y, v_theta)")
+            .length(3)
+            .or_computed("[0, 0, 0]"),
+        table("velocity_profile",
+              "an initial velocity varying along one direction, added to velocity"),
+        table("rigid", "makes the body rigid, with its drives")},
+       false});
+  t.push_back({"bodies.region",
+               "One shape: a rectangle (r and y), a polygon or a circle.",
+               {numbers("r", "m", "a rectangle's [r_min, r_max]").length(2),
+                numbers("y", "m", "a rectangle's [y_min, y_max]").length(2),
+                any("polygon", "m",
+                    "[[r0, y0], [r1, y1], ...]: at least 3 vertices of a simple polygon, either "
+                    "orientation, not closed by repeating the first"),
+                table("circle", "a circle (a torus or, centred on the axis, a sphere)")},
+               false});
+  t.push_back({"bodies.region.circle",
+               "A circle.",
+               {numbers("centre", "m", "[r, y]").length(2).needed(),
+                number("radius", "m", "its radius; off the axis at most the centre's r")
+                    .needed()
+                    .above(0.0)},
+               false});
+  t.push_back(
+      {"bodies.velocity_profile",
+       "An initial velocity component as a function of position along r or y.",
+       {string("component", "the velocity component").needed().one_of({"r", "y", "theta"}),
+        string("along", "the coordinate the function's argument is").needed().one_of({"r", "y"}),
+        time_function("function", "m/s", "the velocity as a function of position (m)").needed()},
+       false});
+  {
+    std::vector<KeySpec> keys{
+        number("mass", "kg/rad", "the whole structure's mass (kg/m in plane strain)")
+            .above(0.0)
+            .or_computed("from the particles"),
+        number("polar_inertia", "kg m^2/rad", "axisymmetric: the moment of inertia about the axis")
+            .above(0.0)
+            .or_computed("from the particles"),
+        number("inertia", "kg m^2/m", "plane strain: the moment of inertia about the centre")
+            .above(0.0)
+            .or_computed("from the particles")};
+    for (KeySpec& k : drive_keys()) {
+      keys.push_back(std::move(k));
+    }
+    keys.push_back(string("phase", "the phase in which the drives start (their functions count "
+                                   "time from its start); before it every DOF is held at rest")
+                       .or_computed(first_phase));
+    t.push_back({"bodies.rigid", "A rigid body's mass, inertia and drives.", keys, false});
+  }
+  t.push_back(
+      {"time_function",
+       "A function of time (or, in a velocity_profile, of position): a number is a constant; a "
+       "table has a `type` and that type's keys.",
+       {string("type", "constant: value; ramp: value, duration; table: points; harmonic: "
+                       "amplitude, frequency, phase; pulse_train: amplitude, duration, interval")
+            .needed()
+            .one_of({"constant", "ramp", "table", "harmonic", "pulse_train"}),
+        number("value", "", "constant: the value; ramp: the value reached after duration"),
+        number("duration", "s", "ramp: its rise time; pulse_train: one half-sine pulse's length")
+            .above(0.0),
+        any("points", "",
+            "table: [[t0, v0], [t1, v1], ...], times strictly increasing; v0 "
+            "before t0, the last value after the last time"),
+        number("amplitude", "",
+               "harmonic: amplitude sin(2 pi frequency t + phase); "
+               "pulse_train: the pulses' peak"),
+        number("frequency", "Hz", "harmonic: its frequency").above(0.0),
+        number("phase", "rad", "harmonic: its phase angle").or_default(0.0),
+        number("interval", "s",
+               "pulse_train: time from one pulse's start to the next's, at "
+               "least duration")
+            .above(0.0)},
+       false});
+  const ContactSpec contact;
+  t.push_back(
+      {"contact",
+       "Contact between the soil and one structure body (Bardenhagen, Coulomb friction and "
+       "adhesion).",
+       {string("structure", "a [[bodies]] name (rigid or deformable)").needed(),
+        number("friction", "-", "Coulomb coefficient mu = tan(delta)")
+            .or_default(contact.friction)
+            .at_least(0.0),
+        number("adhesion", "Pa", "adhesion c_a").or_default(contact.adhesion).at_least(0.0),
+        string("normals", "\"outline\": from the outline of the structure's region (a polygon must "
+                          "be convex); \"mass_gradient\": from the structure's particles")
+            .or_default(std::string("outline"))
+            .one_of({"outline", "mass_gradient"}),
+        any("surfaces", "",
+            "outline only: a rectangle's edges named in a table { bottom, right, top, left } (an "
+            "edge left out is no contact surface); a polygon's, one name per edge in an array "
+            "(\"\" for none); at most 8 surfaces")
+            .or_computed("a rectangle's four edges, named bottom, right, top, left"),
+        string("surface", "the single surface's name: mass-gradient normals, or a circle's outline")
+            .or_computed("\"interface\" (mass gradient), \"surface\" (circle)")},
+       false});
+  {
+    std::vector<KeySpec> edges;
+    for (const char* edge : {"bottom", "right", "top", "left"}) {
+      edges.push_back(
+          string(edge, std::string("the surface the rectangle's ") + edge + " edge belongs to")
+              .or_computed("no contact surface"));
+    }
+    t.push_back({"contact.surfaces", "A rectangle's contact surfaces, by edge.", edges, false});
+  }
+  t.push_back(
+      {"monopile",
+       "The seed paper's model (its section 3): soil from the axis to soil_width and from y = 0 to "
+       "soil_depth, an open-ended rigid pile, a graded grid with a band that moves with the pile.",
+       {number("pile_length", "m", "the whole pile's length (its mass and polar inertia)")
+            .or_default(pile.pile_length)
+            .above(0.0),
+        number("diameter", "m", "outer diameter D").or_default(pile.diameter).above(0.0),
+        number("wall_thickness", "m", "wall thickness t, below D / 2")
+            .or_default(pile.wall_thickness)
+            .above(0.0),
+        number("embedment", "m", "initial depth of the tip below the surface, below pile_length")
+            .or_default(pile.embedment)
+            .above(0.0),
+        number("soil_width", "m", "the soil's radius (the roller face)")
+            .or_default(pile.soil_width)
+            .above(0.0),
+        number("soil_depth", "m", "the soil's depth (the fixed base at y = 0)")
+            .or_default(pile.soil_depth)
+            .above(0.0),
+        number("head_room", "m", "grid above the surface (the meshed pile top stays above heave)")
+            .or_default(pile.head_room)
+            .above(0.0),
+        string("soil_material", "the soil's [materials.<name>]").needed(),
+        string("pile_material", "the pile's [materials.<name>]; gives the density").needed(),
+        number("friction", "-", "contact mu = tan(delta) (0.4 = tan 21.8 deg)")
+            .or_default(0.4)
+            .at_least(0.0),
+        number("adhesion", "Pa", "contact adhesion c_a").or_default(0.0).at_least(0.0),
+        integer("particles_per_cell", "per direction").or_default(2L).at_least(1).at_most(8),
+        number("fine_cell", "m", "cell size at the wall and in the band")
+            .or_default(pile.fine_cell)
+            .above(0.0),
+        number("fine_width", "m", "uniform fine cells on each side of the wall")
+            .or_default(pile.fine_width)
+            .at_least(0.0),
+        integer("wall_cells", "cells across the wall; more than 1 grades from t / wall_cells at "
+                              "the wall and tip to fine_cell")
+            .or_default(static_cast<long>(pile.wall_cells))
+            .at_least(1)
+            .at_most(16),
+        number("shaft_cell", "m", "the largest cell along the shaft, at least fine_cell")
+            .or_default(pile.shaft_cell)
+            .above(0.0),
+        number("coarse_cell", "m", "the largest cell far from the pile, at least fine_cell")
+            .or_default(pile.coarse_cell)
+            .above(0.0),
+        number("growth", "-", "size ratio of neighbouring cells where the mesh coarsens")
+            .or_default(pile.growth)
+            .at_least(1.0)
+            .at_most(2.0),
+        number("band_below", "m", "the band moving with the pile reaches this far below the tip")
+            .or_default(pile.band_below)
+            .above(0.0),
+        number("band_above", "m", "and this far above it").or_default(pile.band_above).above(0.0),
+        number("travel", "m",
+               "how far the band may be carried down (the soil below is seeded "
+               "for the cells it will then have)")
+            .or_default(pile.travel)
+            .above(0.0),
+        boolean("moving_mesh", "false: the grid stays fixed (for comparison)").or_default(true),
+        strings("absorbing", "faces that let waves out, as in [boundaries]")
+            .one_of({"r_min", "r_max", "y_min", "y_max"})
+            .or_computed("none"),
+        string("absorbing_phase", "the phase at whose start the absorbing faces switch on")
+            .or_computed(first_phase),
+        table("drive", "the pile's drives: the keys of [bodies.rigid] but mass and inertia")},
+       false});
+  {
+    std::vector<KeySpec> keys = drive_keys();
+    keys.push_back(number("mass", "kg/rad", "not allowed: follows from the parameters"));
+    keys.push_back(
+        number("polar_inertia", "kg m^2/rad", "not allowed: follows from the parameters"));
+    keys.push_back(string("phase", "the phase in which the drives start").or_computed(first_phase));
+    t.push_back({"monopile.drive", "The monopile's drives.", keys, false});
+  }
+  t.push_back(
+      {"moving_mesh",
+       "y-lines that translate with a rigid body; the lines beyond are squeezed and stretched.",
+       {string("body", "a rigid body (axisymmetric cases)").needed(),
+        numbers("band", "m",
+                "[y_bottom, y_top], grid lines strictly inside the grid: the lines "
+                "between them move with the body")
+            .length(2)
+            .needed(),
+        number("travel", "m",
+               "how far the band may move; the soil is seeded for the finest "
+               "cells it will sit in")
+            .above(0.0)
+            .or_computed("until a zone beside the band is squeezed to a tenth"),
+        numbers("stretch", "m",
+                "[y_bottom, y_top], grid lines below and above the band: only "
+                "the lines between them and the band move")
+            .length(2)
+            .or_computed("the grid's bottom and top")},
+       false});
+  {
+    std::vector<KeySpec> keys;
+    for (const char* face : {"r_min", "r_max", "y_min", "y_max"}) {
+      keys.push_back(string(face, std::string("the condition on the face ") + face +
+                                      ": \"roller\" holds the normal velocity, \"fixed\" all")
+                         .or_default(std::string("free"))
+                         .one_of(faces));
+    }
+    keys.push_back(strings("absorbing", "faces that let waves out (viscous dashpots from "
+                                        "absorbing_phase on), each once")
+                       .one_of({"r_min", "r_max", "y_min", "y_max"})
+                       .or_computed("none"));
+    keys.push_back(string("absorbing_phase", "the phase at whose start the absorbing faces "
+                                             "switch on")
+                       .or_computed(first_phase));
+    t.push_back({"boundaries", "Conditions on the grid's faces.", keys, false});
+  }
+  t.push_back(
+      {"solver",
+       "Numerical choices.",
+       {number("courant_number", "-", "dt = C min over particles of h_cell / (c_p + |v_p|)")
+            .or_default(solver.courant_number)
+            .above(0.0)
+            .at_most(2.0),
+        number("max_time_step", "s", "upper bound on dt").above(0.0).or_computed("none"),
+        number("flip_fraction", "-", "particle velocity update: 1 = FLIP, 0 = PIC, between: blend")
+            .or_default(solver.flip_fraction)
+            .at_least(0.0)
+            .at_most(1.0),
+        integer("xpic_order", "0: the FLIP/PIC blend; m >= 1: XPIC(m); excludes flip_fraction < 1")
+            .or_default(static_cast<long>(solver.xpic_order))
+            .at_least(0)
+            .at_most(SolverSettings::max_xpic_order),
+        boolean("bbar", "B-bar: cell-mean volumetric strain increment").or_default(solver.bbar),
+        string("scheme", "\"musl\" (strains from remapped velocities) or \"usl\"")
+            .or_default(std::string(solver.musl ? "musl" : "usl"))
+            .one_of({"musl", "usl"}),
+        boolean("jaumann_rate", "co-rotate stress with the in-plane spin")
+            .or_default(solver.jaumann_rate),
+        boolean("split_particles", "split a particle grown longer than its cell into halves")
+            .or_default(solver.split_particles),
+        number("mass_scaling", "-", "inertia multiplier for quasi-static work")
+            .or_default(solver.mass_scaling)
+            .at_least(1.0),
+        numbers("gravity", "m/s^2", "gravitational acceleration (r, y), e.g. [0, -9.81]")
+            .length(2)
+            .or_computed("[0, 0]"),
+        integer("block_cells", "cells per side of a scatter block; at least 3 with GIMP")
+            .or_default(static_cast<long>(solver.block_cells))
+            .at_least(1)
+            .at_most(ParticleBins::max_block_cells),
+        string("shape_functions", "\"linear\" or \"gimp\" (averaged over the particle's domain)")
+            .one_of({"linear", "gimp"})
+            .or_computed("\"linear\", \"gimp\" with a moving mesh"),
+        number("min_time_step", "s", "a run whose stable step falls below it stops as collapsed")
+            .above(0.0)
+            .or_computed("a thousandth of the first step"),
+        number("energy_residual_warning", "-",
+               "the log warns when the energy residual exceeds this fraction of the energy in play")
+            .or_default(solver.energy_residual_warning)
+            .above(0.0),
+        number("energy_residual_limit", "-",
+               "past this fraction for 100 steps the run stops as unstable; above the warning")
+            .or_default(solver.energy_residual_limit)
+            .above(0.0)},
+       false});
+  t.push_back(
+      {"prescribed",
+       "Prescribed velocities on a grid line; the reaction goes to /boundaries/<name>/.",
+       {string("name", "unique").needed(), table("nodes", "the grid line").needed(),
+        time_function("velocity_r", "m/s", "the radial velocity"),
+        time_function("velocity_y", "m/s", "the vertical velocity"),
+        time_function("velocity_theta", "m/s", "the circumferential velocity"),
+        time_function("angular_velocity", "rad/s",
+                      "instead of velocity_theta: v_theta = omega r (a rigid rotation)"),
+        string("phase", "the phase in which the motion starts; before it the DOFs are held")
+            .or_computed(first_phase),
+        string("body", "a deformable contact structure whose field alone the motion acts on")
+            .or_computed("every field")},
+       false});
+  t.push_back({"prescribed.nodes", "A grid line, or part of it.", node_line_keys(), false});
+  t.push_back(
+      {"loads",
+       "A distributed traction on a grid line, with consistent nodal weights.",
+       {string("name", "unique").needed(), table("nodes", "the grid line").needed(),
+        string("component", "the traction's direction").needed().one_of({"r", "y", "theta"}),
+        time_function("traction", "Pa", "positive along the component's axis").needed(),
+        string("phase", "the phase in which the load starts; zero before")
+            .or_computed(first_phase)},
+       false});
+  t.push_back({"loads.nodes", "A grid line, or part of it.", node_line_keys(), false});
+  t.push_back(
+      {"phases",
+       "A phase of the run; each starts where the previous ended.",
+       {string("name", "unique").needed(),
+        number("duration", "s", "the longest the phase can last").needed().above(0.0),
+        number("local_damping", "-", "Cundall damping alpha (about 0.7 for quasi-static phases)")
+            .or_default(0.0)
+            .at_least(0.0)
+            .below(1.0),
+        boolean("gravity", "whether [solver] gravity acts").or_default(true),
+        number("equilibrium_tolerance", "-",
+               "end early once out-of-balance force and kinetic energy fall below this fraction of "
+               "the forces holding the state and of the external work")
+            .above(0.0)
+            .or_computed("none"),
+        number("flip_fraction", "-", "override of [solver]")
+            .at_least(0.0)
+            .at_most(1.0)
+            .or_computed("[solver] value"),
+        integer("xpic_order", "override of [solver]")
+            .at_least(0)
+            .at_most(SolverSettings::max_xpic_order)
+            .or_computed("[solver] value"),
+        number("mass_scaling", "-", "override of [solver]")
+            .at_least(1.0)
+            .or_computed("[solver] value"),
+        number("courant_number", "-", "override of [solver]")
+            .above(0.0)
+            .at_most(2.0)
+            .or_computed("[solver] value"),
+        tables("k0", "K0 procedures at the phase start"),
+        table("stop_at", "end the phase once a rigid body has penetrated"),
+        table("drive", "a rigid body's drives from this phase's start")},
+       false});
+  t.push_back(
+      {"phases.k0",
+       "A K0 procedure: sigma_yy = -(surcharge + rho g (surface - y)), sigma_rr = sigma_thth = K0 "
+       "sigma_yy, for one body or every body of one material.",
+       {string("body", "the body; or material"),
+        string("material", "every body of this material; or body"),
+        number("surface", "m", "y of the soil surface").needed(),
+        number("k0", "-", "K0").needed().above(0.0),
+        number("surcharge", "Pa", "a surface load q").or_default(0.0).at_least(0.0)},
+       false});
+  t.push_back(
+      {"phases.stop_at",
+       "End the phase once a rigid body has gone down far enough.",
+       {string("body", "a rigid body").needed(),
+        number("penetration", "m", "its total downward displacement; or settlement").above(0.0),
+        number("settlement", "m", "its downward displacement since the phase began (a load test)")
+            .above(0.0),
+        boolean("at_rest", "also wait until the body has come to rest (below 1 mm/s)")
+            .or_default(false)},
+       false});
+  {
+    std::vector<KeySpec> keys{string("body", "a rigid body").needed()};
+    for (KeySpec& k : drive_keys()) {
+      keys.push_back(std::move(k));
+    }
+    t.push_back({"phases.drive", "A rigid body's drives from this phase's start.", keys, false});
+  }
+  t.push_back(
+      {"output",
+       "What the run writes, and when.",
+       {string("directory", "where outputs go (mpile run --out overrides it)")
+            .or_computed("out/<case file name>"),
+        number("snapshot_interval", "s",
+               "simulated time between particle snapshots; 0: only the "
+               "first and the last")
+            .or_default(output.snapshot_interval)
+            .at_least(0.0),
+        numbers("snapshot_times", "s", "further snapshot times; steps land on them")
+            .or_computed("none"),
+        number("history_interval", "s", "time between history rows; 0: every step")
+            .or_default(output.history_interval)
+            .at_least(0.0),
+        number("checkpoint_interval", "s",
+               "simulated time between checkpoints; 0: only when the "
+               "run stops")
+            .or_default(output.checkpoint_interval)
+            .at_least(0.0),
+        boolean("grid_snapshots", "also write the grid at every snapshot")
+            .or_default(output.grid_snapshots),
+        numbers("snapshot_penetrations", "m",
+                "further snapshots when a rigid body's penetration "
+                "first reaches each value")
+            .or_computed("none"),
+        string("penetration_body", "the body whose penetration snapshot_penetrations counts")
+            .or_computed("the only rigid body"),
+        table("cpt", "a cone penetration test's q_c, f_s and R_f in the history"),
+        tables("monitor", "material points followed through the run")},
+       false});
+  t.push_back({"output.cpt",
+               "A cone penetration test's /cpt/q_c, /cpt/f_s and /cpt/R_f (axisymmetric cases).",
+               {string("body", "the contact structure that is the cone")
+                    .or_computed("the only structure with outline normals"),
+                string("cone", "its surface whose plan area q_c is quoted over")
+                    .or_default(std::string(cpt.cone)),
+                string("sleeve", "its surface whose side area f_s is quoted over")
+                    .or_default(std::string(cpt.sleeve))},
+               false});
+  t.push_back({"output.monitor",
+               "A material point followed through the run (/monitors/<name>/ in the history).",
+               {string("name", "letters, digits and underscores; unique").needed(),
+                numbers("position", "m",
+                        "[r, y]: the soil particle nearest this point at the "
+                        "start; or particle")
+                    .length(2),
+                integer("particle", "the particle with this id; or position").at_least(0)},
+               false});
+  return t;
+}
+
+} // namespace
+
+const std::vector<TableSpec>& case_format() {
+  static const std::vector<TableSpec> tables = declare();
+  return tables;
+}
+
+const TableSpec* find_table_spec(std::string_view path) {
+  static const std::map<std::string, const TableSpec*, std::less<>> by_path = [] {
+    std::map<std::string, const TableSpec*, std::less<>> m;
+    for (const TableSpec& t : case_format()) {
+      m.emplace(t.path, &t);
+    }
+    return m;
+  }();
+  const auto found = by_path.find(path);
+  return found == by_path.end() ? nullptr : found->second;
+}
+
+std::string table_heading(const TableSpec& table) {
+  if (table.path.empty()) {
+    return "top level";
+  }
+  const std::size_t dot = table.path.rfind('.');
+  const std::string parent = dot == std::string::npos ? "" : table.path.substr(0, dot);
+  const std::string leaf = dot == std::string::npos ? table.path : table.path.substr(dot + 1);
+  std::string shown = table.path;
+  if (leaf == "*") {
+    shown = parent + ".<name>";
+  }
+  const TableSpec* owner = find_table_spec(parent);
+  const KeySpec* key = owner != nullptr ? owner->key(leaf) : nullptr;
+  if (key != nullptr && key->kind == ValueKind::tables) {
+    return "[[" + shown + "]]";
+  }
+  return "[" + shown + "]";
+}
+
+} // namespace mpile

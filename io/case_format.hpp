@@ -1,0 +1,98 @@
+#pragma once
+
+// The case format, declared once: every table a case file may hold and every key of it, with its
+// type, unit, range, default and one line of meaning. The readers take defaults, ranges and choices
+// from here (io/toml_reader.hpp), `mpile describe` prints it, docs/case-format.md's key tables are
+// generated from it and `mpile describe --json-schema` exports it for TOML editors. Checks that
+// relate several keys (a body's material must exist, a band must lie on grid lines) stay in the
+// readers, which name the key they refuse.
+
+#include "engine/parameter_range.hpp"
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace mpile {
+
+enum class ValueKind {
+  number,        // a float; integers are accepted
+  integer,       // an integer
+  boolean,       // true or false
+  string,        // a string, possibly one of a list of choices
+  numbers,       // an array of numbers, of a fixed length when `count` is set
+  time_function, // a number (constant) or a table [time_function]
+  table,         // a table, declared under its own path
+  tables,        // an array of tables ([[path]]), declared under its own path
+  named_tables,  // a table of tables named by the user ([path.<name>]), declared as path.*
+  strings,       // an array of strings, each one of the choices
+  any,           // a value whose forms the meaning lists (a number or a range, a string or a table)
+};
+
+/// The value a key takes when it is absent.
+using DefaultValue = std::variant<std::monostate, double, long, bool, std::string>;
+
+struct KeySpec {
+  std::string name;
+  ValueKind kind = ValueKind::number;
+  std::string unit;    // "" where no unit applies, "-" for a ratio
+  std::string meaning; // one line
+  bool required = false;
+  DefaultValue fallback;            // std::monostate: none (required, or absent means "not set")
+  std::string default_text;         // how the documentation names a default the reader computes
+  ParameterRange range;             // numbers and integers
+  std::vector<std::string> choices; // strings
+  std::size_t count = 0;            // numbers: the exact length, 0 for any
+
+  KeySpec needed() &&;
+  KeySpec or_default(DefaultValue value) &&;
+  KeySpec or_computed(std::string text) &&; // the reader derives the default from other keys
+  KeySpec above(double value) &&;
+  KeySpec at_least(double value) &&;
+  KeySpec below(double value) &&;
+  KeySpec at_most(double value) &&;
+  KeySpec one_of(std::vector<std::string> values) &&;
+  KeySpec length(std::size_t n) &&;
+
+  /// "> 0", "in [0, 1)", "1 to 8", ... ; empty without bounds.
+  std::string range_text() const { return range.text(kind == ValueKind::integer); }
+  /// The default as the documentation writes it: a TOML value, the computed default's text, or
+  /// "required" / "none".
+  std::string default_description() const;
+};
+
+KeySpec number(std::string name, std::string unit, std::string meaning);
+KeySpec integer(std::string name, std::string meaning);
+KeySpec boolean(std::string name, std::string meaning);
+KeySpec string(std::string name, std::string meaning);
+KeySpec numbers(std::string name, std::string unit, std::string meaning);
+KeySpec time_function(std::string name, std::string unit, std::string meaning);
+KeySpec table(std::string name, std::string meaning);
+KeySpec tables(std::string name, std::string meaning);
+KeySpec named_tables(std::string name, std::string meaning);
+KeySpec strings(std::string name, std::string meaning);
+KeySpec any(std::string name, std::string unit, std::string meaning);
+
+struct TableSpec {
+  /// Dotted path without indices: "" (the top level), "solver", "phases.stop_at", "materials.*".
+  std::string path;
+  std::string meaning;
+  std::vector<KeySpec> keys;
+  /// Keys beyond `keys` come from the material registry by the table's `type`.
+  bool material_parameters = false;
+
+  const KeySpec* key(std::string_view name) const;
+};
+
+/// Every table of the case format, parents before children.
+const std::vector<TableSpec>& case_format();
+/// The table declared under `path`, or nullptr.
+const TableSpec* find_table_spec(std::string_view path);
+
+/// "[solver]", "[[phases]]", "[materials.<name>]", "phases.stop_at" as a reader writes the table.
+std::string table_heading(const TableSpec& table);
+
+} // namespace mpile

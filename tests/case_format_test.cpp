@@ -1,0 +1,172 @@
+// The case format's one declaration (io/case_format.cpp): the reader takes defaults, ranges and
+// choices from it, reading an undeclared key is caught, docs/case-format.md is generated from it.
+#include "engine/material_registry.hpp"
+#include "io/case_error.hpp"
+#include "io/case_format.hpp"
+#include "io/case_spec.hpp"
+#include "io/describe_command.hpp"
+#include "io/toml_reader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace mpile {
+namespace {
+
+// A plane-strain block on a 2 x 2 grid: the smallest case the reader accepts.
+const std::string block = R"(
+geometry = "plane_strain"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 2 }]
+y = [{ start = 0.0, end = 1.0, cells = 2 }]
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 1e6
+poisson_ratio = 0.3
+density = 1000.0
+[materials.wood]
+type = "linear_elastic"
+young_modulus = 1e6
+poisson_ratio = 0.3
+density = 1000.0
+[[bodies]]
+name = "soil"
+material = "steel"
+region = { r = [0.0, 1.0], y = [0.0, 0.5] }
+[[bodies]]
+name = "block"
+material = "wood"
+region = { r = [0.0, 1.0], y = [0.5, 1.0] }
+[[phases]]
+name = "run"
+duration = 1e-3
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    read_case_text(text, "case.toml");
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CaseFormat, EveryDefaultHasTheTypeOfItsKeyAndLiesInItsRange) {
+  for (const TableSpec& t : case_format()) {
+    for (const KeySpec& k : t.keys) {
+      SCOPED_TRACE(t.path + "." + k.name);
+      EXPECT_FALSE(k.meaning.empty());
+      EXPECT_FALSE(k.required && !std::holds_alternative<std::monostate>(k.fallback));
+      if (const double* x = std::get_if<double>(&k.fallback)) {
+        EXPECT_EQ(k.kind, ValueKind::number);
+        EXPECT_TRUE(k.range.contains(*x));
+      }
+      if (const long* x = std::get_if<long>(&k.fallback)) {
+        EXPECT_EQ(k.kind, ValueKind::integer);
+        EXPECT_TRUE(k.range.contains(static_cast<double>(*x)));
+      }
+      if (std::holds_alternative<bool>(k.fallback)) {
+        EXPECT_EQ(k.kind, ValueKind::boolean);
+      }
+      if (const std::string* x = std::get_if<std::string>(&k.fallback)) {
+        EXPECT_EQ(k.kind, ValueKind::string);
+        if (!k.choices.empty()) {
+          EXPECT_NE(std::find(k.choices.begin(), k.choices.end(), *x), k.choices.end());
+        }
+      }
+      // Tables a key holds are declared under its path.
+      if (k.kind == ValueKind::table || k.kind == ValueKind::tables) {
+        EXPECT_NE(find_table_spec(t.path.empty() ? k.name : t.path + "." + k.name), nullptr);
+      }
+    }
+  }
+  for (const MaterialType& type : material_types()) {
+    for (const MaterialParameterSpec& p : type.parameters) {
+      SCOPED_TRACE(type.name + "." + p.name);
+      EXPECT_FALSE(p.range.text().empty()) << "every material parameter declares its range";
+      if (p.default_value) {
+        EXPECT_TRUE(p.range.contains(*p.default_value));
+      }
+    }
+  }
+}
+
+TEST(CaseFormat, TheReaderTakesTheDeclaredDefaults) {
+  std::string text = block + "[[contact]]\nstructure = \"block\"\n";
+  const CaseSpec spec = read_case_text(text, "case.toml");
+  // [[contact]] friction and adhesion default to 0, [monopile]'s friction to the seed's 0.4: two
+  // declarations, each read from io/case_format.cpp.
+  EXPECT_EQ(spec.contacts.at(0).friction,
+            std::get<double>(find_table_spec("contact")->key("friction")->fallback));
+  EXPECT_EQ(spec.contacts.at(0).friction, 0.0);
+  EXPECT_EQ(std::get<double>(find_table_spec("monopile")->key("friction")->fallback), 0.4);
+  EXPECT_TRUE(spec.contacts.at(0).outline);
+  EXPECT_EQ(spec.bodies.at(0).particles_per_direction, 2);
+  EXPECT_EQ(spec.phases.at(0).local_damping, 0.0);
+  EXPECT_TRUE(spec.phases.at(0).gravity);
+}
+
+TEST(CaseFormat, ARangeOrChoiceOutsideTheDeclarationNamesFileLineKeyAndBound) {
+  EXPECT_EQ(error_of(block + "[solver]\ncourant_number = 3.0\n"),
+            "case.toml:28: solver.courant_number: must lie in (0, 2], got 3");
+  EXPECT_EQ(error_of(block + "[solver]\nxpic_order = 17\n"),
+            "case.toml:28: solver.xpic_order: must lie between 0 and 16, got 17");
+  EXPECT_EQ(error_of(block + "[solver]\nscheme = \"rk4\"\n"),
+            "case.toml:28: solver.scheme: must be \"musl\" or \"usl\", got \"rk4\"");
+  EXPECT_EQ(error_of(block + "[[contact]]\nstructure = \"block\"\nadhesion = -1.0\n"),
+            "case.toml:29: contact[0].adhesion: must be >= 0 Pa, got -1");
+  // A material parameter's range comes from the registry.
+  std::string bad = block;
+  bad.replace(bad.find("poisson_ratio = 0.3"), 19, "poisson_ratio = 0.7");
+  EXPECT_EQ(error_of(bad), "case.toml:9: materials.steel.poisson_ratio: linear_elastic: "
+                           "poisson_ratio must lie in (-1, 0.5), got 0.7");
+}
+
+TEST(CaseFormat, AnUnknownKeyListsTheKeysOfItsTable) {
+  const std::string message =
+      error_of(block + "[[contact]]\nstructure = \"block\"\nfricton = 0.3\n");
+  EXPECT_EQ(message, "case.toml:29: contact[0].fricton: unknown key ([[contact]] has structure, "
+                     "friction, adhesion, normals, surfaces, surface)");
+}
+
+TEST(CaseFormat, ReadingAnUndeclaredKeyIsAProgrammingError) {
+  const TomlValue root = parse_toml("courant_number = 0.5\n", "x.toml");
+  TomlTable solver(root, "solver", "x.toml", find_table_spec("solver"));
+  EXPECT_EQ(solver.number("courant_number"), 0.5);
+  EXPECT_THROW(solver.number("courant"), std::logic_error);
+  EXPECT_THROW(solver.has("x") ? 0.0 : solver.number_or("flip_fraction", 1.0), std::logic_error)
+      << "a caller's fallback for a declared default is a second declaration";
+  EXPECT_EQ(solver.number("flip_fraction"), 1.0);
+}
+
+TEST(CaseFormat, TheDocumentIsGeneratedFromTheDeclaration) {
+  const std::string path = std::string(MPILE_SOURCE_DIR) + "/docs/case-format.md";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path;
+  std::ostringstream text;
+  text << in.rdbuf();
+  const bool up_to_date = regenerate_doc(text.str(), path) == text.str();
+  EXPECT_TRUE(up_to_date)
+      << "docs/case-format.md is stale: run mpile describe --update-doc docs/case-format.md";
+  // A block for each table and material type, and none for what is not declared.
+  std::string without_solver = text.str();
+  without_solver.replace(without_solver.find("<!-- keys solver -->"), 20, "");
+  EXPECT_THROW(regenerate_doc(without_solver, "doc.md"), CaseError);
+  EXPECT_THROW(regenerate_doc(text.str() + "<!-- keys nothing -->\n<!-- end keys -->\n", "doc.md"),
+               CaseError);
+}
+
+TEST(CaseFormat, DescribeNamesATableOrRefuses) {
+  const std::string stop = describe_tables("[phases.stop_at]");
+  EXPECT_NE(stop.find("penetration  (number, m; default none; > 0)"), std::string::npos) << stop;
+  EXPECT_NE(
+      describe_tables("hardening_soil").find("k0_nc  (number, -; default required; in (0, 1))"),
+      std::string::npos);
+  EXPECT_THROW(describe_tables("solvers"), CaseError);
+}
+
+} // namespace
+} // namespace mpile
