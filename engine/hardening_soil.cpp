@@ -666,170 +666,199 @@ bool ordered(const Principal& s, double tolerance) {
   return s[0] >= s[1] - tolerance && s[1] >= s[2] - tolerance;
 }
 
+/// Substeps that keep each trial increment small against the confinement, so that moduli frozen
+/// at the start of a substep stay accurate (hardening_soil.md 2.2): the size of the elastic trial
+/// increment at the start's moduli over a tenth of the confinement (sigma_3 + a plus the
+/// stiffness floor's stress), between 1 and 100.
+int substep_count(const StrainIncrement& strain, double young, double nu, double sigma_3,
+                  double confinement_offset) {
+  const double shear = young / (2.0 * (1.0 + nu));
+  const double lame = young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  const double volumetric = strain[RR] + strain[YY] + strain[TT];
+  double trial_size = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double normal = lame * volumetric + 2.0 * shear * strain[c];
+    trial_size += normal * normal;
+  }
+  for (int c = 3; c < 6; ++c) {
+    const double shear_stress = shear * strain[c];
+    trial_size += 2.0 * shear_stress * shear_stress;
+  }
+  trial_size = std::sqrt(trial_size);
+  const double scale = 0.1 * (std::max(sigma_3, 0.0) + confinement_offset);
+  return std::clamp(static_cast<int>(std::ceil(trial_size / scale)), 1, 100);
+}
+
+/// Mobilised dilatancy (Rowe, as in PLAXIS), explicit from the start of the step: sin psi_m from
+/// the mobilised and the critical-state friction, zero below three quarters of the peak.
+double mobilised_dilatancy(const Principal& s, double a, double sin_phi, double sin_psi) {
+  const double denominator = s[0] + s[2] + 2.0 * a;
+  const double sin_phi_mobilised = denominator > 0.0 ? (s[0] - s[2]) / denominator : 0.0;
+  if (sin_psi > 0.0 && sin_phi_mobilised >= 0.75 * sin_phi) {
+    const double sin_phi_cv = (sin_phi - sin_psi) / (1.0 - sin_phi * sin_psi);
+    return std::max((sin_phi_mobilised - sin_phi_cv) / (1.0 - sin_phi_mobilised * sin_phi_cv), 0.0);
+  }
+  return 0.0;
+}
+
+/// The return of a trial outside the surfaces: active sets in the order shear, cap, shear + cap,
+/// each with its corner variants, keeping the first that satisfies every surface and the
+/// principal order; failing all, alternate projections. `returner_at(state)` makes the return
+/// from another starting state (the alternation's).
+template <class ReturnerAt>
+ReturnState return_to_surfaces(const HardeningSoilReturn& returner, const ReturnState& trial_state,
+                               double shear_trial, double cap_trial, bool shear_may_hold,
+                               ReturnerAt&& returner_at) {
+  const double tolerance = returner.tolerance();
+  auto admissible = [&](const ReturnState& r) {
+    return ordered(r.stress, tolerance) && returner.shear_residual(r) <= tolerance &&
+           returner.cap_residual(r) <= tolerance;
+  };
+  ReturnState result = trial_state;
+  bool found = false;
+  auto attempt = [&](auto&& make, bool plane_decides) {
+    for (int corner = 0; corner < 3 && !found; ++corner) {
+      const ReturnState r = make(corner);
+      if (admissible(r)) {
+        result = r;
+        found = true;
+      } else if (plane_decides && corner == 0 && ordered(r.stress, tolerance)) {
+        // The shear corners split the multiplier so that two principal stresses end equal, and
+        // clamp to the plane's return while the plane keeps the order: they would only repeat
+        // this (inadmissible) state.
+        break;
+      }
+    }
+  };
+  if (shear_trial > tolerance && shear_may_hold) {
+    attempt([&](int corner) { return returner.shear_return(corner); }, true);
+  }
+  if (!found && cap_trial > tolerance) {
+    attempt([&](int corner) { return returner.cap_return(corner); }, false);
+  }
+  if (!found) {
+    attempt([&](int corner) { return returner.combined_return(corner); }, false);
+  }
+  if (found) {
+    return result;
+  }
+  // Near a triaxial corner the cap's own direction can break the principal order while the
+  // corner directions leave a shear plane open. Project in turn: the cap (first ordered variant),
+  // then the shear planes from there; with psi = 0 the shear return lowers the cap deviator at
+  // constant p, so the cap stays closed.
+  ReturnState r = trial_state;
+  for (int pass = 0; pass < 4 && !admissible(r); ++pass) {
+    const HardeningSoilReturn from_cap = returner_at(r);
+    if (from_cap.cap_residual(r) > tolerance) {
+      for (int corner = 0; corner < 3; ++corner) {
+        r = from_cap.cap_return(corner);
+        if (ordered(r.stress, tolerance)) {
+          break;
+        }
+      }
+    }
+    const HardeningSoilReturn from_shear = returner_at(r);
+    if (from_shear.shear_residual(r) > tolerance) {
+      for (int corner = 0; corner < 3; ++corner) {
+        r = from_shear.shear_return(corner);
+        if (ordered(r.stress, tolerance)) {
+          break;
+        }
+      }
+    }
+  }
+  return r;
+}
+
 } // namespace
 
 double HardeningSoil::update_point(Stress& stress, double* state,
                                    const StrainIncrement& strain) const {
   const HardeningSoilParameters& P = parameters_;
-  const double nu = P.poisson_ur;
-  // Substeps keep each trial increment small against the confinement, so that moduli frozen at the
-  // start of a substep stay accurate (hardening_soil.md 2.2).
   PrincipalValues now = principal_compression_values(stress);
   const double e_start = unloading_modulus(now.values[2]);
-  const double shear_start = e_start / (2.0 * (1.0 + nu));
-  const double lame_start = e_start * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  const double volumetric = strain[RR] + strain[YY] + strain[TT];
-  double trial_size = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    const double normal = lame_start * volumetric + 2.0 * shear_start * strain[c];
-    trial_size += normal * normal;
-  }
-  for (int c = 3; c < 6; ++c) {
-    const double shear = shear_start * strain[c];
-    trial_size += 2.0 * shear * shear;
-  }
-  trial_size = std::sqrt(trial_size);
-  const double scale = 0.1 * (std::max(now.values[2], 0.0) + a_ + P.stiffness_floor * P.p_ref);
-  const int substeps = std::clamp(static_cast<int>(std::ceil(trial_size / scale)), 1, 100);
+  const int substeps =
+      substep_count(strain, e_start, P.poisson_ur, now.values[2], a_ + P.stiffness_floor * P.p_ref);
   StrainIncrement part = strain;
   for (double& c : part) {
     c /= substeps;
   }
-
   double modulus = 0.0;
   for (int step = 0; step < substeps; ++step) {
     if (step > 0) {
       now = principal_compression_values(stress);
     }
-    const Principal& s = now.values;
-    const double e = step == 0 ? e_start : unloading_modulus(s[2]);
-    const Elasticity elastic{e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)),
-                             e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))};
-    modulus = elastic.lambda + 2.0 * elastic.shear;
-    // Mobilised dilatancy (Rowe, as in PLAXIS), explicit from the start of the step.
-    double sin_psi = 0.0;
-    const double denominator = s[0] + s[2] + 2.0 * a_;
-    const double sin_phi_mobilised = denominator > 0.0 ? (s[0] - s[2]) / denominator : 0.0;
-    if (sin_psi_ > 0.0 && sin_phi_mobilised >= 0.75 * sin_phi_) {
-      const double sin_phi_cv = (sin_phi_ - sin_psi_) / (1.0 - sin_phi_ * sin_psi_);
-      sin_psi =
-          std::max((sin_phi_mobilised - sin_phi_cv) / (1.0 - sin_phi_mobilised * sin_phi_cv), 0.0);
-    }
-
-    // Elastic trial on the full tensor (engine convention, tension positive).
-    Stress trial_stress = stress;
-    add_isotropic_elastic_increment(trial_stress, part, elastic.lambda, elastic.shear);
-    const double gamma_n = state[GAMMA_P];
-    const double cap_n = std::max(state[P_P], P.cap_floor);
-
-    // Tension: the apex (isotropic, so no directions are needed).
-    if (trace(trial_stress) / 3.0 >= P.tension_limit) {
-      stress = {P.tension_limit, P.tension_limit, P.tension_limit, 0.0, 0.0, 0.0};
-      continue;
-    }
-    // Most steps are elastic, and an elastic step needs neither the principal directions nor the
-    // return: the trial stands if it lies inside both surfaces by more than the uncertainty of its
-    // principal values can move the residuals (their slopes: 1 + dq_f/dsigma_3 < 10 for shear,
-    // (1 + delta) / alpha for the cap). The stress then carries no rounding of a recomposition.
-    const PrincipalValues trial_values = principal_compression_values(trial_stress);
-    const Principal& t = trial_values.values;
-    const double margin = surface_tolerance(t, P.p_ref) -
-                          10.0 * trial_values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
-    if (t[0] - t[2] - yield_deviator(gamma_n, t[2]) <= margin && cap_surface(t, cap_n) <= margin) {
-      state[P_P] = cap_n;
-      stress = trial_stress;
-      continue;
-    }
-
-    const PrincipalStress trial = principal_compression(trial_stress);
-    const double cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
-    const HardeningSoilReturn returner(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening,
-                                       trial.values, gamma_n, cap_n);
-    const double tolerance = returner.tolerance();
-    ReturnState trial_state{trial.values, gamma_n, cap_n};
-    auto admissible = [&](const ReturnState& r) {
-      return ordered(r.stress, tolerance) && returner.shear_residual(r) <= tolerance &&
-             returner.cap_residual(r) <= tolerance;
-    };
-    // The trial's residuals, once: they decide both whether it stands and which mechanisms to try.
-    const double shear_trial = returner.shear_residual(trial_state);
-    const double cap_trial = returner.cap_residual(trial_state);
-    if (shear_trial <= tolerance && cap_trial <= tolerance) {
-      // Inside after all (the quick test keeps a margin; the decomposition's values are ordered).
-      state[P_P] = cap_n;
-      stress = trial_stress;
-      continue;
-    }
-    ReturnState result = trial_state;
-    {
-      // Active sets in the order shear, cap, shear + cap; each with its corner variants, keeping
-      // the first that satisfies every surface and the principal order.
-      bool found = false;
-      auto attempt = [&](auto&& make, bool plane_decides) {
-        for (int corner = 0; corner < 3 && !found; ++corner) {
-          const ReturnState r = make(corner);
-          if (admissible(r)) {
-            result = r;
-            found = true;
-          } else if (plane_decides && corner == 0 && ordered(r.stress, tolerance)) {
-            // The shear corners split the multiplier so that two principal stresses end equal,
-            // and clamp to the plane's return while the plane keeps the order: they would only
-            // repeat this (inadmissible) state.
-            break;
-          }
-        }
-      };
-      if (shear_trial > tolerance && shear_alone_can_hold(trial.values, shear_trial, cap_n, sin_psi,
-                                                          alpha_, delta_, tolerance)) {
-        attempt([&](int corner) { return returner.shear_return(corner); }, true);
-      }
-      if (!found && cap_trial > tolerance) {
-        attempt([&](int corner) { return returner.cap_return(corner); }, false);
-      }
-      if (!found) {
-        attempt([&](int corner) { return returner.combined_return(corner); }, false);
-      }
-      if (!found) {
-        // Near a triaxial corner the cap's own direction can break the principal order while the
-        // corner directions leave a shear plane open. Project in turn: the cap (first ordered
-        // variant), then the shear planes from there; with psi = 0 the shear return lowers the cap
-        // deviator at constant p, so the cap stays closed.
-        ReturnState r = trial_state;
-        for (int pass = 0; pass < 4 && !admissible(r); ++pass) {
-          const HardeningSoilReturn from_cap(*this, P, elastic, sin_psi, delta_, alpha_,
-                                             cap_hardening, r.stress, r.gamma, r.cap_pressure);
-          if (from_cap.cap_residual(r) > tolerance) {
-            for (int corner = 0; corner < 3; ++corner) {
-              r = from_cap.cap_return(corner);
-              if (ordered(r.stress, tolerance)) {
-                break;
-              }
-            }
-          }
-          const HardeningSoilReturn from_shear(*this, P, elastic, sin_psi, delta_, alpha_,
-                                               cap_hardening, r.stress, r.gamma, r.cap_pressure);
-          if (from_shear.shear_residual(r) > tolerance) {
-            for (int corner = 0; corner < 3; ++corner) {
-              r = from_shear.shear_return(corner);
-              if (ordered(r.stress, tolerance)) {
-                break;
-              }
-            }
-          }
-        }
-        result = r;
-      }
-    }
-    Principal out = result.stress;
-    // Tension beyond the cut-off after the return: with c = 0 the shear planes meet the tension
-    // planes only at the apex.
-    if (out[2] < -P.tension_limit - tolerance) {
-      out = {-P.tension_limit, -P.tension_limit, -P.tension_limit};
-    }
-    state[GAMMA_P] = std::max(result.gamma, gamma_n);
-    state[P_P] = std::max(result.cap_pressure, cap_n);
-    stress = compose_from_principal(out, trial.directions);
+    const double e = step == 0 ? e_start : unloading_modulus(now.values[2]);
+    modulus =
+        substep(stress, state, part, e, mobilised_dilatancy(now.values, a_, sin_phi_, sin_psi_));
   }
+  return modulus;
+}
+
+double HardeningSoil::substep(Stress& stress, double* state, const StrainIncrement& part,
+                              double young, double sin_psi) const {
+  const HardeningSoilParameters& P = parameters_;
+  const double nu = P.poisson_ur;
+  const Elasticity elastic{young / (3.0 * (1.0 - 2.0 * nu)), young / (2.0 * (1.0 + nu)),
+                           young * nu / ((1.0 + nu) * (1.0 - 2.0 * nu))};
+  const double modulus = elastic.lambda + 2.0 * elastic.shear;
+  // Elastic trial on the full tensor (engine convention, tension positive).
+  Stress trial_stress = stress;
+  add_isotropic_elastic_increment(trial_stress, part, elastic.lambda, elastic.shear);
+  const double gamma_n = state[GAMMA_P];
+  const double cap_n = std::max(state[P_P], P.cap_floor);
+
+  // Tension: the apex (isotropic, so no directions are needed).
+  if (trace(trial_stress) / 3.0 >= P.tension_limit) {
+    stress = {P.tension_limit, P.tension_limit, P.tension_limit, 0.0, 0.0, 0.0};
+    return modulus;
+  }
+  // Most steps are elastic, and an elastic step needs neither the principal directions nor the
+  // return: the trial stands if it lies inside both surfaces by more than the uncertainty of its
+  // principal values can move the residuals (their slopes: 1 + dq_f/dsigma_3 < 10 for shear,
+  // (1 + delta) / alpha for the cap). The stress then carries no rounding of a recomposition.
+  const PrincipalValues trial_values = principal_compression_values(trial_stress);
+  const Principal& t = trial_values.values;
+  const double margin = surface_tolerance(t, P.p_ref) -
+                        10.0 * trial_values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
+  if (t[0] - t[2] - yield_deviator(gamma_n, t[2]) <= margin && cap_surface(t, cap_n) <= margin) {
+    state[P_P] = cap_n;
+    stress = trial_stress;
+    return modulus;
+  }
+
+  const PrincipalStress trial = principal_compression(trial_stress);
+  const double cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
+  auto returner_at = [&](const ReturnState& from) {
+    return HardeningSoilReturn(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening,
+                               from.stress, from.gamma, from.cap_pressure);
+  };
+  const ReturnState trial_state{trial.values, gamma_n, cap_n};
+  const HardeningSoilReturn returner = returner_at(trial_state);
+  const double tolerance = returner.tolerance();
+  // The trial's residuals, once: they decide both whether it stands and which mechanisms to try.
+  const double shear_trial = returner.shear_residual(trial_state);
+  const double cap_trial = returner.cap_residual(trial_state);
+  if (shear_trial <= tolerance && cap_trial <= tolerance) {
+    // Inside after all (the quick test keeps a margin; the decomposition's values are ordered).
+    state[P_P] = cap_n;
+    stress = trial_stress;
+    return modulus;
+  }
+  const bool shear_may_hold =
+      shear_trial > tolerance &&
+      shear_alone_can_hold(trial.values, shear_trial, cap_n, sin_psi, alpha_, delta_, tolerance);
+  const ReturnState result = return_to_surfaces(returner, trial_state, shear_trial, cap_trial,
+                                                shear_may_hold, returner_at);
+  Principal out = result.stress;
+  // Tension beyond the cut-off after the return: with c = 0 the shear planes meet the tension
+  // planes only at the apex.
+  if (out[2] < -P.tension_limit - tolerance) {
+    out = {-P.tension_limit, -P.tension_limit, -P.tension_limit};
+  }
+  state[GAMMA_P] = std::max(result.gamma, gamma_n);
+  state[P_P] = std::max(result.cap_pressure, cap_n);
+  stress = compose_from_principal(out, trial.directions);
   return modulus;
 }
 

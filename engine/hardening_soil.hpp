@@ -78,6 +78,10 @@ public:
   enum : int { GAMMA_P = 0, P_P = 1 };
 
 private:
+  /// One substep of update_point at Young's modulus `young` and mobilised dilatancy sin_psi: the
+  /// elastic trial and, outside the surfaces, the return. Returns the constrained modulus.
+  double substep(Stress& stress, double* state, const StrainIncrement& part, double young,
+                 double sin_psi) const;
   double stress_ratio(double sigma) const;
   void derive_cap();
 

@@ -9,6 +9,7 @@
 #include "engine/parallel.hpp"
 
 #include <cmath>
+#include <optional>
 
 namespace mpile::passes {
 
@@ -43,11 +44,14 @@ double node_spacing(const GradedAxis& axis, int i) {
   return 0.5 * (axis.cell_size(i - 1) + axis.cell_size(i));
 }
 
+/// Whether a velocity change is also recorded as part of the step's FLIP increment.
+enum class FlipIncrement { record, skip };
+
 /// Sets a rigid body's field to the rigid motion of DOF velocities u (its spin as every node's
 /// angular velocity); the FLIP increment is the change from the velocities u_before.
 void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double, 3>& u,
                      const std::array<double, 3>& u_before, double mass_floor,
-                     bool record_increment) {
+                     FlipIncrement increment) {
   std::vector<GridNode>& nodes = grid.field_nodes(body.field);
   const NodeBox& reach = grid.structure_fields[static_cast<std::size_t>(body.field - 1)].reach;
   parallel_for_box(reach, grid.nodes_r(), [&](std::size_t i) {
@@ -58,7 +62,7 @@ void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double,
     const double r = grid.node_r(static_cast<int>(i));
     const double y = grid.node_y(static_cast<int>(i));
     const auto v = body.node_motion(u, r, y);
-    if (record_increment) {
+    if (increment == FlipIncrement::record) {
       const auto v_before = body.node_motion(u_before, r, y);
       for (std::size_t d = 0; d < 3; ++d) {
         node.velocity_increment()[d] = v[d] - v_before[d];
@@ -76,168 +80,87 @@ struct SurfaceSums {
   double dissipation = 0.0;
 };
 
-/// Returns the energy the correction took over the step (J [/rad]).
-template <GeometryMode mode>
-double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& settings,
-                    const StepParameters& step, bool record) {
-  constexpr int dofs = has_theta(mode) ? 3 : 2;
-  Grid& grid = scene.grid;
-  std::vector<GridNode>& soil = grid.nodes;
-  std::vector<GridNode>& structure = grid.field_nodes(pair.field);
-  const NodeField& field = grid.structure_fields[static_cast<std::size_t>(pair.field - 1)];
-  const std::vector<std::array<double, 2>>& gradient = field.mass_gradient;
-  // Both fields have mass only in the structure's reach; the per-node results of the last step
-  // were written in pair.written.
-  const NodeBox& reach = field.reach;
-  const int nodes_r = grid.nodes_r();
-  const bool rigid = pair.rigid_body >= 0;
-  // A constrained DOF of a deformable structure moves as prescribed: for contact it is rigid.
-  const std::vector<std::uint8_t>& held = grid.field_constrained(pair.field);
-  const double beta = settings.mass_scaling;
-  const double adhesion_impulse = pair.adhesion * step.dt / beta;
+/// The DOFs contact corrects at a node. Contact works on velocities: the theta one of a node is
+/// v_theta = r omega (its unknown is the angular velocity, docs/design.md), and the inertia that
+/// goes with it is J / r^2, the mass that carries the node's angular momentum J omega at its
+/// radius. On the axis v_theta is zero in every field, so there is no theta slip to correct.
+struct NodeDofs {
+  int count;    // DOFs contact corrects at the node
+  double r;     // v_theta = r omega
+  double lever; // 1 / r, from a v_theta change to an omega change
+};
 
-  // Contact works on velocities: the theta one of a node is v_theta = r omega (its unknown is the
-  // angular velocity, docs/design.md), and the inertia that goes with it is J / r^2, the mass
-  // that carries the node's angular momentum J omega at its radius. On the axis v_theta is zero
-  // in every field, so there is no theta slip to correct.
-  struct NodeDofs {
-    int count;    // DOFs contact corrects at the node
-    double r;     // v_theta = r omega
-    double lever; // 1 / r, from a v_theta change to an omega change
-  };
-  auto dofs_at = [&](std::size_t i) {
+/// One contact pair's two fields at the nodes both occupy: how contact measures the soil's
+/// velocity against the structure's and how it changes both.
+template <GeometryMode mode> class PairNodes {
+public:
+  PairNodes(Scene& scene, ContactPair& pair)
+      : grid(scene.grid), soil(scene.grid.nodes), structure(scene.grid.field_nodes(pair.field)),
+        held(scene.grid.field_constrained(pair.field)), rigid(pair.rigid_body >= 0) {}
+
+  NodeDofs dofs_at(std::size_t i) const {
     const double r = grid.node_r(static_cast<int>(i));
-    return dofs == 3 && r > 0.0 ? NodeDofs{3, r, 1.0 / r} : NodeDofs{2, r, 0.0};
-  };
-  auto velocity = [](const GridNode& node, int d, const NodeDofs& at) {
+    return has_theta(mode) && r > 0.0 ? NodeDofs{3, r, 1.0 / r} : NodeDofs{2, r, 0.0};
+  }
+  static double velocity(const GridNode& node, int d, const NodeDofs& at) {
     return d == 2 ? at.r * node.velocity()[2] : node.velocity()[d];
-  };
-  auto inertia = [](const GridNode& node, int d, const NodeDofs& at) {
+  }
+  static double inertia(const GridNode& node, int d, const NodeDofs& at) {
     return d == 2 ? node.inertia * at.lever * at.lever : node.mass;
-  };
-  // The soil's velocity relative to what it is measured against at node i: the rigid motion or a
-  // constrained structure DOF (which moves as prescribed), otherwise the centre of mass (for
-  // theta that of the angular momenta).
-  auto relative_velocity = [&](std::size_t i, const NodeDofs& at, const GridNode& s,
-                               const GridNode& k) {
+  }
+  /// A rigid structure, or a constrained DOF of a deformable one, moves as prescribed: for
+  /// contact it is rigid.
+  bool prescribed(std::size_t i, int d) const { return rigid || (held[i] & (1u << d)) != 0; }
+
+  /// The soil's velocity relative to what it is measured against at node i: the structure where
+  /// it moves as prescribed, otherwise the centre of mass (for theta that of the angular
+  /// momenta).
+  std::array<double, 3> relative_velocity(std::size_t i, const NodeDofs& at, const GridNode& s,
+                                          const GridNode& k) const {
     std::array<double, 3> relative{0.0, 0.0, 0.0};
     for (int d = 0; d < at.count; ++d) {
       const double v_s = velocity(s, d, at);
       const double v_k = velocity(k, d, at);
       const double m_s = inertia(s, d, at);
       const double m_k = inertia(k, d, at);
-      const double reference =
-          rigid || (held[i] & (1u << d)) != 0 ? v_k : (m_s * v_s + m_k * v_k) / (m_s + m_k);
+      const double reference = prescribed(i, d) ? v_k : (m_s * v_s + m_k * v_k) / (m_s + m_k);
       relative[static_cast<std::size_t>(d)] = v_s - reference;
     }
     return relative;
-  };
-  // Applies a velocity change to the soil and the opposite impulse to a deformable structure's
-  // free DOFs; after the momentum balance it is also part of the FLIP increment.
-  auto apply = [&](std::size_t i, const NodeDofs& at, GridNode& s, GridNode& k,
-                   const std::array<double, 3>& change, bool increment) {
+  }
+
+  /// Applies a velocity change to the soil and the opposite impulse to a deformable structure's
+  /// free DOFs; after the momentum balance it is also part of the FLIP increment.
+  void apply(std::size_t i, const NodeDofs& at, GridNode& s, GridNode& k,
+             const std::array<double, 3>& change, FlipIncrement increment) const {
     for (int d = 0; d < at.count; ++d) {
       const double to_unknown = d == 2 ? at.lever : 1.0;
       const double dv = change[static_cast<std::size_t>(d)] * to_unknown;
       s.velocity()[d] += dv;
-      if (increment) {
+      if (increment == FlipIncrement::record) {
         s.velocity_increment()[d] += dv;
       }
-      if (!rigid && (held[i] & (1u << d)) == 0) {
+      if (!prescribed(i, d)) {
         const double dk = inertia(s, d, at) / inertia(k, d, at) * dv;
         k.velocity()[d] -= dk;
-        if (increment) {
+        if (increment == FlipIncrement::record) {
           k.velocity_increment()[d] -= dk;
         }
       }
     }
-  };
-
-  if (!record) {
-    // After the remap: the nodes in contact in this step keep their kind of contact.
-    parallel_for_box(reach, nodes_r, [&](std::size_t i) {
-      if (pair.state[i] == contact_free) {
-        return;
-      }
-      GridNode& s = soil[i];
-      GridNode& k = structure[i];
-      const NodeDofs at = dofs_at(i);
-      const auto relative = relative_velocity(i, at, s, k);
-      std::array<double, 3> change{-relative[0], -relative[1], -relative[2]};
-      if (pair.state[i] == contact_slide) {
-        const auto& n = pair.contact_normal[i];
-        const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
-        change = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
-      }
-      apply(i, at, s, k, change, false);
-    });
-    return 0.0;
   }
-  const NodeBox visited = NodeBox::hull(pair.written, reach);
-  pair.written = reach;
-  parallel_for_box(visited, nodes_r, [&](std::size_t i) {
-    GridNode& s = soil[i];
-    GridNode& k = structure[i];
-    pair.node_force[i] = {0.0, 0.0, 0.0};
-    pair.node_dissipation[i] = 0.0;
-    pair.state[i] = contact_free;
-    if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
-      return;
-    }
-    // The structure's outward normal (into the soil) and the node's contact area.
-    std::array<double, 2> n{0.0, 0.0};
-    double area = 0.0;
-    if (pair.outline) {
-      if (pair.gap[i] > 0.0) {
-        return; // the soil near this node does not reach the structure yet
-      }
-      if (pair.area[i] > 0.0) {
-        n = pair.normal[i];
-        area = pair.area[i];
-      } else {
-        int surface = 0;
-        n = nearest_edge_normal(*pair.outline, grid.node_r(static_cast<int>(i)),
-                                grid.node_y(static_cast<int>(i)), surface);
-      }
-    } else {
-      const double g = std::hypot(gradient[i][0], gradient[i][1]);
-      if (g == 0.0) {
-        return;
-      }
-      // sum_p m_p grad N_i(x_p) points from the particles towards the node: outward at a surface.
-      n = {gradient[i][0] / g, gradient[i][1] / g};
-      const int ir = static_cast<int>(i) % grid.nodes_r();
-      const int iy = static_cast<int>(i) / grid.nodes_r();
-      // A straight surface through the node with this normal, across its share of the cells.
-      area = std::abs(n[1]) * node_spacing(grid.r_axis(), ir) +
-             std::abs(n[0]) * node_spacing(grid.y_axis(), iy);
-      if constexpr (mode == GeometryMode::axisymmetric) {
-        area *= grid.node_r(static_cast<int>(i));
-      }
-    }
-    const NodeDofs at = dofs_at(i);
-    const auto relative = relative_velocity(i, at, s, k);
-    const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
-    const bool bonded = !rigid && k.mass < structure_bonded_share * (s.mass + k.mass);
-    if (normal_velocity > 0.0 && !bonded) {
-      return; // separating: no tension, and no tangential force either
-    }
-    // Coulomb friction on the normal impulse plus adhesion over the node's area, as impulses per
-    // beta (engine/coulomb_slip.hpp). The theta slip has its own inertia (J / r^2, not m). (The
-    // normal impulse is a pull only at a bonded node.)
-    const double theta_mass = at.count == 3 ? inertia(s, 2, at) : s.mass;
-    const ContactCorrection correction =
-        contact_correction(relative, n, s.mass, theta_mass, pair.friction, adhesion_impulse * area);
-    const SlipKept keep = correction.keep;
-    const std::array<double, 3>& change = correction.change;
-    // The energy the correction takes is the work of its impulse m_s dv at the mean relative
-    // velocity over the step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, times kappa = 1 where the
-    // structure's DOF moves as prescribed (rigid or held) and 1 + m_s / m_k where both fields
-    // share the impulse (v_rel is then measured from the centre of mass). The velocity at the
-    // start of the step is v^{n+1} minus the increment the momentum balance left in the force
-    // slot (a rigid field's holds the change of its body's predicted velocity); the end velocity
-    // alone would charge a node of little mass, whose velocity one step's force changes a lot,
-    // for energy the particles never had.
+
+  /// The energy a correction takes over the step (per beta): the work of its impulse m_s dv at
+  /// the mean relative velocity over the step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, times
+  /// kappa = 1 where the structure's DOF moves as prescribed and 1 + m_s / m_k where both fields
+  /// share the impulse (v_rel is then measured from the centre of mass). The velocity at the
+  /// start of the step is v^{n+1} minus the increment the momentum balance left in the force
+  /// slot (a rigid field's holds the change of its body's predicted velocity); the end velocity
+  /// alone would charge a node of little mass, whose velocity one step's force changes a lot,
+  /// for energy the particles never had.
+  double correction_work(std::size_t i, const NodeDofs& at, const GridNode& s, const GridNode& k,
+                         const std::array<double, 3>& relative,
+                         const std::array<double, 3>& change) const {
     auto start_of_step = [](const GridNode& node) {
       GridNode start = node;
       for (std::size_t d = 0; d < 3; ++d) {
@@ -250,23 +173,149 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
     for (int d = 0; d < at.count; ++d) {
       const auto u = static_cast<std::size_t>(d);
       const double m_s = inertia(s, d, at);
-      const double kappa =
-          rigid || (held[i] & (1u << d)) != 0 ? 1.0 : 1.0 + m_s / inertia(k, d, at);
+      const double kappa = prescribed(i, d) ? 1.0 : 1.0 + m_s / inertia(k, d, at);
       const double mean = 0.5 * (relative_start[u] + relative[u] + change[u]);
       lost -= kappa * m_s * mean * change[u];
     }
-    pair.node_dissipation[i] = beta * lost;
-    apply(i, at, s, k, change, true);
+    return lost;
+  }
+
+  const Grid& grid;
+  std::vector<GridNode>& soil;
+  std::vector<GridNode>& structure;
+  const std::vector<std::uint8_t>& held;
+  const bool rigid;
+};
+
+/// After the remap: the nodes in contact in this step keep their kind of contact (stuck nodes
+/// move with the structure, sliding ones lose their approach along the normal).
+template <GeometryMode mode>
+void hold_contact_after_remap(PairNodes<mode>& nodes, ContactPair& pair) {
+  const NodeBox& reach =
+      nodes.grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
+  parallel_for_box(reach, nodes.grid.nodes_r(), [&](std::size_t i) {
+    if (pair.state[i] == contact_free) {
+      return;
+    }
+    GridNode& s = nodes.soil[i];
+    GridNode& k = nodes.structure[i];
+    const NodeDofs at = nodes.dofs_at(i);
+    const auto relative = nodes.relative_velocity(i, at, s, k);
+    std::array<double, 3> change{-relative[0], -relative[1], -relative[2]};
+    if (pair.state[i] == contact_slide) {
+      const auto& n = pair.contact_normal[i];
+      const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
+      change = {-normal_velocity * n[0], -normal_velocity * n[1], 0.0};
+    }
+    nodes.apply(i, at, s, k, change, FlipIncrement::skip);
+  });
+}
+
+/// The structure's outward normal (into the soil) at a node and the node's contact area.
+struct NodeSurface {
+  std::array<double, 2> normal{0.0, 0.0};
+  double area = 0.0;
+};
+
+/// The outline's normal and area where the node has them (nearest edge's normal and no area
+/// otherwise), or the normalised mass gradient with the area of a straight surface through the
+/// node across its share of the cells. None where the soil does not reach the outline yet, or
+/// where the gradient vanishes.
+template <GeometryMode mode>
+std::optional<NodeSurface> node_surface(const Grid& grid, const ContactPair& pair, std::size_t i) {
+  NodeSurface at;
+  if (pair.outline) {
+    if (pair.gap[i] > 0.0) {
+      return std::nullopt;
+    }
+    if (pair.area[i] > 0.0) {
+      at.normal = pair.normal[i];
+      at.area = pair.area[i];
+    } else {
+      int surface = 0;
+      at.normal = nearest_edge_normal(*pair.outline, grid.node_r(static_cast<int>(i)),
+                                      grid.node_y(static_cast<int>(i)), surface);
+    }
+    return at;
+  }
+  const auto& gradient =
+      grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].mass_gradient[i];
+  const double g = std::hypot(gradient[0], gradient[1]);
+  if (g == 0.0) {
+    return std::nullopt;
+  }
+  // sum_p m_p grad N_i(x_p) points from the particles towards the node: outward at a surface.
+  at.normal = {gradient[0] / g, gradient[1] / g};
+  const int ir = static_cast<int>(i) % grid.nodes_r();
+  const int iy = static_cast<int>(i) / grid.nodes_r();
+  at.area = std::abs(at.normal[1]) * node_spacing(grid.r_axis(), ir) +
+            std::abs(at.normal[0]) * node_spacing(grid.y_axis(), iy);
+  if constexpr (mode == GeometryMode::axisymmetric) {
+    at.area *= grid.node_r(static_cast<int>(i));
+  }
+  return at;
+}
+
+/// After the momentum balance: every node both fields occupy is corrected by the contact law;
+/// its force, the energy the correction took and its kind of contact are recorded.
+template <GeometryMode mode>
+void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettings& settings,
+                   const StepParameters& step) {
+  const NodeBox& reach =
+      nodes.grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
+  const double beta = settings.mass_scaling;
+  const double adhesion_impulse = pair.adhesion * step.dt / beta;
+  // The per-node results of the last step were written in pair.written: cleared with these.
+  const NodeBox visited = NodeBox::hull(pair.written, reach);
+  pair.written = reach;
+  parallel_for_box(visited, nodes.grid.nodes_r(), [&](std::size_t i) {
+    GridNode& s = nodes.soil[i];
+    GridNode& k = nodes.structure[i];
+    pair.node_force[i] = {0.0, 0.0, 0.0};
+    pair.node_dissipation[i] = 0.0;
+    pair.state[i] = contact_free;
+    if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
+      return;
+    }
+    const std::optional<NodeSurface> surface = node_surface<mode>(nodes.grid, pair, i);
+    if (!surface) {
+      return;
+    }
+    const auto& n = surface->normal;
+    const NodeDofs at = nodes.dofs_at(i);
+    const auto relative = nodes.relative_velocity(i, at, s, k);
+    const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
+    const bool bonded = !nodes.rigid && k.mass < structure_bonded_share * (s.mass + k.mass);
+    if (normal_velocity > 0.0 && !bonded) {
+      return; // separating: no tension, and no tangential force either
+    }
+    // Coulomb friction on the normal impulse plus adhesion over the node's area, as impulses per
+    // beta (engine/coulomb_slip.hpp). The theta slip has its own inertia (J / r^2, not m). (The
+    // normal impulse is a pull only at a bonded node.)
+    const double theta_mass = at.count == 3 ? PairNodes<mode>::inertia(s, 2, at) : s.mass;
+    const ContactCorrection correction = contact_correction(
+        relative, n, s.mass, theta_mass, pair.friction, adhesion_impulse * surface->area);
+    const std::array<double, 3>& change = correction.change;
+    pair.node_dissipation[i] = beta * nodes.correction_work(i, at, s, k, relative, change);
+    nodes.apply(i, at, s, k, change, FlipIncrement::record);
     const double beta_per_dt = beta / step.dt;
     for (int d = 0; d < at.count; ++d) {
       const auto u = static_cast<std::size_t>(d);
-      pair.node_force[i][u] = -beta_per_dt * inertia(s, d, at) * change[u];
+      pair.node_force[i][u] = -beta_per_dt * PairNodes<mode>::inertia(s, d, at) * change[u];
     }
+    const SlipKept keep = correction.keep;
     pair.state[i] = keep.plane == 0.0 && keep.theta == 0.0 ? contact_stick : contact_slide;
     pair.contact_normal[i] = n;
   });
+}
 
-  // Sums per surface (a node's force split by its area shares) and on the rigid DOFs.
+/// The pair's node forces summed per surface (a node's force split by its area shares) and on the
+/// rigid body's DOFs, with the energy the corrections took; written to the pair and its body.
+double sum_surface_forces(Scene& scene, ContactPair& pair) {
+  const Grid& grid = scene.grid;
+  const NodeBox& reach = grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
+  const int nodes_r = grid.nodes_r();
+  const bool rigid = pair.rigid_body >= 0;
   const std::size_t surfaces = pair.surface_count();
   const RigidBody* body =
       rigid ? &scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)] : nullptr;
@@ -352,6 +401,19 @@ double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& setti
   return sums.dissipation;
 }
 
+/// Returns the energy the correction took over the step (J [/rad]).
+template <GeometryMode mode>
+double resolve_pair(Scene& scene, ContactPair& pair, const SolverSettings& settings,
+                    const StepParameters& step, CorrectionPass pass) {
+  PairNodes<mode> nodes(scene, pair);
+  if (pass == CorrectionPass::after_remap) {
+    hold_contact_after_remap(nodes, pair);
+    return 0.0;
+  }
+  correct_nodes(nodes, pair, settings, step);
+  return sum_surface_forces(scene, pair);
+}
+
 } // namespace
 
 void prepare_contact(Scene& scene) {
@@ -375,7 +437,8 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
     predicted.push_back(body.predict(step.time, step.dt, settings.gravity, settings.mass_scaling));
     // The increment from the last step's velocity, for the contact's energy; finish_rigid_bodies
     // sets it again once the step's velocity is final.
-    set_rigid_field(scene.grid, body, predicted.back(), body.velocity, step.mass_floor, true);
+    set_rigid_field(scene.grid, body, predicted.back(), body.velocity, step.mass_floor,
+                    FlipIncrement::record);
   }
   return predicted;
 }
@@ -383,8 +446,7 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
 template <GeometryMode mode>
 double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
                        CorrectionPass pass) {
-  const bool record = pass == CorrectionPass::after_balance;
-  if (record) {
+  if (pass == CorrectionPass::after_balance) {
     for (ContactPair& pair : scene.contacts) {
       if (pair.outline) {
         integrate_outline(scene.grid, mode, pair);
@@ -393,7 +455,7 @@ double resolve_contact(Scene& scene, const SolverSettings& settings, const StepP
   }
   double dissipation = 0.0;
   for (ContactPair& pair : scene.contacts) {
-    dissipation += resolve_pair<mode>(scene, pair, settings, step, record);
+    dissipation += resolve_pair<mode>(scene, pair, settings, step, pass);
   }
   return dissipation;
 }
@@ -404,13 +466,15 @@ void finish_rigid_bodies(Scene& scene, const SolverSettings& settings, const Ste
     RigidBody& body = scene.rigid_bodies[b];
     const std::array<double, 3> before = body.velocity;
     body.finish_step(predicted[b], step.time, step.dt, settings.gravity, settings.mass_scaling);
-    set_rigid_field(scene.grid, body, body.velocity, before, step.mass_floor, true);
+    set_rigid_field(scene.grid, body, body.velocity, before, step.mass_floor,
+                    FlipIncrement::record);
   }
 }
 
 void reset_rigid_fields(Scene& scene, const StepParameters& step) {
   for (const RigidBody& body : scene.rigid_bodies) {
-    set_rigid_field(scene.grid, body, body.velocity, body.velocity, step.mass_floor, false);
+    set_rigid_field(scene.grid, body, body.velocity, body.velocity, step.mass_floor,
+                    FlipIncrement::skip);
   }
 }
 
