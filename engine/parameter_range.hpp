@@ -1,7 +1,7 @@
 #pragma once
 
 // The interval a parameter may take, declared with the parameter (io/case_format.hpp for case
-// keys, engine/material_registry.hpp for material parameters) and checked by the readers.
+// keys, engine/materials/material_registry.hpp for material parameters) and checked by the readers.
 
 #include <optional>
 #include <string>
@@ -22,7 +22,8 @@ struct ParameterRange {
   std::string text(bool integer = false) const;
 };
 
-/// A number as the documentation and the messages write it: shortest form that reads back.
+/// A number in the shortest form that reads back to the same double, whole numbers as integers
+/// (100000, not 1e+05): for declared bounds and for exact output (the element tests' CSV).
 std::string format_bound(double x);
 
 } // namespace mpile

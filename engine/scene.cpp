@@ -1,6 +1,6 @@
 #include "engine/scene.hpp"
 
-#include "engine/rigid_material.hpp"
+#include "engine/materials/rigid_material.hpp"
 
 #include <stdexcept>
 

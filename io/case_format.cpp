@@ -4,7 +4,7 @@
 #include "io/case_format.hpp"
 
 #include "cases/monopile/monopile_geometry.hpp"
-#include "engine/material_registry.hpp"
+#include "engine/materials/material_registry.hpp"
 #include "engine/particle_bins.hpp"
 #include "io/case_spec.hpp"
 #include "solver/solver_settings.hpp"

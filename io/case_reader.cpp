@@ -1,6 +1,6 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
-#include "engine/contact.hpp"
+#include "engine/structures/contact.hpp"
 #include "engine/particle_bins.hpp"
 #include "io/absorbing_reader.hpp"
 #include "io/case_builder.hpp"
@@ -29,12 +29,6 @@
 namespace mpile {
 
 namespace {
-
-std::string format_number(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
 
 std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key) {
   std::vector<AxisZone> zones;

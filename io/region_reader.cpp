@@ -1,6 +1,6 @@
 #include "io/region_reader.hpp"
 
-#include "engine/contact.hpp"
+#include "engine/structures/contact.hpp"
 
 #include <algorithm>
 #include <cmath>

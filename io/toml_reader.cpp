@@ -135,6 +135,12 @@ void check_toml_bounds(const std::string& text, const std::string& file) {
 
 } // namespace
 
+std::string format_number(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
 TomlValue parse_toml(const std::string& text, const std::string& file) {
   check_toml_bounds(text, file);
   std::istringstream stream(text);

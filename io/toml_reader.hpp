@@ -88,6 +88,9 @@ private:
   std::set<std::string> read_;
 };
 
+/// A number as a message quotes it (six significant digits).
+std::string format_number(double x);
+
 /// Parses TOML text; syntax errors become CaseError with the parser's own location.
 TomlValue parse_toml(const std::string& text, const std::string& file);
 

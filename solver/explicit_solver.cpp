@@ -5,6 +5,7 @@
 #include "solver/contact_passes.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/passes.hpp"
+#include "solver/run_log.hpp"
 #include "solver/xpic.hpp"
 
 #include <tbb/parallel_for.h>
@@ -34,13 +35,6 @@ private:
   double& total_;
   std::chrono::steady_clock::time_point start_;
 };
-
-/// "step N, t = T s: ", the prefix of every message about a step.
-std::string at_step(long step, double time) {
-  std::ostringstream s;
-  s << "step " << step << ", t = " << time << " s: ";
-  return s.str();
-}
 
 std::string position_of(const Particles& p, std::size_t i) {
   std::ostringstream s;
@@ -310,7 +304,7 @@ bool ExplicitSolver::split_oversized() {
   }
   std::ostringstream s;
   const auto first = static_cast<std::size_t>(parents.front());
-  s << "step " << steps_ + 1 << ": " << parents.size()
+  s << at_step(steps_ + 1, time_) << parents.size()
     << " particle halves made where particles grew longer than their cells (now " << p.size()
     << " particles, " << before << " before; the first: body '" << scene_.body_names[p.body[first]]
     << "' near (r, y) = (" << p.r[first] << ", " << p.y[first] << "))";

@@ -150,7 +150,7 @@ void PhaseRunner::check_energy_residual(const EnergyBalance& energy, bool record
     record_row(); // the history ends on the step that stopped the run
   }
   std::ostringstream s;
-  s << "t = " << format_time(solver_.time()) << " s: the energy residual is "
+  s << at_step(solver_.step_count(), solver_.time()) << "the energy residual is "
     << std::setprecision(3) << 100.0 * energy.relative_residual << " % of the energy in play ("
     << (blown_up ? "energy_residual_limit " : "energy_residual_warning ")
     << 100.0 * (blown_up ? settings.energy_residual_limit : settings.energy_residual_warning)
@@ -163,8 +163,7 @@ void PhaseRunner::check_energy_residual(const EnergyBalance& energy, bool record
     << ", contact " << energy.contact << ", transfer " << energy.transfer << "; "
     << describe_kinetic_hotspot(solver_.scene(), settings.mass_scaling);
   if (blown_up) {
-    throw SimulationError("step " + std::to_string(solver_.step_count()) + ", " + s.str() +
-                          ": the run went unstable");
+    throw SimulationError(s.str() + ": the run went unstable");
   }
   residual_warned_ = true;
   log_.warn(s.str() + " (see /energy in history.h5)");

@@ -12,6 +12,10 @@ std::string format_time(double t) {
   return s.str();
 }
 
+std::string at_step(long step, double time) {
+  return "step " + std::to_string(step) + ", t = " + format_time(time) + " s: ";
+}
+
 void RunLog::write(const std::string& line) {
   if (stream_ != nullptr) {
     *stream_ << line << '\n';

@@ -8,6 +8,8 @@ namespace mpile {
 
 /// A simulated time as the run's messages give it (6 significant digits).
 std::string format_time(double t);
+/// "step N, t = T s: ", the prefix of every message about a step (errors and warnings).
+std::string at_step(long step, double time);
 
 /// Messages of a run for the user: information and warnings, written to a stream (or nowhere) and
 /// kept, so that tests and the command line can see what was said.

@@ -4,7 +4,7 @@
 // face whose impedance is scaled by s must reflect ((1 - s) / (1 + s))^2.
 #include "case_run.hpp"
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"

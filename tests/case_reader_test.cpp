@@ -2,7 +2,7 @@
 // that into exit status 2. Each row of the table below is one mistake a user makes.
 #include "io/case_error.hpp"
 #include "io/case_spec.hpp"
-#include "io/run_command.hpp"
+#include "app/run_command.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>

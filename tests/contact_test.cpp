@@ -1,7 +1,7 @@
 // Contact and rigid bodies (physics.md sections 5 and 6): nodal contact areas against exact
 // integrals, the approach test and momentum exchange, rigid-body dynamics, V7 (block on an
 // incline) and V9 (the seed's torsion with adhesion), from the shipped case files.
-#include "engine/contact.hpp"
+#include "engine/structures/contact.hpp"
 #include "engine/parallel.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_spec.hpp"

@@ -1,8 +1,8 @@
 // Coulomb friction at a contact node whose theta DOF has its own inertia, and the contact law
-// built on it (engine/coulomb_slip.hpp):
+// built on it (engine/structures/coulomb_slip.hpp):
 // the node sticks when the impulse that stops its slip is within the limit; a sliding node's
 // friction impulse has the magnitude of the limit and opposes the slip left after it.
-#include "engine/coulomb_slip.hpp"
+#include "engine/structures/coulomb_slip.hpp"
 
 #include <gtest/gtest.h>
 

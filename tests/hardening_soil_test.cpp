@@ -2,7 +2,7 @@
 // an independent rate-form driver), for the seed paper's parameter set. Single material point,
 // small strain increments; the tolerances are the ones that document suggests for engine tests:
 // 0.5 % on strains at a given q, 1e-3 on moduli, K0 within 0.002.
-#include "engine/hardening_soil.hpp"
+#include "engine/materials/hardening_soil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 
 #include <Eigen/Geometry>
 
-#include "engine/principal_stress.hpp"
+#include "engine/materials/principal_stress.hpp"
 
 namespace mpile {
 namespace {

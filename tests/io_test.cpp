@@ -1,12 +1,12 @@
 // Round trips of the output files through their own libraries' readers, an end-to-end run of a
 // case file, and bitwise-identical restart from a checkpoint.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
-#include "engine/mohr_coulomb.hpp"
+#include "engine/materials/linear_elastic.hpp"
+#include "engine/materials/mohr_coulomb.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/output_directory.hpp"
-#include "io/run_command.hpp"
+#include "app/run_command.hpp"
 #include "io/vtk_writer.hpp"
 #include "tests/case_run.hpp"
 

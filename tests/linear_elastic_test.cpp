@@ -1,5 +1,5 @@
-#include "engine/linear_elastic.hpp"
-#include "engine/material_registry.hpp"
+#include "engine/materials/linear_elastic.hpp"
+#include "engine/materials/material_registry.hpp"
 
 #include <gtest/gtest.h>
 

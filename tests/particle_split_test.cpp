@@ -2,7 +2,7 @@
 // itself keeps every sum the grid sees; a bar crossing a factor-4 grading step then hits a wall
 // with the impulse of the closed form, which without splitting it misses by half.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "engine/particle_split.hpp"
 #include "tests/bitwise.hpp"

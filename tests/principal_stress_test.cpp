@@ -1,4 +1,4 @@
-#include "engine/principal_stress.hpp"
+#include "engine/materials/principal_stress.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // time) and its ETA comes from the rate at which that quantity has moved since the phase began.
 // Before, the ETA counted simulated time to the end of the last phase, so a phase that stops at a
 // penetration showed hours for a run of minutes.
-#include "io/progress_reporter.hpp"
+#include "app/progress_reporter.hpp"
 
 #include <gtest/gtest.h>
 

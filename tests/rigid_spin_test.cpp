@@ -5,7 +5,7 @@
 // stress free and keep their angular momentum; a shaft vibrating in its first torsional mode keeps
 // every cross-section rigid (tau_rtheta = 0) at the period 4 H / c_s.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/explicit_solver.hpp"
 #include "tests/bitwise.hpp"

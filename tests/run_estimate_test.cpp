@@ -1,5 +1,5 @@
 // The run-time estimate from a pilot run, on pilot records whose rates are known exactly.
-#include "io/run_estimate.hpp"
+#include "app/run_estimate.hpp"
 
 #include <gtest/gtest.h>
 

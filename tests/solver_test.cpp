@@ -1,7 +1,7 @@
 // Checks of the explicit step against exact answers: the CFL time step, mass scaling, free fall
 // under gravity, stress-free rigid spin about the axis, and the guards on bad scenes.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/explicit_solver.hpp"
 

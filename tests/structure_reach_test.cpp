@@ -3,7 +3,7 @@
 // structure particle scatters to, whatever its motion across blocks and cells, and outside it the
 // field is exactly zero; and a structure with no particles changes nothing in the soil.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "engine/shape_functions.hpp"
 #include "solver/explicit_solver.hpp"

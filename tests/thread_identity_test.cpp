@@ -3,7 +3,7 @@
 // so re-binning and physical re-sorting happen), small blocks (many per colour), B-bar, a FLIP/PIC
 // blend, damping, gravity and a circumferential swirl.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"

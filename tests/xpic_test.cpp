@@ -6,7 +6,7 @@
 // at every order, momentum and angular momentum are conserved, and a refined vibrating bar on
 // which FLIP blows up stays stable and accurate.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "engine/shape_functions.hpp"
 #include "solver/explicit_solver.hpp"

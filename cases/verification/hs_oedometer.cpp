@@ -7,7 +7,7 @@
 // hardening-soil tests pin to the published curves). What the MPM run adds, and what the error
 // measures, is the dynamics of the loading and the time step.
 #include "cases/verification/verification_case.hpp"
-#include "engine/hardening_soil.hpp"
+#include "engine/materials/hardening_soil.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/equilibrium.hpp"
 

@@ -3,7 +3,7 @@
 // A = p a^2 / (b^2 - a^2), B = p a^2 b^2 / (b^2 - a^2); u_r = (1 + nu)/E [(1 - 2 nu) A r + B / r].
 // Loaded quasi-statically (pressure ramp, then hold) with local damping.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/equilibrium.hpp"
 

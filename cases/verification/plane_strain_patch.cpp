@@ -2,7 +2,7 @@
 // graded grid. Every particle must reach the uniform stress C : eps of linear elasticity with
 // eps_zz = 0, whatever its position, with and without B-bar.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/explicit_solver.hpp"
 

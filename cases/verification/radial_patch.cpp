@@ -3,7 +3,7 @@
 // first cell at the axis, must reach sigma_rr = sigma_thth = 2 (lambda + mu) eps and
 // sigma_yy = 2 lambda eps. The grid is graded (two zones) so that grading is exercised too.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/explicit_solver.hpp"
 

@@ -6,7 +6,7 @@
 // (ii) K0 = 0.5 stresses initialised, gravity on: the state is in equilibrium and must stay put.
 // Interior particles (two cells from every boundary) are compared.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/equilibrium.hpp"
 

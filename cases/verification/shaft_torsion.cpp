@@ -3,7 +3,7 @@
 // T = G phi R^4 / (4 H) = 781.25 N m/rad. Exercises the theta DOF, gamma_ytheta and the -N/r term
 // (without which gamma_rtheta of the rigid-rotation part would not vanish).
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/equilibrium.hpp"
 

@@ -3,7 +3,7 @@
 // With lumped mass the node carries m/2 and MUSL gives v_node = v_p, so v_p = v0 cos(2 pi t), T
 // = 1.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/explicit_solver.hpp"
 

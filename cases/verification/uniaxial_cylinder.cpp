@@ -3,7 +3,7 @@
 // sigma_yy = E eps_y = -100 kPa, sigma_rr = sigma_thth = 0, u_r = -nu eps_y r (1.5e-4 m at R), and
 // the platen force is sigma_yy R^2 / 2 = -12.5 kN/rad.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/equilibrium.hpp"
 

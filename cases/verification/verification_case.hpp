@@ -3,7 +3,7 @@
 // Verification cases (../docs/verification.md): scenes with a closed-form or published reference,
 // built at a chosen resolution, run, and compared. The unit tests and `mpile verify` share them.
 
-#include "engine/hardening_soil.hpp"
+#include "engine/materials/hardening_soil.hpp"
 #include "engine/scene.hpp"
 #include "solver/equilibrium.hpp"
 #include "solver/solver_settings.hpp"

@@ -2,7 +2,7 @@
 // so the motion is exactly one-dimensional. Exact: v = v0 sin(beta y) cos(omega t), mass-weighted
 // mean velocity (2 v0 / pi) cos(omega t), period 10, energy rho A L v0^2 / 4 = 0.03125 J/rad.
 #include "cases/verification/verification_case.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"

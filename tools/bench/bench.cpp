@@ -10,8 +10,8 @@
 // the same machine, and prints the best throughput of each and their ratio. On a shared machine a
 // speed-up is a ratio measured in one run, not two absolute figures from two days.
 #include "cases/verification/verification_case.hpp"
-#include "engine/hardening_soil.hpp"
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/hardening_soil.hpp"
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/case_builder.hpp"
 #include "solver/explicit_solver.hpp"

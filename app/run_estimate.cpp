@@ -1,4 +1,4 @@
-#include "io/run_estimate.hpp"
+#include "app/run_estimate.hpp"
 
 #include "io/hdf5_file.hpp"
 #include "io/history_writer.hpp"

@@ -1,4 +1,4 @@
-#include "io/verify_command.hpp"
+#include "app/verify_command.hpp"
 
 #include <iomanip>
 #include <ostream>

@@ -1,9 +1,9 @@
 // mpile: the command line.
-#include "io/describe_command.hpp"
-#include "io/element_test.hpp"
-#include "io/run_command.hpp"
-#include "io/sweep_command.hpp"
-#include "io/verify_command.hpp"
+#include "app/describe_command.hpp"
+#include "app/element_test_command.hpp"
+#include "app/run_command.hpp"
+#include "app/sweep_command.hpp"
+#include "app/verify_command.hpp"
 #include "solver/solver_settings.hpp"
 
 #include <CLI/CLI.hpp>

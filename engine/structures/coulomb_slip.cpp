@@ -1,4 +1,4 @@
-#include "engine/coulomb_slip.hpp"
+#include "engine/structures/coulomb_slip.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/progress_reporter.hpp"
+#include "app/progress_reporter.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "engine/contact.hpp"
+#include "engine/structures/contact.hpp"
 
 #include "engine/shape_functions.hpp"
 

@@ -1,4 +1,4 @@
-#include "engine/linear_elastic.hpp"
+#include "engine/materials/linear_elastic.hpp"
 
 #include <stdexcept>
 #include <string>

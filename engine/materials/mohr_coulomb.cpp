@@ -1,6 +1,6 @@
-#include "engine/mohr_coulomb.hpp"
+#include "engine/materials/mohr_coulomb.hpp"
 
-#include "engine/principal_stress.hpp"
+#include "engine/materials/principal_stress.hpp"
 
 #include <algorithm>
 #include <cmath>

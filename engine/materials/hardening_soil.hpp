@@ -7,7 +7,7 @@
 // and mobilised dilatancy. The return is implicit (closest point) in principal stress space on the
 // full 3x3 stress, with active sets and corner returns.
 
-#include "engine/material.hpp"
+#include "engine/materials/material.hpp"
 
 #include <array>
 #include <string>

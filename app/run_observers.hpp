@@ -4,7 +4,7 @@
 // VTK snapshots, the checkpoint and the progress line, each told when its output is due.
 
 #include "io/history_writer.hpp"
-#include "io/progress_reporter.hpp"
+#include "app/progress_reporter.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/phase_runner.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "engine/material.hpp"
+#include "engine/materials/material.hpp"
 
 namespace mpile {
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "engine/material.hpp"
+#include "engine/materials/material.hpp"
 #include "engine/parameter_range.hpp"
 
 #include <functional>

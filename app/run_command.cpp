@@ -1,4 +1,4 @@
-#include "io/run_command.hpp"
+#include "app/run_command.hpp"
 
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
@@ -7,8 +7,8 @@
 #include "io/monitor_points.hpp"
 #include "io/output_directory.hpp"
 #include "io/plausibility.hpp"
-#include "io/progress_reporter.hpp"
-#include "io/run_observers.hpp"
+#include "app/progress_reporter.hpp"
+#include "app/run_observers.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/phase_runner.hpp"

@@ -1,6 +1,6 @@
-#include "engine/hardening_soil.hpp"
+#include "engine/materials/hardening_soil.hpp"
 
-#include "engine/principal_stress.hpp"
+#include "engine/materials/principal_stress.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "engine/rigid_body.hpp"
+#include "engine/structures/rigid_body.hpp"
 
 namespace mpile {
 

@@ -1,8 +1,8 @@
-#include "engine/material_registry.hpp"
+#include "engine/materials/material_registry.hpp"
 
-#include "engine/hardening_soil.hpp"
-#include "engine/linear_elastic.hpp"
-#include "engine/mohr_coulomb.hpp"
+#include "engine/materials/hardening_soil.hpp"
+#include "engine/materials/linear_elastic.hpp"
+#include "engine/materials/mohr_coulomb.hpp"
 
 #include <stdexcept>
 

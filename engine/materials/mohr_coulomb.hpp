@@ -6,7 +6,7 @@
 // one small linear solve, chosen by the consistency conditions (Clausen, Damkilde and Andersen 2006
 // and 2007; de Souza Neto, Peric and Owen 2008, chapter 8).
 
-#include "engine/material.hpp"
+#include "engine/materials/material.hpp"
 
 #include <array>
 #include <string>

@@ -2,8 +2,8 @@
 #include "io/case_error.hpp"
 #include "io/monitor_points.hpp"
 #include "io/plausibility.hpp"
-#include "io/run_command.hpp"
-#include "io/run_estimate.hpp"
+#include "app/run_command.hpp"
+#include "app/run_estimate.hpp"
 #include "solver/explicit_solver.hpp"
 
 #include <unistd.h>

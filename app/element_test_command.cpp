@@ -1,0 +1,58 @@
+#include "app/element_test_command.hpp"
+
+#include "io/case_error.hpp"
+#include "io/element_test_file.hpp"
+#include "app/run_command.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+namespace mpile {
+
+int element_test_command(const ElementTestOptions& options, std::ostream& out, std::ostream& err) {
+  ElementTestSpec spec;
+  try {
+    spec = read_element_test_file(options.file);
+  } catch (const CaseError& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_bad_input;
+  } catch (const std::exception& e) {
+    err << "mpile: " << options.file << ": " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  const std::filesystem::path csv =
+      options.csv.empty() ? std::filesystem::path("out") /
+                                (std::filesystem::path(options.file).stem().string() + ".csv")
+                          : std::filesystem::path(options.csv);
+  ElementTestTable table;
+  try {
+    table = run_element_test(spec);
+  } catch (const std::exception& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_failure;
+  }
+  try {
+    if (csv.has_parent_path()) {
+      std::filesystem::create_directories(csv.parent_path());
+    }
+    std::ofstream file(csv);
+    write_csv(table, file);
+    file.close();
+    if (!file) {
+      throw std::runtime_error("cannot write " + csv.string());
+    }
+  } catch (const std::exception& e) {
+    err << "mpile: " << e.what() << '\n';
+    return exit_failure;
+  }
+  const std::vector<double>& last = table.rows.back();
+  out << spec.title << ": " << table.rows.size() - 1 << " increments of " << spec.material_type
+      << " to " << csv.string() << "\n  end: eps_1 = " << last[0] << ", eps_v = " << last[1]
+      << ", sigma_1 = " << last[2] << " Pa, sigma_3 = " << last[3] << " Pa, q = " << last[5]
+      << " Pa\n";
+  return exit_success;
+}
+
+} // namespace mpile
