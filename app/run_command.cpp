@@ -329,7 +329,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
                   residual_summary());
     std::ostringstream done;
-    done << "mpile: " << spec.title << (doubtful ? " done, but with a doubtful" : " done")
+    done << "mpile: " << spec.title << (doubtful ? " done, but its energy balance is doubtful" : " done")
          << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
          << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
          << "; outputs in " << directory;

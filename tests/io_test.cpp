@@ -240,7 +240,7 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   const std::string status = history.string_attribute("/", "status");
   EXPECT_EQ(status.rfind("complete, but the energy residual ", 0), 0u) << status;
   EXPECT_NE(status.find("peak 8.09 %"), std::string::npos) << status;
-  EXPECT_NE(out.str().find("done, but with a doubtful: "), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("done, but its energy balance is doubtful: "), std::string::npos) << out.str();
   EXPECT_EQ(history.string_attribute("/time", "units"), "s");
   // Counts and indices are integers; the phases are a table of their own.
   for (const char* name : {"/step", "/phase"}) {
