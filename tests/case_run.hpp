@@ -5,11 +5,13 @@
 #include "io/case_builder.hpp"
 #include "io/case_spec.hpp"
 #include "solver/explicit_solver.hpp"
+#include "solver/phase_runner.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -44,7 +46,8 @@ inline std::string replaced(std::string text, const std::string& from, const std
   return text;
 }
 
-/// A case built from text and run through its single phase, with a callback after every step.
+/// A case built from text and run through its first phase by the phase runner, as `mpile run` runs
+/// it (its end criteria and the energy guard included), with a callback after every step.
 struct CaseRun {
   CaseSpec spec;
   std::unique_ptr<Scene> scene;
@@ -58,11 +61,21 @@ struct CaseRun {
     switch_on_absorbing_faces(*solver, spec, 0);
   }
   template <class F> void run(F&& after_step) {
-    while (solver->time() < spec.phases[0].duration * (1.0 - 1e-12)) {
-      solver->step(
-          landing_step(spec.phases[0].duration - solver->time(), solver->stable_time_step()));
-      after_step();
-    }
+    struct EachStep final : RunObserver {
+      explicit EachStep(F& f) : callback(f) {}
+      void stepped(const RunPhase&, long, const PhaseGoal&) override { callback(); }
+      F& callback;
+    };
+    EachStep observer(after_step);
+    const std::vector<RunPhase> phases{spec.phases[0]};
+    RunProgress progress;
+    begin_phase(progress, phases, *scene, 0, solver->time());
+    OutputSchedule no_outputs;
+    no_outputs.history_interval = std::numeric_limits<double>::infinity();
+    PhaseRunner runner(*solver, phases, no_outputs, progress, log);
+    runner.add_observer(observer);
+    runner.start();
+    runner.run([](std::size_t, double) {}, [](long) { return false; });
   }
   const ContactPair& pair() const { return scene->contacts.at(0); }
   double surface_force(const std::string& surface, int component) const {
