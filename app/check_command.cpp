@@ -1,9 +1,9 @@
+#include "app/run_command.hpp"
+#include "app/run_estimate.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
 #include "io/monitor_points.hpp"
 #include "io/plausibility.hpp"
-#include "app/run_command.hpp"
-#include "app/run_estimate.hpp"
 #include "solver/explicit_solver.hpp"
 
 #include <unistd.h>

@@ -1,9 +1,9 @@
 #include "app/describe_command.hpp"
 
+#include "app/run_command.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "io/case_error.hpp"
 #include "io/case_format.hpp"
-#include "app/run_command.hpp"
 
 #include <algorithm>
 #include <fstream>

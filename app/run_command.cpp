@@ -1,5 +1,7 @@
 #include "app/run_command.hpp"
 
+#include "app/progress_reporter.hpp"
+#include "app/run_observers.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
 #include "io/checkpoint.hpp"
@@ -7,8 +9,6 @@
 #include "io/monitor_points.hpp"
 #include "io/output_directory.hpp"
 #include "io/plausibility.hpp"
-#include "app/progress_reporter.hpp"
-#include "app/run_observers.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/phase_runner.hpp"
@@ -329,7 +329,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
                   residual_summary());
     std::ostringstream done;
-    done << "mpile: " << spec.title << (doubtful ? " done, but its energy balance is doubtful" : " done")
+    done << "mpile: " << spec.title
+         << (doubtful ? " done, but its energy balance is doubtful" : " done")
          << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
          << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
          << "; outputs in " << directory;

@@ -3,8 +3,8 @@
 // What `mpile run` attaches to the phase runner (solver/phase_runner.hpp): the history file, the
 // VTK snapshots, the checkpoint and the progress line, each told when its output is due.
 
-#include "io/history_writer.hpp"
 #include "app/progress_reporter.hpp"
+#include "io/history_writer.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/phase_runner.hpp"
 

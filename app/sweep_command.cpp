@@ -1,8 +1,8 @@
 #include "app/sweep_command.hpp"
 
+#include "app/run_command.hpp"
 #include "io/case_error.hpp"
 #include "io/replace_file.hpp"
-#include "app/run_command.hpp"
 #include "io/sweep_file.hpp"
 
 #include <spawn.h>

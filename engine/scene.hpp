@@ -1,12 +1,12 @@
 #pragma once
 
 #include "engine/boundary_conditions.hpp"
-#include "engine/structures/contact.hpp"
 #include "engine/geometry_mode.hpp"
 #include "engine/grid.hpp"
 #include "engine/materials/material.hpp"
 #include "engine/moving_mesh.hpp"
 #include "engine/particles.hpp"
+#include "engine/structures/contact.hpp"
 #include "engine/structures/rigid_body.hpp"
 
 #include <functional>

@@ -1,7 +1,7 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
-#include "engine/structures/contact.hpp"
 #include "engine/particle_bins.hpp"
+#include "engine/structures/contact.hpp"
 #include "io/absorbing_reader.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_composition.hpp"

@@ -5,8 +5,8 @@
 // sums use a deterministic reduction, so results do not depend on the thread count.
 #include "solver/contact_passes.hpp"
 
-#include "engine/structures/coulomb_slip.hpp"
 #include "engine/parallel.hpp"
+#include "engine/structures/coulomb_slip.hpp"
 
 #include <cmath>
 #include <optional>
@@ -290,8 +290,8 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
       return; // separating: no tension, and no tangential force either
     }
     // Coulomb friction on the normal impulse plus adhesion over the node's area, as impulses per
-    // beta (engine/structures/coulomb_slip.hpp). The theta slip has its own inertia (J / r^2, not m). (The
-    // normal impulse is a pull only at a bonded node.)
+    // beta (engine/structures/coulomb_slip.hpp). The theta slip has its own inertia (J / r^2, not
+    // m). (The normal impulse is a pull only at a bonded node.)
     const double theta_mass = at.count == 3 ? PairNodes<mode>::inertia(s, 2, at) : s.mass;
     const ContactCorrection correction = contact_correction(
         relative, n, s.mass, theta_mass, pair.friction, adhesion_impulse * surface->area);

@@ -1,10 +1,10 @@
 // Every case file shipped under cases/ must stay valid, every element-test file under
 // cases/element_tests/ must run, and a verification case file must reproduce its reference when run
 // through the whole command path (reader, builder, phases, checkpoint).
-#include "io/case_spec.hpp"
 #include "app/element_test_command.hpp"
-#include "io/hdf5_file.hpp"
 #include "app/run_command.hpp"
+#include "io/case_spec.hpp"
+#include "io/hdf5_file.hpp"
 #include "io/sweep_file.hpp"
 
 #include <gtest/gtest.h>

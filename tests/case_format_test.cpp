@@ -1,10 +1,10 @@
 // The case format's one declaration (io/case_format.cpp): the reader takes defaults, ranges and
 // choices from it, reading an undeclared key is caught, docs/case-format.md is generated from it.
+#include "app/describe_command.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "io/case_error.hpp"
 #include "io/case_format.hpp"
 #include "io/case_spec.hpp"
-#include "app/describe_command.hpp"
 #include "io/toml_reader.hpp"
 
 #include <gtest/gtest.h>

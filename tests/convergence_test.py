@@ -31,11 +31,12 @@ def check(name, ok):
     return ok
 
 
-def write_history(path, h, wall):
+def write_history(path, h, wall, status="complete"):
     rows = 101
     with h5py.File(path, "w") as f:
-        f.attrs["status"] = "complete"
-        f.attrs["wall_time"] = wall
+        f.attrs["status"] = status
+        if status != "running":  # written when a run ends
+            f.attrs["wall_time"] = wall
         f.attrs["case_text"] = '[[phases]]\nname = "a"\n[[phases]]\nname = "b"\n'
         f["/time"] = np.linspace(0.0, 1.0, rows)
         f["/phase"] = np.r_[np.zeros(1), np.ones(rows - 1)]
@@ -72,6 +73,20 @@ def main():
         print(out.stdout, out.stderr)
         ok &= check("tool exit status", out.returncode == 0)
         ok &= check("tool prints order and limit", "1.50  12.5 +-" in out.stdout)
+        # A run still going (it reached 0.1 m): refused unless --running, and then read only at
+        # depths it has passed.
+        write_history(os.path.join(directory, "run0", "history.h5"), H[0], 10.0, "running")
+        tool = [sys.executable, os.path.join(ROOT, "tools", "convergence.py"), *specs,
+                "--quantities", "tip_Fy"]
+        refused = subprocess.run(tool + ["--at", "0.05"], capture_output=True, text=True)
+        ok &= check("a running run is refused", refused.returncode != 0
+                    and "is not a complete run" in refused.stderr)
+        read = subprocess.run(tool + ["--at", "0.05", "--running"], capture_output=True, text=True)
+        ok &= check("--running reads it where it has passed",
+                    read.returncode == 0 and "1.50  12.5 +-" in read.stdout)
+        ahead = subprocess.run(tool + ["--at", "0.095", "--running"], capture_output=True, text=True)
+        ok &= check("--running refuses a depth not passed yet", ahead.returncode != 0
+                    and "has not passed" in ahead.stderr)
     print("all ok" if ok else "FAILED")
     return 0 if ok else 1
 

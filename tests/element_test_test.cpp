@@ -1,11 +1,11 @@
 // The element-test driver: linear elasticity along the laboratory paths must give the elastic
 // moduli exactly, Mohr-Coulomb must reach its closed-form failure states, and bad input must be
 // rejected with file, line and key (exit status 2), as case files are.
+#include "app/element_test_command.hpp"
+#include "app/run_command.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "io/case_error.hpp"
-#include "app/element_test_command.hpp"
 #include "io/element_test_file.hpp"
-#include "app/run_command.hpp"
 
 #include <gtest/gtest.h>
 

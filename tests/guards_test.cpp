@@ -1,10 +1,10 @@
 // The guards that stop a run going wrong: each must stop it with a message naming the cause, the
 // step and where, and `mpile run` must leave a readable history saying how the run ended.
+#include "app/run_command.hpp"
 #include "case_run.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/hdf5_file.hpp"
-#include "app/run_command.hpp"
 
 #include <gtest/gtest.h>
 

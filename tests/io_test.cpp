@@ -1,12 +1,12 @@
 // Round trips of the output files through their own libraries' readers, an end-to-end run of a
 // case file, and bitwise-identical restart from a checkpoint.
+#include "app/run_command.hpp"
 #include "cases/verification/verification_case.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/materials/mohr_coulomb.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/output_directory.hpp"
-#include "app/run_command.hpp"
 #include "io/vtk_writer.hpp"
 #include "tests/case_run.hpp"
 
@@ -240,7 +240,8 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   const std::string status = history.string_attribute("/", "status");
   EXPECT_EQ(status.rfind("complete, but the energy residual ", 0), 0u) << status;
   EXPECT_NE(status.find("peak 8.09 %"), std::string::npos) << status;
-  EXPECT_NE(out.str().find("done, but its energy balance is doubtful: "), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("done, but its energy balance is doubtful: "), std::string::npos)
+      << out.str();
   EXPECT_EQ(history.string_attribute("/time", "units"), "s");
   // Counts and indices are integers; the phases are a table of their own.
   for (const char* name : {"/step", "/phase"}) {

@@ -2,10 +2,10 @@
 // checked on construction, their particles tile the plane without gaps or doubles, their seeded
 // volume follows the exact integral, and their outlines give contact normals a slanted incline can
 // be verified with (V7 on a real slope).
-#include "engine/structures/contact.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "engine/region.hpp"
+#include "engine/structures/contact.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>

@@ -60,8 +60,9 @@ def dataset(quantity, body):
     return f"/reactions/{body}/{SURFACES[surface]}/{COMPONENTS[component]}", 1e-3, "kN/rad"
 
 
-def load(spec, quantities, depths, window, body):
-    """One run: its cell size, wall time and {(quantity, depth): value}."""
+def load(spec, quantities, depths, window, body, running=False):
+    """One run: its cell size, wall time and {(quantity, depth): value}. With `running`, a run
+    still going is read at the depths it has passed (its rows there are final)."""
     directory, separator, h = spec.rpartition(":")
     if not separator:
         sys.exit(f"convergence: give each run as DIRECTORY:H, got '{spec}'")
@@ -70,7 +71,8 @@ def load(spec, quantities, depths, window, body):
         sys.exit(f"convergence: no history {path}")
     values = {}
     with h5py.File(path, "r") as history:
-        if not text(history.attrs.get("status", "")).startswith("complete"):
+        status = text(history.attrs.get("status", ""))
+        if not status.startswith("complete") and not (running and status == "running"):
             sys.exit(f"convergence: {path} is not a complete run "
                      f"(status '{text(history.attrs.get('status', ''))}')")
         # The case as it ran (its base files merged); older histories hold only case_text.
@@ -85,12 +87,16 @@ def load(spec, quantities, depths, window, body):
             series = history[name][rows] * scale
             for depth in depths:
                 near = np.abs(penetration - depth) <= window
+                if running and status == "running" and penetration.max(initial=0.0) < depth + window:
+                    sys.exit(f"convergence: {path} is still running and has not passed "
+                             f"{depth} + {window} m yet (it is at {penetration.max(initial=0.0):.4f} m)")
                 if not near.any():
                     sys.exit(f"convergence: {path} has no installation row within {window} m of "
                              f"{depth} m (it reached {penetration.max(initial=0.0):.4f} m)")
                 values[(quantity, depth)] = (float(series[near].mean()),
                                              float(series[near].std()))
-        wall = float(history.attrs["wall_time"])
+        # A running run has no wall time yet.
+        wall = float(history.attrs.get("wall_time", float("nan")))
     return float(h), wall, directory, values
 
 
@@ -143,12 +149,18 @@ def main():
     parser.add_argument("--body", default="pile")
     parser.add_argument("--csv", help="write the table")
     parser.add_argument("--figure", help="write error against wall time (PNG)")
+    parser.add_argument("--running", action="store_true",
+                        help="also read runs still going, at depths they have passed (the rows "
+                             "there are final; no figure, their wall times are not)")
     args = parser.parse_args()
     if len(args.runs) < 2:
         sys.exit("convergence: give at least two runs")
     quantities = [q for q in args.quantities.split(",") if q]
     depths = [float(d) for d in args.at.split(",") if d]
-    runs = sorted((load(spec, quantities, depths, args.window, args.body) for spec in args.runs),
+    if args.running and args.figure:
+        sys.exit("convergence: --figure needs complete runs (a running run's wall time is not final)")
+    runs = sorted((load(spec, quantities, depths, args.window, args.body, args.running)
+                   for spec in args.runs),
                   key=lambda run: run[0])
     h = [run[0] for run in runs]
     if len(set(h)) != len(h):
