@@ -41,4 +41,15 @@ std::string ParameterRange::text(bool integer) const {
   return "";
 }
 
+std::string ParameterRange::requirement(bool integer) const {
+  if (lower && upper) {
+    if (integer) {
+      return "must lie between " + format_bound(lower->value) + " and " +
+             format_bound(upper->value);
+    }
+    return "must lie " + text();
+  }
+  return "must be " + text();
+}
+
 } // namespace mpile

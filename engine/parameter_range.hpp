@@ -20,6 +20,9 @@ struct ParameterRange {
   bool contains(double x) const;
   /// "> 0", ">= 1", "<= 2", "in (0, 2]", empty without bounds. Integer ranges read "1 to 8".
   std::string text(bool integer = false) const;
+  /// What a value outside the range is told: "must lie in (0, 2]", "must lie between 1 and 8"
+  /// (integers), "must be > 0".
+  std::string requirement(bool integer = false) const;
 };
 
 /// A number in the shortest form that reads back to the same double, whole numbers as integers

@@ -66,7 +66,7 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
     if (type == "constant") {
       result = TimeFunction::constant(f.number("value"));
     } else if (type == "ramp") {
-      result = TimeFunction::ramp(f.number("value"), f.positive("duration"));
+      result = TimeFunction::ramp(f.number("value"), f.number("duration"));
     } else if (type == "table") {
       const TomlValue& points = f.raw("points");
       std::vector<std::pair<double, double>> table;
@@ -101,11 +101,11 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
       }
     } else if (type == "harmonic") {
       result =
-          TimeFunction::harmonic(f.number("amplitude"), f.positive("frequency"), f.number("phase"));
+          TimeFunction::harmonic(f.number("amplitude"), f.number("frequency"), f.number("phase"));
     } else if (type == "pulse_train") {
       const double amplitude = f.number("amplitude");
-      const double duration = f.positive("duration");
-      const double interval = f.positive("interval");
+      const double duration = f.number("duration");
+      const double interval = f.number("interval");
       if (interval < duration) {
         f.fail("interval", "must not be shorter than the pulse duration");
       }
@@ -356,10 +356,10 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec) {
     }
   }
   if (table.has("mass")) {
-    rigid.mass = table.positive("mass");
+    rigid.mass = table.number("mass");
   }
   if (table.has(inertia_key)) {
-    rigid.inertia = table.positive(inertia_key);
+    rigid.inertia = table.number(inertia_key);
   }
   rigid.drive = read_drives(table, spec);
   rigid.phase = read_phase_reference(table, spec);
@@ -431,7 +431,7 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
                         "squeezed and stretched)");
   }
   if (table->has("travel")) {
-    mesh.travel = table->positive("travel");
+    mesh.travel = table->number("travel");
   }
   if (table->has("stretch")) {
     const auto stretch = table->numbers("stretch", 2);
@@ -541,7 +541,7 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
   s.courant_number = table->number("courant_number");
   if (table->has("max_time_step")) {
-    s.max_time_step = table->positive("max_time_step");
+    s.max_time_step = table->number("max_time_step");
   }
   s.flip_fraction = table->number("flip_fraction");
   s.xpic_order = static_cast<int>(table->integer("xpic_order"));
@@ -565,13 +565,13 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     }
   }
   if (table->has("min_time_step")) {
-    s.min_time_step = table->positive("min_time_step");
+    s.min_time_step = table->number("min_time_step");
   }
   if (table->has("energy_residual_warning")) {
-    s.energy_residual_warning = table->positive("energy_residual_warning");
+    s.energy_residual_warning = table->number("energy_residual_warning");
   }
   if (table->has("energy_residual_limit")) {
-    s.energy_residual_limit = table->positive("energy_residual_limit");
+    s.energy_residual_limit = table->number("energy_residual_limit");
   }
   // The checks between keys; each key's own range was checked as it was read.
   if (s.xpic_order > 0 && s.flip_fraction != 1.0) {
@@ -600,11 +600,11 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     if (!names.insert(phase.name).second) {
       table.fail("name", "a phase named '" + phase.name + "' already exists");
     }
-    phase.duration = table.positive("duration");
+    phase.duration = table.number("duration");
     phase.local_damping = table.number("local_damping");
     phase.gravity = table.boolean("gravity");
     if (table.has("equilibrium_tolerance")) {
-      phase.equilibrium_tolerance = table.positive("equilibrium_tolerance");
+      phase.equilibrium_tolerance = table.number("equilibrium_tolerance");
     }
     if (table.has("flip_fraction")) {
       phase.flip_fraction = table.number("flip_fraction");
@@ -640,7 +640,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
       const std::string name = k0.string(key);
       K0Spec init;
       init.surface = k0.number("surface");
-      init.k0 = k0.positive("k0");
+      init.k0 = k0.number("k0");
       init.surcharge = k0.number("surcharge");
       k0.finish();
       bool found = false;
@@ -665,7 +665,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
       }
       const bool settlement = stop->has("settlement");
       if (settlement) {
-        s.settlement = stop->positive("settlement");
+        s.settlement = stop->number("settlement");
         // The deepest an earlier phase stops at, plus the settlement: how far the band must go
         // at least (an at-rest stop may overshoot; the run then ends the phase at the travel).
         double before = 0.0;
@@ -676,7 +676,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
         }
         s.penetration = before + s.settlement;
       } else {
-        s.penetration = stop->positive("penetration");
+        s.penetration = stop->number("penetration");
       }
       if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
           s.penetration >= spec.moving_mesh->travel) {
@@ -886,7 +886,7 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   OutputSpec& out = spec.output;
   out.directory = table->string_or("directory", "");
   if (table->has("snapshot_interval")) {
-    out.snapshot_interval = table->non_negative("snapshot_interval");
+    out.snapshot_interval = table->number("snapshot_interval");
   }
   out.snapshot_times = table->numbers_or("snapshot_times", {});
   for (const double t : out.snapshot_times) {
@@ -895,10 +895,10 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     }
   }
   if (table->has("history_interval")) {
-    out.history_interval = table->non_negative("history_interval");
+    out.history_interval = table->number("history_interval");
   }
   if (table->has("checkpoint_interval")) {
-    out.checkpoint_interval = table->non_negative("checkpoint_interval");
+    out.checkpoint_interval = table->number("checkpoint_interval");
   }
   out.grid_snapshots = table->boolean("grid_snapshots");
   out.snapshot_penetrations = table->numbers_or("snapshot_penetrations", {});

@@ -96,7 +96,7 @@ Region read_polygon(TomlTable& region, GeometryMode mode, const GradedAxis& r,
 Region read_circle(TomlTable& region, GeometryMode mode, const GradedAxis& r, const GradedAxis& y) {
   TomlTable circle = region.table("circle");
   const auto centre = circle.numbers("centre", 2);
-  const double radius = circle.positive("radius");
+  const double radius = circle.number("radius");
   circle.finish();
   region.finish();
   double r_min = centre[0] - radius;

@@ -198,17 +198,8 @@ void TomlTable::check_range(const std::string& key, double x, bool integer) cons
   if (k == nullptr || k->range.contains(x)) {
     return;
   }
-  const ParameterRange& r = k->range;
-  std::string bound;
-  if (integer && r.lower && r.upper) {
-    bound =
-        "must lie between " + format_bound(r.lower->value) + " and " + format_bound(r.upper->value);
-  } else if (r.lower && r.upper) {
-    bound = "must lie " + r.text(integer);
-  } else {
-    bound = "must be " + r.text(integer);
-  }
-  fail(key, bound + (k->unit.empty() || k->unit == "-" ? "" : " " + k->unit) + ", got " +
+  fail(key, k->range.requirement(integer) +
+                (k->unit.empty() || k->unit == "-" ? "" : " " + k->unit) + ", got " +
                 format_bound(x));
 }
 
@@ -471,14 +462,6 @@ double TomlTable::positive(const std::string& key) {
   const double x = number(key);
   if (!(x > 0.0)) {
     fail(key, "must be positive, got " + toml::format(table_->as_table().at(key)));
-  }
-  return x;
-}
-
-double TomlTable::non_negative(const std::string& key) {
-  const double x = number(key);
-  if (x < 0.0) {
-    fail(key, "must not be negative, got " + toml::format(table_->as_table().at(key)));
   }
   return x;
 }

@@ -66,7 +66,6 @@ public:
 
   /// Checks of a number just read; fail with the reason otherwise.
   double positive(const std::string& key);
-  double non_negative(const std::string& key);
 
 private:
   const TomlValue& value(const std::string& key);

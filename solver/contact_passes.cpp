@@ -95,7 +95,9 @@ struct NodeDofs {
 template <GeometryMode mode> class PairNodes {
 public:
   PairNodes(Scene& scene, ContactPair& pair)
-      : grid(scene.grid), soil(scene.grid.nodes), structure(scene.grid.field_nodes(pair.field)),
+      : grid(scene.grid),
+        field(scene.grid.structure_fields[static_cast<std::size_t>(pair.field - 1)]),
+        soil(scene.grid.nodes), structure(scene.grid.field_nodes(pair.field)),
         held(scene.grid.field_constrained(pair.field)), rigid(pair.rigid_body >= 0) {}
 
   NodeDofs dofs_at(std::size_t i) const {
@@ -181,6 +183,7 @@ public:
   }
 
   const Grid& grid;
+  const NodeField& field; // the structure's: its reach (both fields have mass only there)
   std::vector<GridNode>& soil;
   std::vector<GridNode>& structure;
   const std::vector<std::uint8_t>& held;
@@ -191,9 +194,7 @@ public:
 /// move with the structure, sliding ones lose their approach along the normal).
 template <GeometryMode mode>
 void hold_contact_after_remap(PairNodes<mode>& nodes, ContactPair& pair) {
-  const NodeBox& reach =
-      nodes.grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
-  parallel_for_box(reach, nodes.grid.nodes_r(), [&](std::size_t i) {
+  parallel_for_box(nodes.field.reach, nodes.grid.nodes_r(), [&](std::size_t i) {
     if (pair.state[i] == contact_free) {
       return;
     }
@@ -222,7 +223,8 @@ struct NodeSurface {
 /// node across its share of the cells. None where the soil does not reach the outline yet, or
 /// where the gradient vanishes.
 template <GeometryMode mode>
-std::optional<NodeSurface> node_surface(const Grid& grid, const ContactPair& pair, std::size_t i) {
+std::optional<NodeSurface> node_surface(const Grid& grid, const NodeField& field,
+                                        const ContactPair& pair, std::size_t i) {
   NodeSurface at;
   if (pair.outline) {
     if (pair.gap[i] > 0.0) {
@@ -238,8 +240,7 @@ std::optional<NodeSurface> node_surface(const Grid& grid, const ContactPair& pai
     }
     return at;
   }
-  const auto& gradient =
-      grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].mass_gradient[i];
+  const auto& gradient = field.mass_gradient[i];
   const double g = std::hypot(gradient[0], gradient[1]);
   if (g == 0.0) {
     return std::nullopt;
@@ -261,8 +262,7 @@ std::optional<NodeSurface> node_surface(const Grid& grid, const ContactPair& pai
 template <GeometryMode mode>
 void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettings& settings,
                    const StepParameters& step) {
-  const NodeBox& reach =
-      nodes.grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
+  const NodeBox& reach = nodes.field.reach;
   const double beta = settings.mass_scaling;
   const double adhesion_impulse = pair.adhesion * step.dt / beta;
   // The per-node results of the last step were written in pair.written: cleared with these.
@@ -277,7 +277,7 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
     if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
       return;
     }
-    const std::optional<NodeSurface> surface = node_surface<mode>(nodes.grid, pair, i);
+    const std::optional<NodeSurface> surface = node_surface<mode>(nodes.grid, nodes.field, pair, i);
     if (!surface) {
       return;
     }

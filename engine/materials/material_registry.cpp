@@ -158,10 +158,9 @@ std::unique_ptr<Material> create_material(std::string_view type, MaterialParamet
     }
     const double x = values.at(spec.name);
     if (!spec.range.contains(x)) {
-      const bool both = spec.range.lower && spec.range.upper;
-      throw std::invalid_argument(
-          found->name + ": " + spec.name + " must " + (both ? "lie " : "be ") + spec.range.text() +
-          (spec.unit == "-" ? "" : " " + spec.unit) + ", got " + format_bound(x));
+      throw std::invalid_argument(found->name + ": " + spec.name + " " + spec.range.requirement() +
+                                  (spec.unit == "-" ? "" : " " + spec.unit) + ", got " +
+                                  format_bound(x));
     }
   }
   try {
