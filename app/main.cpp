@@ -92,9 +92,10 @@ int main(int argc, char** argv) {
   verify->add_option("--refinement", options.refinement, "cells per direction multiplier")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  verify->add_option("--ppc", options.particles_per_direction, "particles per cell direction")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  verify
+      ->add_option("--ppc", options.particles_per_direction,
+                   "particles per cell direction (default: the case file's)")
+      ->check(CLI::PositiveNumber);
   verify->add_option("--bbar", options.bbar, "B-bar on (1) or off (0); default on");
   verify->add_option("--flip", options.flip_fraction, "FLIP fraction in [0, 1]")
       ->check(CLI::Range(0.0, 1.0));
@@ -141,7 +142,7 @@ int main(int argc, char** argv) {
       return mpile::element_test_command(element_options, std::cout, std::cerr);
     }
     if (list) {
-      for (const auto& c : mpile::verification_cases()) {
+      for (const auto& c : mpile::verification::all_cases()) {
         std::cout << c.id << "\t" << c.title << '\n';
       }
       return 0;

@@ -11,10 +11,10 @@ int run_verification(const std::vector<std::string>& ids, const verification::Op
   std::vector<const verification::Case*> cases;
   for (const std::string& id : ids) {
     if (id == "all") {
-      for (const auto& c : verification_cases()) {
+      for (const auto& c : verification::all_cases()) {
         cases.push_back(&c);
       }
-    } else if (const auto* c = find_verification_case(id)) {
+    } else if (const auto* c = verification::find_case(id)) {
       cases.push_back(c);
     } else {
       throw std::invalid_argument("unknown verification case '" + id +

@@ -1,7 +1,6 @@
 #pragma once
 
-#include "cases/verification/verification_case.hpp"
-#include "io/verification_files.hpp"
+#include "cases/verification/verification_cases.hpp"
 
 #include <iosfwd>
 #include <string>

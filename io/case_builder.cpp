@@ -308,6 +308,13 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     }
   }
 
+  if (spec.velocity_gradient) {
+    const std::array<double, 4> L = *spec.velocity_gradient;
+    scene->velocity_field = [L](double r, double y, double) {
+      return std::array<double, 3>{L[0] * r + L[1] * y, L[2] * r + L[3] * y, 0.0};
+    };
+  }
+
   Boundaries& boundaries = scene->boundaries;
   const GridFace faces[] = {GridFace::r_min, GridFace::r_max, GridFace::y_min, GridFace::y_max};
   for (std::size_t f = 0; f < 4; ++f) {

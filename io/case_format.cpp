@@ -189,6 +189,7 @@ std::vector<TableSpec> declare() {
         table("boundaries", "conditions on the grid's faces"), table("solver", "numerical choices"),
         table("moving_mesh", "y-lines that follow a rigid body"),
         tables("prescribed", "prescribed velocities on a grid line"),
+        table("affine_motion", "a velocity linear in position on every node (patch tests)"),
         tables("loads", "distributed tractions on a grid line"),
         tables("phases", "the phases, run in order").needed(),
         table("output", "what is written, and when")},
@@ -413,6 +414,14 @@ std::vector<TableSpec> declare() {
             .length(2)
             .or_computed("the grid's bottom and top")},
        false});
+  t.push_back({"affine_motion",
+               "Every grid node moves with v = L x for the whole run, whatever its supports: a "
+               "patch test, whose every particle must reach the uniform strain L t.",
+               {numbers("velocity_gradient", "1/s",
+                        "L as [dv_r/dr, dv_r/dy, dv_y/dr, dv_y/dy] (x for r in plane strain)")
+                    .length(4)
+                    .needed()},
+               false});
   {
     std::vector<KeySpec> keys;
     for (const char* face : {"r_min", "r_max", "y_min", "y_max"}) {

@@ -457,6 +457,17 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
   spec.moving_mesh = mesh;
 }
 
+void read_affine_motion(TomlTable& top, CaseSpec& spec) {
+  std::optional<TomlTable> table = top.optional_table("affine_motion");
+  if (!table) {
+    return;
+  }
+  const auto gradient = table->numbers("velocity_gradient", 4);
+  table->finish();
+  spec.velocity_gradient =
+      std::array<double, 4>{gradient[0], gradient[1], gradient[2], gradient[3]};
+}
+
 void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   const bool theta = has_theta(spec.mode);
   std::set<std::string> names;
@@ -1095,6 +1106,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   }
   read_contacts(top, spec);
   read_motions_and_loads(top, spec, axes);
+  read_affine_motion(top, spec);
   read_output(top, spec, axes);
   top.finish();
   return spec;

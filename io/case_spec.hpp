@@ -186,6 +186,9 @@ struct CaseSpec {
   std::vector<MotionSpec> motions;
   std::vector<LoadSpec> loads;
   std::optional<MovingMeshSpec> moving_mesh;
+  /// [affine_motion]: every node moves with v = L x; L row by row (dv_r/dr, dv_r/dy, dv_y/dr,
+  /// dv_y/dy).
+  std::optional<std::array<double, 4>> velocity_gradient;
   SolverSettings solver;
   std::vector<PhaseSpec> phases;
   OutputSpec output;

@@ -1,11 +1,11 @@
 // Contact and rigid bodies (physics.md sections 5 and 6): nodal contact areas against exact
 // integrals, the approach test and momentum exchange, rigid-body dynamics, V7 (block on an
 // incline) and V9 (the seed's torsion with adhesion), from the shipped case files.
+#include "cases/verification/verification_cases.hpp"
 #include "engine/parallel.hpp"
 #include "engine/structures/contact.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_spec.hpp"
-#include "io/verification_files.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"
 #include "tests/bitwise.hpp"
@@ -301,7 +301,7 @@ TEST(V9TorsionWithAdhesion, RigidPileAtTheCaseFileResolution) {
   // 11 000 steps of 6 400 particles: the sanitizer presets leave this accuracy check to the
   // release build (docs/reliability.md, "What the sanitizer builds leave out").
   // `mpile verify V9`: the case file built into the program, run through the phase runner.
-  const verification::Report report = run_torsion_with_adhesion({});
+  const verification::Report report = verification::run_torsion_with_adhesion({});
   ASSERT_EQ(report.checks.size(), 4u);
   expect_seed_torsion(
       {report.checks[0].measured, report.checks[1].measured, report.checks[2].measured},

@@ -1,7 +1,7 @@
 // The verification cases of docs/verification.md, each against its closed form. Every check carries
 // the tolerance of the reference table (../shared/docs/verification.md); the patch tests must be
 // exact to rounding and are held to that.
-#include "cases/verification/verification_case.hpp"
+#include "cases/verification/verification_cases.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,10 @@
-// V3: Lame thick cylinder, a = 0.2, b = 0.6, internal pressure p = 100 kPa, E = 100 MPa, nu = 0.3,
-// slab of height 0.1 between rollers (eps_y = 0). sigma_r = A - B/r^2, sigma_th = A + B/r^2 with
-// A = p a^2 / (b^2 - a^2), B = p a^2 b^2 / (b^2 - a^2); u_r = (1 + nu)/E [(1 - 2 nu) A r + B / r].
-// Loaded quasi-statically (pressure ramp, then hold) with local damping.
-#include "cases/verification/verification_case.hpp"
-#include "engine/materials/linear_elastic.hpp"
-#include "engine/particle_fill.hpp"
-#include "solver/equilibrium.hpp"
+// V3 (lame_cylinder.toml): Lame thick cylinder, a = 0.2, b = 0.6, internal pressure p = 100 kPa,
+// E = 100 MPa, nu = 0.3, a slab of height 0.1 between rollers (eps_y = 0). sigma_r = A - B/r^2,
+// sigma_th = A + B/r^2 with A = p a^2 / (b^2 - a^2), B = p a^2 b^2 / (b^2 - a^2); u_r = (1 +
+// nu)/E [(1 - 2 nu) A r + B / r]. Loaded quasi-statically (a pressure ramp, then relaxed with
+// local damping to equilibrium).
+#include "cases/verification/case_file_run.hpp"
+#include "cases/verification/verification_cases.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,38 +12,20 @@
 namespace mpile::verification {
 
 Report run_lame_cylinder(const Options& options) {
-  const auto start = std::chrono::steady_clock::now();
-  constexpr double a = 0.2, b = 0.6, height = 0.1, pressure = 100e3, young = 100e6, density = 2000;
-  const double nu = options.poisson_ratio.value_or(0.3);
+  CaseFileRun run("lame_cylinder.toml", options, PoissonRatio::the_options);
+  const Rectangle wall = run.spec().bodies.at(0).region.bounds();
+  const double a = wall.r_min, b = wall.r_max;
+  const double pressure = run.spec().loads.at(0).traction.value(1e9); // the ramp's final value
+  const double young = run.parameter("elastic", "young_modulus");
+  const double nu = run.parameter("elastic", "poisson_ratio");
   const double A = pressure * a * a / (b * b - a * a);
   const double B = pressure * a * a * b * b / (b * b - a * a);
   auto exact_u = [&](double r) { return (1.0 + nu) / young * ((1.0 - 2.0 * nu) * A * r + B / r); };
   auto exact_hoop = [&](double r) { return A + B / (r * r); };
 
-  // Base mesh h = 0.025: 16 cells through the wall, 4 over the height, 4 spare cells outside.
-  const int n = options.refinement;
-  Scene scene(GeometryMode::axisymmetric, uniform_grid(a, b + 0.1, 20 * n, 0.0, height, 4 * n));
-  const auto material = scene.add_material(std::make_unique<LinearElastic>(young, nu, density));
-  const auto body = scene.add_body("cylinder");
-  fill_rectangle(scene, {a, b, 0.0, height}, options.particles_per_direction, material, body);
+  Report report = run.run("V3", "Lame thick cylinder under internal pressure");
 
-  constexpr double ramp = 0.03;
-  scene.boundaries.constraints = {
-      face_constraint(scene.grid, scene.mode, GridFace::y_min, FaceCondition::roller),
-      face_constraint(scene.grid, scene.mode, GridFace::y_max, FaceCondition::roller)};
-  scene.boundaries.loads = {line_load(scene.grid, scene.mode,
-                                      nodes_on_face(scene.grid, GridFace::r_min), 0,
-                                      TimeFunction::ramp(pressure, ramp), "internal pressure")};
-
-  SolverSettings settings;
-  settings.local_damping = 0.7;
-  settings = apply_options(settings, options);
-  RunLog log;
-  ExplicitSolver solver(scene, settings, log);
-  solver.advance_to(ramp);
-  const EquilibriumResult rest = advance_to_equilibrium(solver, equilibrium_tolerance, 2.0);
-
-  const Particles& p = scene.particles;
+  const Particles& p = run.scene().particles;
   std::vector<double> r0, inverse_r0, u, ones, inverse_r2, hoop;
   double max_hoop_error = 0.0, mean_axial = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -63,13 +44,6 @@ Report run_lame_cylinder(const Options& options) {
   // Fits of the closed form's shape through all particles give values at the faces.
   const auto u_fit = fit_two_functions(r0, inverse_r0, u);
   const auto hoop_fit = fit_two_functions(ones, inverse_r2, hoop);
-  Report report{"V3",
-                "Lame thick cylinder under internal pressure",
-                {},
-                p.size(),
-                solver.step_count(),
-                0.0,
-                log.warnings()};
   const double u_a = exact_u(a), u_b = exact_u(b), hoop_a = exact_hoop(a);
   report.checks = {
       {"u_r(a) (fit)", "m", u_fit[0] * a + u_fit[1] / a, u_a, u_a, 0.02},
@@ -77,9 +51,8 @@ Report run_lame_cylinder(const Options& options) {
       {"sigma_thth(a) (fit)", "Pa", hoop_fit[0] + hoop_fit[1] / (a * a), hoop_a, hoop_a, 0.02},
       {"max sigma_thth error, 0.3 <= r <= 0.5", "-", max_hoop_error, 0.0, 1.0, 0.02},
       {"mean sigma_yy (2 nu A)", "Pa", mean_axial, 2.0 * nu * A, 2.0 * nu * A, 0.02},
-      equilibrium_check(rest),
+      run.equilibrium(),
   };
-  report.wall_seconds = seconds_since(start);
   return report;
 }
 

@@ -1,11 +1,9 @@
-// V5: solid cylinder R = 0.5, H = 1 between smooth rigid platens, E = 100 MPa, nu = 0.3, axial
-// strain -1e-3 applied quasi-statically by the top platen. The state is homogeneous:
-// sigma_yy = E eps_y = -100 kPa, sigma_rr = sigma_thth = 0, u_r = -nu eps_y r (1.5e-4 m at R), and
-// the platen force is sigma_yy R^2 / 2 = -12.5 kN/rad.
-#include "cases/verification/verification_case.hpp"
-#include "engine/materials/linear_elastic.hpp"
-#include "engine/particle_fill.hpp"
-#include "solver/equilibrium.hpp"
+// V5 (uniaxial_cylinder.toml): solid cylinder R = 0.5, H = 1 between smooth rigid platens, E = 100
+// MPa, nu = 0.3, axial strain -1e-3 applied quasi-statically by the top platen. The state is
+// homogeneous: sigma_yy = E eps_y = -100 kPa, sigma_rr = sigma_thth = 0, u_r = -nu eps_y r (1.5e-4
+// m at R), and the platen force is sigma_yy R^2 / 2 = -12.5 kN/rad.
+#include "cases/verification/case_file_run.hpp"
+#include "cases/verification/verification_cases.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,35 +11,18 @@
 namespace mpile::verification {
 
 Report run_uniaxial_cylinder(const Options& options) {
-  const auto start = std::chrono::steady_clock::now();
-  constexpr double radius = 0.5, height = 1.0, young = 100e6, density = 2000, strain = -1e-3;
-  const double nu = options.poisson_ratio.value_or(0.3);
-  const int n = options.refinement;
-  const double h = height / (16 * n);
-  // 8 cells across the radius, 16 over the height, one spare column outside for the bulging.
-  Scene scene(GeometryMode::axisymmetric,
-              uniform_grid(0.0, radius + h, 8 * n + 1, 0.0, height, 16 * n));
-  const auto material = scene.add_material(std::make_unique<LinearElastic>(young, nu, density));
-  const auto body = scene.add_body("cylinder");
-  fill_rectangle(scene, {0.0, radius, 0.0, height}, options.particles_per_direction, material,
-                 body);
+  CaseFileRun run("uniaxial_cylinder.toml", options, PoissonRatio::the_options);
+  const Rectangle cylinder = run.spec().bodies.at(0).region.bounds();
+  const double radius = cylinder.r_max, height = cylinder.y_max;
+  const double young = run.parameter("elastic", "young_modulus");
+  const double nu = run.parameter("elastic", "poisson_ratio");
+  const double travel = travel_of(*run.spec().motions.at(0).velocity[1], run.spec());
+  const double strain = travel / height;
 
-  // Top platen: a trapezoidal velocity history whose integral is exactly the platen travel.
-  constexpr double load_time = 0.02;
-  const NodeConstraint platen = top_platen(scene.grid, strain * height, load_time);
-  scene.boundaries.constraints = {
-      axis_constraint(scene.grid),
-      face_constraint(scene.grid, scene.mode, GridFace::y_min, FaceCondition::roller), platen};
+  Report report = run.run("V5", "solid cylinder in uniaxial compression");
 
-  SolverSettings settings;
-  settings.local_damping = 0.7;
-  settings = apply_options(settings, options);
-  RunLog log;
-  ExplicitSolver solver(scene, settings, log);
-  solver.advance_to(load_time);
-  const EquilibriumResult rest = advance_to_equilibrium(solver, equilibrium_tolerance, 2.0);
-
-  const Particles& p = scene.particles;
+  const Particles& p = run.scene().particles;
+  const double h = run.scene().grid.y_axis().cell_size(0); // the cells are square
   double max_radial_strain_error = 0.0, mean_axial = 0.0, max_lateral = 0.0;
   double u_outer = 0.0;
   int outer = 0;
@@ -57,15 +38,8 @@ Report run_uniaxial_cylinder(const Options& options) {
     }
   }
   u_outer /= outer;
-  const double reaction = scene.boundaries.constraint("top platen").reaction[1];
+  const double reaction = run.scene().boundaries.constraint("top platen").reaction[1];
   const double sigma = young * strain;
-  Report report{"V5",
-                "solid cylinder in uniaxial compression",
-                {},
-                p.size(),
-                solver.step_count(),
-                0.0,
-                log.warnings()};
   report.checks = {
       {"u_r(R) from the outer particles", "m", u_outer, exact_ratio * radius, exact_ratio * radius,
        0.01},
@@ -75,9 +49,8 @@ Report run_uniaxial_cylinder(const Options& options) {
        std::abs(sigma) * radius * radius / 2.0, 0.01},
       {"mean sigma_yy", "Pa", mean_axial, sigma, std::abs(sigma), 0.01},
       {"max |sigma_rr|, |sigma_thth|", "Pa", max_lateral, 0.0, std::abs(sigma), 0.01},
-      equilibrium_check(rest),
+      run.equilibrium(),
   };
-  report.wall_seconds = seconds_since(start);
   return report;
 }
 

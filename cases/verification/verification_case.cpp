@@ -18,31 +18,6 @@ bool Report::passed() const {
   return !checks.empty();
 }
 
-const std::vector<Case>& all_cases() {
-  static const std::vector<Case> cases = {
-      {"V1", "axial vibrating bar (axisymmetric)", run_vibrating_bar},
-      {"V2", "single material point vibration", run_single_point},
-      {"V3", "Lame thick cylinder under internal pressure", run_lame_cylinder},
-      {"V4", "radial patch test through the axis", run_radial_patch},
-      {"V4p", "plane-strain patch test", run_plane_strain_patch},
-      {"V5", "solid cylinder in uniaxial compression", run_uniaxial_cylinder},
-      {"V6", "shaft torsion", run_shaft_torsion},
-      {"V8", "self-weight column, gravity loading", run_self_weight_column},
-      {"V8k0", "self-weight column, K0 state stays put", run_k0_column},
-      {"VHS", "Hardening Soil oedometer under a platen", run_hs_oedometer},
-  };
-  return cases;
-}
-
-const Case* find_case(const std::string& id) {
-  for (const Case& c : all_cases()) {
-    if (c.id == id) {
-      return &c;
-    }
-  }
-  return nullptr;
-}
-
 Grid uniform_grid(double r0, double r1, int nr, double y0, double y1, int ny) {
   return Grid(GradedAxis::uniform(r0, r1, nr), GradedAxis::uniform(y0, y1, ny));
 }
@@ -86,32 +61,6 @@ std::array<double, 2> fit_two_functions(const std::vector<double>& f1,
   }
   const double det = a11 * a22 - a12 * a12;
   return {(a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det};
-}
-
-Check equilibrium_check(const EquilibriumResult& result) {
-  // The larger of the two ratios of the equilibrium test; the force ratio is NaN (a failed check)
-  // when the kinetic energy never passed.
-  return {"out-of-balance force and kinetic/work ratios, the larger (equilibrium)",
-          "-",
-          std::max(result.measure.force_ratio, result.measure.kinetic_ratio),
-          0.0,
-          1.0,
-          equilibrium_tolerance};
-}
-
-TimeFunction trapezoid_velocity(double travel, double duration) {
-  const double peak = travel / (0.75 * duration);
-  return TimeFunction::table(
-      {{0.0, 0.0}, {0.25 * duration, peak}, {0.75 * duration, peak}, {duration, 0.0}});
-}
-
-NodeConstraint top_platen(const Grid& grid, double travel, double duration) {
-  NodeConstraint platen;
-  platen.name = "top platen";
-  platen.nodes = nodes_on_face(grid, GridFace::y_max);
-  platen.dofs = DOF_Y;
-  platen.velocity[1] = trapezoid_velocity(travel, duration);
-  return platen;
 }
 
 void OscillationMeter::sample(double t, double v) {

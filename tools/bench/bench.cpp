@@ -9,7 +9,7 @@
 // for each scene and thread count it runs the two alternately (A, B, A, B, ...), so that both see
 // the same machine, and prints the best throughput of each and their ratio. On a shared machine a
 // speed-up is a ratio measured in one run, not two absolute figures from two days.
-#include "cases/verification/verification_case.hpp"
+#include "cases/verification/verification_cases.hpp"
 #include "engine/materials/hardening_soil.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
@@ -52,7 +52,7 @@ std::unique_ptr<Material> soil_material(Soil soil) {
   if (soil == Soil::elastic) {
     return std::make_unique<LinearElastic>(50e6, 0.3, 1650.0);
   }
-  return std::make_unique<HardeningSoil>(verification::seed_sand());
+  return verification::seed_sand();
 }
 
 std::unique_ptr<Scene> soil_column(GeometryMode mode, std::size_t target_particles, Soil soil) {
