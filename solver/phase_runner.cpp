@@ -68,6 +68,19 @@ PhaseRunner::PhaseRunner(ExplicitSolver& solver, std::vector<RunPhase> phases,
   std::sort(schedule_.snapshot_times.begin(), schedule_.snapshot_times.end());
   // The next listed penetration follows from the state, so a restarted run needs no bookkeeping.
   skip_reached_depths();
+  // A run continued under a case whose intervals changed: an interval now 0 ("first and last
+  // only", "only when stopped") has no next time, whatever the checkpoint had scheduled (left
+  // there, it would be due at every step); one newly set starts from the current time.
+  const double t = solver_.time();
+  const auto reschedule = [t](double interval, double& next) {
+    if (!(interval > 0.0)) {
+      next = std::numeric_limits<double>::infinity();
+    } else if (!std::isfinite(next)) {
+      next = (std::floor(t / interval) + 1.0) * interval;
+    }
+  };
+  reschedule(schedule_.snapshot_interval, progress_.next_snapshot_time);
+  reschedule(schedule_.checkpoint_interval, progress_.next_checkpoint_time);
 }
 
 bool PhaseRunner::skip_reached_depths() {

@@ -165,6 +165,72 @@ TEST(PhaseRunner, AStoppedRunContinuedByANewRunnerIsTheUninterruptedRun) {
   }
 }
 
+// A run continued under a case whose snapshot and checkpoint intervals are now 0 ("first and
+// last only", "only when stopped"): what its checkpoint had scheduled is not due at every step
+// (it was: a continued paper-resolution run spent its time writing a checkpoint per step), and
+// an interval newly set counts from the time the run goes on at.
+TEST(PhaseRunner, ARunContinuedWithChangedIntervalsFollowsTheNewOnes) {
+  CaseRun run(read_text(source / "cases/verification/vibrating_bar.toml"));
+  RunProgress progress;
+  begin_phase(progress, bar_phases, *run.scene, 0, 0.0);
+  auto nothing_to_set_up = [](std::size_t, double) {};
+  {
+    PhaseRunner first(*run.solver, bar_phases, bar_schedule(), progress, run.log);
+    first.start();
+    ASSERT_EQ(first.run(nothing_to_set_up, [](long steps) { return steps >= 37; }),
+              PhaseRunner::Outcome::interrupted);
+  }
+  const double stopped_at = run.solver->time();
+  ASSERT_LT(stopped_at, progress.next_checkpoint_time); // one was scheduled ahead
+  OutputSchedule quiet = bar_schedule();
+  quiet.snapshot_interval = 0.0;
+  quiet.snapshot_times.clear();
+  quiet.checkpoint_interval = 0.0;
+  Recorder recorder(*run.solver);
+  {
+    PhaseRunner second(*run.solver, bar_phases, quiet, progress, run.log);
+    second.add_observer(recorder);
+    ASSERT_EQ(second.run(nothing_to_set_up, [](long) { return false; }),
+              PhaseRunner::Outcome::complete);
+  }
+  EXPECT_TRUE(recorder.times_of("checkpoint").empty());
+  // Only the states the two phases end in (the runner keeps each phase's end).
+  EXPECT_EQ(recorder.times_of("snapshot"), recorder.times_of("end"));
+  EXPECT_EQ(recorder.times_of("snapshot").size(), 2u);
+
+  // A checkpoint interval set on continuing: due at its multiples from where the run goes on.
+  CaseRun again(read_text(source / "cases/verification/vibrating_bar.toml"));
+  RunProgress restored;
+  begin_phase(restored, bar_phases, *again.scene, 0, 0.0);
+  OutputSchedule none = bar_schedule();
+  none.checkpoint_interval = 0.0;
+  {
+    PhaseRunner first(*again.solver, bar_phases, none, restored, again.log);
+    first.start();
+    ASSERT_EQ(first.run(nothing_to_set_up, [](long steps) { return steps >= 37; }),
+              PhaseRunner::Outcome::interrupted);
+  }
+  const double continued_at = again.solver->time();
+  Recorder every_three(*again.solver);
+  OutputSchedule three = bar_schedule();
+  three.checkpoint_interval = 3.0;
+  PhaseRunner second(*again.solver, bar_phases, three, restored, again.log);
+  second.add_observer(every_three);
+  ASSERT_EQ(second.run(nothing_to_set_up, [](long) { return false; }),
+            PhaseRunner::Outcome::complete);
+  // Due on the first step at or past each multiple of 3 s after the time the run went on at (a
+  // step is about 0.08 s; none of the bar's 16.4 s is skipped).
+  const std::vector<double> checkpoints = every_three.times_of("checkpoint");
+  double due = 3.0 * (std::floor(continued_at / 3.0) + 1.0);
+  ASSERT_EQ(checkpoints.size(), static_cast<std::size_t>(std::floor(16.4 / 3.0)) -
+                                    static_cast<std::size_t>(std::floor(continued_at / 3.0)));
+  for (const double t : checkpoints) {
+    EXPECT_GE(t, due - 1e-9);
+    EXPECT_LT(t, due + 0.1);
+    due += 3.0;
+  }
+}
+
 TEST(PhaseRunner, APhaseEndsAtEquilibriumOnTheCheckStepWhereTheMeasurePasses) {
   // The damped self-weight column: equilibrium within 1e-5 long before its 4 s.
   CaseRun run(read_text(source / "cases/verification/self_weight_column.toml"));
