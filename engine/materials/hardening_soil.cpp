@@ -827,7 +827,7 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
     return modulus;
   }
 
-  const PrincipalStress trial = principal_compression(trial_stress);
+  const PrincipalStress trial = principal_compression(trial_stress, trial_values);
   const double cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
   auto returner_at = [&](const ReturnState& from) {
     return HardeningSoilReturn(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening,

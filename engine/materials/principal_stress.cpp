@@ -1,6 +1,7 @@
 #include "engine/materials/principal_stress.hpp"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -29,16 +30,17 @@ std::array<double, 6> from_matrix(const Eigen::Matrix3d& m, bool engineering_she
 
 namespace {
 
-/// The decomposition of an r-y block and the out-of-plane stress (no theta shears, as everywhere
-/// outside torsion): the block's pair in closed form, its directions from the eigenvector
-/// equation's better-conditioned row, so without iterations or trigonometry.
-PrincipalStress block_compression(const Stress& stress) {
-  const double a11 = -stress[RR], a22 = -stress[YY], a12 = -stress[RY];
+/// The pair of a symmetric 2x2 block [[a11, a12], [a12, a22]]: its values in closed form and the
+/// major direction (c, s) from the eigenvector equation's better-conditioned row (the first entry
+/// is at least the radius, so the vector never cancels); the minor direction is (-s, c).
+struct BlockPair {
+  double major, minor, c, s;
+};
+
+BlockPair block_pair(double a11, double a22, double a12) {
   const double centre = 0.5 * (a11 + a22);
   const double half_difference = 0.5 * (a11 - a22);
   const double radius = std::sqrt(half_difference * half_difference + a12 * a12);
-  // The major direction: (lambda_1 - a22, a12) if a11 >= a22, else (a12, lambda_1 - a11); the
-  // chosen first entry is at least the radius, so the vector never cancels.
   double c = 1.0, s = 0.0;
   if (radius > 0.0) {
     const double x = half_difference >= 0.0 ? half_difference + radius : a12;
@@ -47,12 +49,19 @@ PrincipalStress block_compression(const Stress& stress) {
     c = x / length;
     s = y / length;
   }
+  return {centre + radius, centre - radius, c, s};
+}
+
+/// The decomposition of an r-y block and the out-of-plane stress (no theta shears, as everywhere
+/// outside torsion): the block's pair in closed form, so without iterations or trigonometry.
+PrincipalStress block_compression(const Stress& stress) {
+  const BlockPair pair = block_pair(-stress[RR], -stress[YY], -stress[RY]);
   struct Pair {
     double value;
     Eigen::Vector3d direction;
   };
-  std::array<Pair, 3> pairs{Pair{centre + radius, Eigen::Vector3d(c, s, 0.0)},
-                            Pair{centre - radius, Eigen::Vector3d(-s, c, 0.0)},
+  std::array<Pair, 3> pairs{Pair{pair.major, Eigen::Vector3d(pair.c, pair.s, 0.0)},
+                            Pair{pair.minor, Eigen::Vector3d(-pair.s, pair.c, 0.0)},
                             Pair{-stress[TT], Eigen::Vector3d(0.0, 0.0, 1.0)}};
   if (pairs[2].value > pairs[1].value) {
     std::swap(pairs[1], pairs[2]);
@@ -68,21 +77,71 @@ PrincipalStress block_compression(const Stress& stress) {
   return p;
 }
 
+/// The full tensor (theta shears present) without iterations: the eigenvalue farther from the
+/// other two from the characteristic cubic's trigonometric roots, its direction from the largest
+/// cross product of two rows of A - lambda I (well conditioned: its gap is at least half the
+/// spread of the values), then the other two as the closed-form pair of A projected on the plane
+/// normal to it, which is exact however close they are (the method of D. Eberly, "A robust
+/// eigensolver for 3 x 3 symmetric matrices", 2014). A is the compression-positive tensor.
+PrincipalStress full_compression(const Stress& stress, double apart) {
+  const Eigen::Matrix3d a = -to_matrix(stress);
+  const Eigen::Matrix3d m = a - apart * Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d crosses[3] = {m.row(0).cross(m.row(1)), m.row(0).cross(m.row(2)),
+                                      m.row(1).cross(m.row(2))};
+  const double norms[3] = {crosses[0].squaredNorm(), crosses[1].squaredNorm(),
+                           crosses[2].squaredNorm()};
+  const int best =
+      norms[0] >= norms[1] ? (norms[0] >= norms[2] ? 0 : 2) : (norms[1] >= norms[2] ? 1 : 2);
+  PrincipalStress p;
+  if (!(norms[best] > 0.0)) { // A = lambda I: isotropic, any basis
+    p.values = {apart, apart, apart};
+    return p;
+  }
+  const Eigen::Vector3d u = crosses[best] / std::sqrt(norms[best]);
+  // An orthonormal basis (v, w) of the plane normal to u, from u's larger entries.
+  const Eigen::Vector3d v = std::abs(u.x()) > std::abs(u.y())
+                                ? Eigen::Vector3d(-u.z(), 0.0, u.x()).normalized()
+                                : Eigen::Vector3d(0.0, u.z(), -u.y()).normalized();
+  const Eigen::Vector3d w = u.cross(v);
+  const Eigen::Vector3d av = a * v, aw = a * w;
+  const BlockPair pair = block_pair(v.dot(av), w.dot(aw), v.dot(aw));
+  // Descending: the pair is ordered, and the value apart (its Rayleigh quotient, accurate to
+  // rounding) goes above, between or below it.
+  const double value = u.dot(a * u);
+  const Eigen::Vector3d major = pair.c * v + pair.s * w, minor = -pair.s * v + pair.c * w;
+  if (value >= pair.major) {
+    p.values = {value, pair.major, pair.minor};
+    p.directions << u, major, minor;
+  } else if (value >= pair.minor) {
+    p.values = {pair.major, value, pair.minor};
+    p.directions << major, u, minor;
+  } else {
+    p.values = {pair.major, pair.minor, value};
+    p.directions << major, minor, u;
+  }
+  return p;
+}
+
+/// The eigenvalue of the full tensor farther from the other two, from its ordered values: the
+/// largest if it lies at least as far above the middle one as the smallest lies below.
+double value_apart(const std::array<double, 3>& v) {
+  return v[0] - v[1] >= v[1] - v[2] ? v[0] : v[2];
+}
+
 } // namespace
 
 PrincipalStress principal_compression(const Stress& stress) {
   if (stress[RT] == 0.0 && stress[YT] == 0.0) {
     return block_compression(stress);
   }
-  // Eigenvalues of the compression-positive tensor, ascending from Eigen; reversed so that
-  // values[0] is the major (most compressive) stress.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(-to_matrix(stress));
-  PrincipalStress p;
-  for (int k = 0; k < 3; ++k) {
-    p.values[static_cast<std::size_t>(k)] = solver.eigenvalues()(2 - k);
-    p.directions.col(k) = solver.eigenvectors().col(2 - k);
+  return full_compression(stress, value_apart(principal_compression_values(stress).values));
+}
+
+PrincipalStress principal_compression(const Stress& stress, const PrincipalValues& values) {
+  if (stress[RT] == 0.0 && stress[YT] == 0.0) {
+    return block_compression(stress);
   }
-  return p;
+  return full_compression(stress, value_apart(values.values));
 }
 
 PrincipalValues principal_compression_values(const Stress& stress) {

@@ -25,8 +25,11 @@ struct PrincipalStress {
   Eigen::Matrix3d directions = Eigen::Matrix3d::Identity();
 };
 
-/// Decomposes an engine stress (tension positive). Robust at repeated eigenvalues (K0 states,
-/// triaxial corners): the directions are then any orthonormal basis of the repeated subspace.
+/// Decomposes an engine stress (tension positive), without iterations: an r-y block and the
+/// out-of-plane stress in closed form; with theta shears, the value farther from the other two
+/// and its direction first, then the other two as a closed-form pair in the plane normal to it.
+/// Robust at repeated eigenvalues (K0 states, triaxial corners): the directions are then any
+/// orthonormal basis of the repeated subspace.
 PrincipalStress principal_compression(const Stress& stress);
 
 /// Principal compressive stresses alone (compression positive, descending), for the test of a
@@ -41,6 +44,10 @@ struct PrincipalValues {
   double uncertainty = 0.0;
 };
 PrincipalValues principal_compression_values(const Stress& stress);
+
+/// principal_compression for a stress whose values are known (principal_compression_values of the
+/// same stress): the closed form of the cubic is not evaluated again.
+PrincipalStress principal_compression(const Stress& stress, const PrincipalValues& values);
 
 /// Recomposes an engine stress (tension positive) from principal compressions and directions.
 Stress compose_from_principal(const std::array<double, 3>& compression,
