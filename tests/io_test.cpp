@@ -519,10 +519,12 @@ TEST(RunCommand, ACompleteRunIsExtendedByALongerLastPhaseOrAnAddedPhase) {
                             [](double v) { return std::isnan(v); }));
     EXPECT_TRUE(std::all_of(late.begin() + static_cast<long>(rows_after_longer), late.end(),
                             [](double v) { return std::isfinite(v) && v < 0.0; }));
-    // Wall time runs on across the restarts.
+    // Wall time runs on across the restarts, in the series and in the root's attribute (which
+    // held the last process's alone).
     const auto wall = history.read_doubles("/wall_time");
     EXPECT_TRUE(std::is_sorted(wall.begin(), wall.end()));
     EXPECT_GT(wall.back(), 0.0);
+    EXPECT_GE(history.number_attribute("/", "wall_time"), wall.back());
   }
 
   // Physics may not change under a history.

@@ -95,8 +95,11 @@ def load(spec, quantities, depths, window, body, running=False):
                              f"{depth} m (it reached {penetration.max(initial=0.0):.4f} m)")
                 values[(quantity, depth)] = (float(series[near].mean()),
                                              float(series[near].std()))
-        # A running run has no wall time yet.
+        # A running run has no wall time yet. The /wall_time series carries the whole run's across
+        # restarts (the root attribute held only the last process's before the writer was mended).
         wall = float(history.attrs.get("wall_time", float("nan")))
+        if math.isfinite(wall) and "wall_time" in history and len(history["wall_time"]) > 0:
+            wall = max(wall, float(history["wall_time"][-1]))
     return float(h), wall, directory, values
 
 
