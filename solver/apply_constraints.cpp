@@ -8,10 +8,19 @@ namespace mpile::passes {
 
 namespace {
 
-void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_increment) {
+/// Every node of the soil's field moved as the scene's velocity field says ([affine_motion]);
+/// returns the work of the nodal forces that does over the step (when record_increment). The
+/// particles take only the field's change over the step (as next to a support), so the force at a
+/// node is its mass times that change over dt, less the force the momentum balance applied (its
+/// velocity increment, which this overwrites): against a steady field, the work of the internal
+/// forces. (The jump from the balance's velocity to the field's never reaches the particles, so
+/// booking it, as a support's reaction does, would count energy no particle receives.)
+double apply_velocity_field(Scene& scene, const StepParameters& step, bool record_increment,
+                            double inertia_per_dt) {
   Grid& grid = scene.grid;
   const bool angular = has_theta(scene.mode);
   const double t_mid = step.time + 0.5 * step.dt;
+  double work = 0.0;
   for (std::size_t i = 0; i < grid.nodes.size(); ++i) {
     GridNode& node = grid.nodes[i];
     if (node.mass <= step.mass_floor) {
@@ -30,11 +39,15 @@ void apply_velocity_field(Scene& scene, const StepParameters& step, bool record_
     }
     for (std::size_t d = 0; d < 3; ++d) {
       if (record_increment) {
+        const double inertia = angular && d == 2 ? node.inertia : node.mass;
+        const double change = (v[d] - v_before[d]) - node.velocity_increment()[d];
+        work += inertia * change * inertia_per_dt * v[d] * step.dt;
         node.velocity_increment()[d] = v[d] - v_before[d];
       }
       node.velocity()[d] = v[d];
     }
   }
+  return work;
 }
 
 } // namespace
@@ -126,7 +139,7 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
     }
   }
   if (scene.velocity_field && fields != ConstraintFields::structures) {
-    apply_velocity_field(scene, step, record_reactions);
+    work += apply_velocity_field(scene, step, record_reactions, inertia_per_dt);
   }
   return work;
 }
