@@ -52,6 +52,7 @@ ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& lo
                         settings_.max_time_step);
   // A thousandth of the first step: a run that needs steps that short has gone wrong.
   min_dt_ = settings_.min_time_step > 0.0 ? settings_.min_time_step : 1e-3 * stable_dt_;
+  step_report_below_ = 0.5 * stable_dt_;
   energy_.kinetic_reference = settings_.mass_scaling * kinetic_energy(scene_);
   energy_.elastic_reference = elastic_energy(scene_);
   report_settings();
@@ -66,6 +67,7 @@ ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& lo
   stable_dt_ = restored.stable_dt;
   last_dt_ = restored.last_dt;
   min_dt_ = restored.min_dt;
+  step_report_below_ = 0.5 * stable_dt_;
   energy_ = restored.energy;
   report_settings();
 }
@@ -234,6 +236,26 @@ void ExplicitSolver::set_stable_time_step(double step_crossing_time, double cros
       << " s (min_time_step): a particle's wave speed or velocity has run away";
     throw SimulationError(s.str());
   }
+  if (stable_dt_ < step_report_below_) {
+    report_step_limit(2.0 * step_report_below_);
+    step_report_below_ = 0.5 * stable_dt_;
+  }
+}
+
+void ExplicitSolver::report_step_limit(double earlier_step) {
+  // A step that halves costs twice the steps from here on: say which particle sets it and why (a
+  // stretched particle's density falls, so its wave speed grows; a fast one carries its velocity).
+  const passes::StepLimit limit = passes::step_limit(scene_, settings_);
+  const Particles& p = scene_.particles;
+  const std::size_t i = limit.particle;
+  const Material& material = *scene_.materials[p.material[i]];
+  std::ostringstream s;
+  s << at_step(steps_, time_) << "the stable step fell to " << stable_dt_ << " s, under half of "
+    << earlier_step << " s; it is set by " << position_of(p, i) << " of body '"
+    << scene_.body_names.at(p.body[i]) << "' in a cell of " << limit.cell << " m: wave speed "
+    << limit.wave_speed << " m/s at a density of " << limit.density << " kg/m^3 (its material's "
+    << material.density() << "), velocity " << limit.speed << " m/s";
+  log_.info(s.str());
 }
 
 void ExplicitSolver::rebin() {

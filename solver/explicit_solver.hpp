@@ -108,6 +108,7 @@ private:
   /// the step just taken was longer than the material allows now in the cells the step was
   /// computed in (Courant number above 1) or the step collapsed.
   void set_stable_time_step(double step_crossing_time, double crossing_time, double dt_taken);
+  void report_step_limit(double earlier_step);
   void sort_particles_by_cell();
   /// Removes the rigid bodies' particles the stress pass found outside the grid (cell_r = -1).
   void drop_rigid_particles_outside();
@@ -126,6 +127,9 @@ private:
   double stable_dt_ = 0.0;
   double mass_floor_ = 0.0;
   double min_dt_ = 0.0;
+  /// The log says what sets the step when it falls below this: half the step at the start, then
+  /// half the step last reported (not in checkpoints: a restart reports from its own step).
+  double step_report_below_ = 0.0;
   EnergyLedger energy_;
   /// Each particle's c_p + |v_p| from the last stress update, kept only with a moving mesh.
   std::vector<double> signal_speed_;

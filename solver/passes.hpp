@@ -139,4 +139,16 @@ void find_structure_reach(Scene& scene, ParticleBins& bins);
 /// min over particles of h_cell / (c_p + |v_p|) from the materials' current stiffness.
 double min_crossing_time(const Scene& scene, const SolverSettings& settings);
 
+/// The particle min_crossing_time's limit comes from, and what sets it there: for the log when
+/// the step falls (a scan of every particle, done once for each halving of the step).
+struct StepLimit {
+  std::size_t particle = 0;
+  double crossing_time = 0.0; // h / (c + |v|), s
+  double wave_speed = 0.0;    // c = sqrt(M / rho), m/s, with the mass scaling
+  double density = 0.0;       // m / V, kg/m^3, without it
+  double speed = 0.0;         // |v|, m/s
+  double cell = 0.0;          // h, the cell's smaller side, m
+};
+StepLimit step_limit(const Scene& scene, const SolverSettings& settings);
+
 } // namespace mpile::passes

@@ -11,27 +11,47 @@
 
 namespace mpile::passes {
 
-double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
+namespace {
+
+/// Particle i's crossing time and what makes it.
+StepLimit crossing_of(const Scene& scene, const SolverSettings& settings, std::size_t i) {
   const Particles& p = scene.particles;
-  const bool theta = has_theta(scene.mode);
+  const Material& material = *scene.materials[p.material[i]];
+  const double modulus = material.constrained_modulus(
+      p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
+  const double density = settings.mass_scaling * p.mass[i] / p.volume[i];
+  double speed = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
+  if (has_theta(scene.mode)) {
+    speed += p.v_theta[i] * p.v_theta[i];
+  }
+  const double h = scene.grid.cell_min_size(p.cell_r[i], p.cell_y[i]);
+  const double wave_speed = std::sqrt(modulus / density);
+  const double velocity = std::sqrt(speed);
+  return {i, h / (wave_speed + velocity), wave_speed, p.mass[i] / p.volume[i], velocity, h};
+}
+
+} // namespace
+
+double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
   return parallel_reduce(
-      p.size(), std::numeric_limits<double>::infinity(),
+      scene.particles.size(), std::numeric_limits<double>::infinity(),
       [&](std::size_t begin, std::size_t end, double limit) {
         for (std::size_t i = begin; i != end; ++i) {
-          const Material& material = *scene.materials[p.material[i]];
-          const double modulus = material.constrained_modulus(
-              p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
-          const double density = settings.mass_scaling * p.mass[i] / p.volume[i];
-          double speed = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
-          if (theta) {
-            speed += p.v_theta[i] * p.v_theta[i];
-          }
-          const double h = scene.grid.cell_min_size(p.cell_r[i], p.cell_y[i]);
-          limit = std::min(limit, h / (std::sqrt(modulus / density) + std::sqrt(speed)));
+          limit = std::min(limit, crossing_of(scene, settings, i).crossing_time);
         }
         return limit;
       },
       [](double a, double b) { return std::min(a, b); });
+}
+
+StepLimit step_limit(const Scene& scene, const SolverSettings& settings) {
+  StepLimit limit;
+  limit.crossing_time = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < scene.particles.size(); ++i) {
+    const StepLimit here = crossing_of(scene, settings, i);
+    limit = here.crossing_time < limit.crossing_time ? here : limit;
+  }
+  return limit;
 }
 
 } // namespace mpile::passes
