@@ -167,7 +167,7 @@ TEST(PhaseRunner, AStoppedRunContinuedByANewRunnerIsTheUninterruptedRun) {
 
 // A run continued under a case whose snapshot and checkpoint intervals are now 0 ("first and
 // last only", "only when stopped"): what its checkpoint had scheduled is not due at every step
-// (it was: a continued paper-resolution run spent its time writing a checkpoint per step), and
+// (it was: a continued resolved-wall GDP run spent its time writing a checkpoint per step), and
 // an interval newly set counts from the time the run goes on at.
 TEST(PhaseRunner, ARunContinuedWithChangedIntervalsFollowsTheNewOnes) {
   CaseRun run(read_text(source / "cases/verification/vibrating_bar.toml"));
