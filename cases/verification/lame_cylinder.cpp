@@ -15,7 +15,8 @@ Report run_lame_cylinder(const Options& options) {
   CaseFileRun run("lame_cylinder.toml", options, PoissonRatio::the_options);
   const Rectangle wall = run.spec().bodies.at(0).region.bounds();
   const double a = wall.r_min, b = wall.r_max;
-  const double pressure = run.spec().loads.at(0).traction.value(1e9); // the ramp's final value
+  // The pressure the ramp has reached at the phase's end.
+  const double pressure = run.spec().loads.at(0).traction.value(run.spec().phases.at(0).duration);
   const double young = run.parameter("elastic", "young_modulus");
   const double nu = run.parameter("elastic", "poisson_ratio");
   const double A = pressure * a * a / (b * b - a * a);

@@ -132,9 +132,9 @@ double value_apart(const std::array<double, 3>& v) {
 
 PrincipalStress principal_compression(const Stress& stress) {
   if (stress[RT] == 0.0 && stress[YT] == 0.0) {
-    return block_compression(stress);
+    return block_compression(stress); // without the values, which the block does not need
   }
-  return full_compression(stress, value_apart(principal_compression_values(stress).values));
+  return principal_compression(stress, principal_compression_values(stress));
 }
 
 PrincipalStress principal_compression(const Stress& stress, const PrincipalValues& values) {
