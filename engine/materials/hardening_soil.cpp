@@ -161,7 +161,23 @@ double HardeningSoil::failure_deviator(double sigma_3) const {
 }
 
 double HardeningSoil::yield_deviator(double gamma_p, double sigma_3) const {
-  return yield_deviator_slopes(gamma_p, sigma_3).value;
+  // The value alone, by the same operations as yield_deviator_slopes (so the two agree to the
+  // bit): the residual checks of every candidate state need no slopes.
+  const double qf = failure_deviator(sigma_3);
+  if (qf <= 0.0 || gamma_p <= 0.0) {
+    return 0.0;
+  }
+  const double c_cos = parameters_.cohesion * cos_phi_;
+  const double raw_ratio = (c_cos + sigma_3 * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
+  const double factor =
+      std::pow(std::max(raw_ratio, parameters_.stiffness_floor), parameters_.power);
+  const double initial = 2.0 * parameters_.e50_ref * factor / (2.0 - parameters_.failure_ratio);
+  const double A = 2.0 / initial;
+  const double B = 2.0 / (parameters_.eur_ref * factor);
+  const double qa = qf / parameters_.failure_ratio;
+  const double b = (A - B) * qa + gamma_p;
+  const double root = std::sqrt(b * b + 4.0 * B * gamma_p * qa);
+  return std::min(2.0 * gamma_p * qa / (b + root), qf);
 }
 
 YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_3) const {
