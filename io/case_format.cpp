@@ -463,6 +463,9 @@ std::vector<TableSpec> declare() {
             .or_default(solver.jaumann_rate),
         boolean("split_particles", "split a particle grown longer than its cell into halves")
             .or_default(solver.split_particles),
+        boolean("stress_free_inside_rigid",
+                "soil whose centre lies inside a rigid body carries no stress and sets no step")
+            .or_default(solver.stress_free_inside_rigid),
         number("mass_scaling", "-", "inertia multiplier for quasi-static work")
             .or_default(solver.mass_scaling)
             .at_least(1.0),

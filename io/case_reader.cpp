@@ -560,6 +560,7 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   s.musl = table->string("scheme") == "musl";
   s.jaumann_rate = table->boolean("jaumann_rate");
   s.split_particles = table->boolean("split_particles");
+  s.stress_free_inside_rigid = table->boolean("stress_free_inside_rigid");
   s.mass_scaling = table->number("mass_scaling");
   if (table->has("gravity")) {
     const auto g = table->numbers("gravity", 2);

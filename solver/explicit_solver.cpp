@@ -586,6 +586,16 @@ void ExplicitSolver::step_in_mode(double dt) {
   time_ += dt;
   last_dt_ = dt;
   ++steps_;
+  if (result.stress_free_inside_rigid >= stress_free_report_at_) {
+    while (stress_free_report_at_ <= result.stress_free_inside_rigid) {
+      stress_free_report_at_ *= 10;
+    }
+    std::ostringstream s;
+    s << at_step(steps_, time_) << result.stress_free_inside_rigid
+      << " soil particle(s) lie inside rigid bodies: they carry no stress there and set no time "
+         "step ([solver] stress_free_inside_rigid)";
+    log_.info(s.str());
+  }
   energy_.external_work += result.gravity_work;
   energy_.internal_work += result.internal_work;
   if (result.particle_nonfinite >= 0) {

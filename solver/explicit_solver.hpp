@@ -131,6 +131,9 @@ private:
   /// half the step last reported (not in checkpoints: a restart reports from its own step).
   double step_report_below_ = 0.0;
   EnergyLedger energy_;
+  /// The log says how many soil particles lie inside rigid bodies when a step's count reaches this
+  /// (then the next power of ten); not in checkpoints.
+  std::int64_t stress_free_report_at_ = 1;
   /// Each particle's c_p + |v_p| from the last stress update, kept only with a moving mesh.
   std::vector<double> signal_speed_;
   double last_dt_ = 0.0;

@@ -116,6 +116,7 @@ struct StressPassResult {
   double internal_work = 0.0;           // sum of V sigma : d eps over the particles
   std::int64_t particle_nonfinite = -1; // lowest index of a particle with a non-finite stress or
                                         // velocity, or -1
+  std::int64_t stress_free_inside_rigid = 0; // soil particles inside rigid bodies, made stress-free
 };
 
 /// With signal_speed (one entry per particle), also keeps each particle's c_p + |v_p| there, for a

@@ -5,6 +5,7 @@
 #include "engine/shape_functions.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
+#include "solver/rigid_interiors.hpp"
 
 #include <algorithm>
 #include <array>
@@ -84,6 +85,7 @@ struct BlockResult {
   double gravity_work = 0.0;
   double internal_work = 0.0;
   std::int64_t first_nonfinite = std::numeric_limits<std::int64_t>::max();
+  std::int64_t stress_free = 0; // soil particles inside rigid bodies
 };
 
 /// 1. Strain increment and spin from the nodal velocities at x^n (physics.md section 2), and the
@@ -189,12 +191,15 @@ void update_materials(Scene& scene, std::span<const std::int32_t> particles,
   }
 }
 
-/// 5. Volume and position, the new cell, and the particle's limit on the next time step.
+/// 5. Volume and position, the new cell, and the particle's limit on the next time step. Soil
+/// inside a rigid body (`interiors`, null when not kept) ends the step without stress and sets no
+/// wave speed (RigidInteriors).
 template <GeometryMode mode, bool contact>
 void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, int block,
                     std::span<const std::int32_t> particles, bool mixed,
-                    const std::vector<char>& rigid_material, const SolverSettings& settings,
-                    const BlockScratch& scratch, std::span<double> signal_speed, BlockResult& out) {
+                    const std::vector<char>& rigid_material, const RigidInteriors* interiors,
+                    const SolverSettings& settings, const BlockScratch& scratch,
+                    std::span<double> signal_speed, BlockResult& out) {
   const double inverse_beta = 1.0 / settings.mass_scaling;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
@@ -203,6 +208,16 @@ void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, in
     const StrainIncrement& de = scratch.strain[k];
     const double volume_before = p.volume[i];
     p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
+    bool stress_free = false;
+    if constexpr (contact) {
+      if (interiors != nullptr && interiors->holds_soil(p, i)) {
+        // Its stress at the start of the step took part in this step's forces; the work of the
+        // step is booked from it to zero (the stored energy it had becomes dissipation).
+        p.stress[i] = Stress{};
+        stress_free = true;
+        ++out.stress_free;
+      }
+    }
     const Stress& s = p.stress[i];
     out.internal_work +=
         0.25 * (volume_before + p.volume[i]) * (scratch.work_before[k] + stress_power(s, de));
@@ -247,7 +262,8 @@ void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, in
     p.cell_r[i] = cr;
     p.cell_y[i] = cy;
     const double density = p.mass[i] / p.volume[i];
-    const double wave_speed = std::sqrt(scratch.modulus[k] * inverse_beta / density);
+    const double wave_speed =
+        stress_free ? 0.0 : std::sqrt(scratch.modulus[k] * inverse_beta / density);
     double speed = p.v_r[i] * p.v_r[i] + p.v_y[i] * p.v_y[i];
     if constexpr (has_theta(mode)) {
       speed += p.v_theta[i] * p.v_theta[i];
@@ -279,6 +295,7 @@ StressPassResult reduce(const ParticleBins& bins, const std::vector<BlockResult>
     result.gravity_work += out.gravity_work;
     result.internal_work += out.internal_work;
     first_nonfinite = std::min(first_nonfinite, out.first_nonfinite);
+    result.stress_free_inside_rigid += out.stress_free;
   }
   result.particle_outside =
       first_outside == std::numeric_limits<std::int64_t>::max() ? -1 : first_outside;
@@ -298,6 +315,11 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
+  std::optional<RigidInteriors> interiors;
+  if (contact && settings.stress_free_inside_rigid) {
+    interiors.emplace(scene);
+  }
+  const RigidInteriors* inside_rigid = interiors && !interiors->empty() ? &*interiors : nullptr;
   std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
 
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
@@ -318,8 +340,8 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
     }
     corotate(p, particles, settings.jaumann_rate, scratch);
     update_materials(scene, particles, scratch);
-    move_particles<mode, contact>(grid, p, bins, block, particles, mixed, rigid_material, settings,
-                                  scratch, signal_speed,
+    move_particles<mode, contact>(grid, p, bins, block, particles, mixed, rigid_material,
+                                  inside_rigid, settings, scratch, signal_speed,
                                   block_results[static_cast<std::size_t>(block)]);
   });
   return reduce(bins, block_results);

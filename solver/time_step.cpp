@@ -2,19 +2,35 @@
 // section 8), for the first step; later steps get it from the stress update. Reads particle cell,
 // mass, volume, velocity, stress and state.
 #include "solver/passes.hpp"
+#include "solver/rigid_interiors.hpp"
 
 #include "engine/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace mpile::passes {
 
 namespace {
 
-/// Particle i's crossing time and what makes it.
-StepLimit crossing_of(const Scene& scene, const SolverSettings& settings, std::size_t i) {
+/// The rigid bodies' interiors when soil there sets no step (null otherwise).
+std::optional<RigidInteriors> interiors_of(const Scene& scene, const SolverSettings& settings) {
+  if (!settings.stress_free_inside_rigid || scene.contacts.empty()) {
+    return std::nullopt;
+  }
+  std::optional<RigidInteriors> interiors(std::in_place, scene);
+  if (interiors->empty()) {
+    return std::nullopt;
+  }
+  return interiors;
+}
+
+/// Particle i's crossing time and what makes it; soil inside a rigid body carries no stress and
+/// has no wave speed (RigidInteriors).
+StepLimit crossing_of(const Scene& scene, const SolverSettings& settings,
+                      const std::optional<RigidInteriors>& interiors, std::size_t i) {
   const Particles& p = scene.particles;
   const Material& material = *scene.materials[p.material[i]];
   const double modulus = material.constrained_modulus(
@@ -25,7 +41,8 @@ StepLimit crossing_of(const Scene& scene, const SolverSettings& settings, std::s
     speed += p.v_theta[i] * p.v_theta[i];
   }
   const double h = scene.grid.cell_min_size(p.cell_r[i], p.cell_y[i]);
-  const double wave_speed = std::sqrt(modulus / density);
+  const double wave_speed =
+      interiors && interiors->holds_soil(p, i) ? 0.0 : std::sqrt(modulus / density);
   const double velocity = std::sqrt(speed);
   return {i, h / (wave_speed + velocity), wave_speed, p.mass[i] / p.volume[i], velocity, h};
 }
@@ -33,11 +50,12 @@ StepLimit crossing_of(const Scene& scene, const SolverSettings& settings, std::s
 } // namespace
 
 double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
+  const std::optional<RigidInteriors> interiors = interiors_of(scene, settings);
   return parallel_reduce(
       scene.particles.size(), std::numeric_limits<double>::infinity(),
       [&](std::size_t begin, std::size_t end, double limit) {
         for (std::size_t i = begin; i != end; ++i) {
-          limit = std::min(limit, crossing_of(scene, settings, i).crossing_time);
+          limit = std::min(limit, crossing_of(scene, settings, interiors, i).crossing_time);
         }
         return limit;
       },
@@ -45,10 +63,11 @@ double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
 }
 
 StepLimit step_limit(const Scene& scene, const SolverSettings& settings) {
+  const std::optional<RigidInteriors> interiors = interiors_of(scene, settings);
   StepLimit limit;
   limit.crossing_time = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {
-    const StepLimit here = crossing_of(scene, settings, i);
+    const StepLimit here = crossing_of(scene, settings, interiors, i);
     limit = here.crossing_time < limit.crossing_time ? here : limit;
   }
   return limit;

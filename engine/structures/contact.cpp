@@ -64,6 +64,34 @@ void StructureOutline::rotate(double angle, double r, double y) {
   }
 }
 
+bool StructureOutline::contains(double r, double y) const {
+  bool inside = false;
+  const std::size_t n = vertices.size();
+  for (std::size_t e = 0, previous = n - 1; e < n; previous = e++) {
+    const auto& a = vertices[previous];
+    const auto& b = vertices[e];
+    // Edges whose y-range holds y (half-open, so a vertex is counted once) and that pass to the
+    // right of the point.
+    if ((a[1] > y) != (b[1] > y) && r < a[0] + (y - a[1]) / (b[1] - a[1]) * (b[0] - a[0])) {
+      inside = !inside;
+    }
+  }
+  return inside;
+}
+
+std::array<double, 4> StructureOutline::bounds() const {
+  std::array<double, 4> box{
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (const auto& v : vertices) {
+    box[0] = std::min(box[0], v[0]);
+    box[1] = std::max(box[1], v[0]);
+    box[2] = std::min(box[2], v[1]);
+    box[3] = std::max(box[3], v[1]);
+  }
+  return box;
+}
+
 std::vector<SurfaceAreas> surface_areas(const StructureOutline& outline, std::size_t surfaces,
                                         GeometryMode mode) {
   std::vector<SurfaceAreas> areas(surfaces);

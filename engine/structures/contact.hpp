@@ -30,6 +30,11 @@ struct StructureOutline {
   void translate(double dr, double dy);
   /// Rotates about (r, y) by angle (rad, counter-clockwise).
   void rotate(double angle, double r, double y);
+
+  /// Whether (r, y) lies strictly inside (crossing number: any simple polygon, convex or not).
+  bool contains(double r, double y) const;
+  /// The smallest axis-aligned box holding the outline: {r_min, r_max, y_min, y_max}.
+  std::array<double, 4> bounds() const;
 };
 
 /// Edges of the regular polygon that stands for a circle's outline: convex, as OutlineDistance
