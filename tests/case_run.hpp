@@ -128,4 +128,59 @@ band = [1.0, 1.4]
 travel = 0.2
 )";
 
+/// A small open pile (D = 1 m, wall 0.1 m, one cell across it unless `monopile_extra` says
+/// otherwise) in Mohr-Coulomb soil on the moving mesh, jacked at 1 m/s after a 0.1 s ramp for
+/// `duration` seconds: a thick wall and a coarse mesh keep it short. `monopile_extra` and
+/// `solver_extra` are lines added to those tables (band sizes, wall cells, solver choices).
+inline std::string jacked_thick_pile(const std::string& monopile_extra,
+                                     const std::string& solver_extra, double duration) {
+  std::ostringstream s;
+  s << R"(
+title = "jacked thick pile"
+[materials.soil]
+type = "mohr_coulomb"
+young_modulus = 20e6
+poisson_ratio = 0.3
+cohesion = 5e3
+friction_angle = 30.0
+density = 1800.0
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 200e9
+poisson_ratio = 0.0
+density = 8000.0
+[monopile]
+pile_length = 4.0
+diameter = 1.0
+wall_thickness = 0.1
+embedment = 1.0
+soil_width = 2.5
+soil_depth = 5.0
+head_room = 0.8
+fine_cell = 0.1
+fine_width = 0.2
+shaft_cell = 0.1
+coarse_cell = 0.4
+soil_material = "soil"
+pile_material = "steel"
+friction = 0.4
+)" << monopile_extra
+    << R"(
+[monopile.drive]
+velocity_y = { type = "ramp", value = -1.0, duration = 0.1 }
+angular_velocity = 0.0
+[solver]
+gravity = [0.0, -9.81]
+flip_fraction = 0.99
+)" << solver_extra
+    << R"(
+[[phases]]
+name = "jacking"
+duration = )"
+    << duration << R"(
+k0 = [{ material = "soil", surface = 5.0, k0 = 0.5 }]
+)";
+  return s.str();
+}
+
 } // namespace mpile

@@ -143,53 +143,12 @@ TEST(MonopileGeometry, AResolvedWallHasItsCellsAcrossItBesideItAndAtTheTip) {
   }
 }
 
-/// A small monopile in Mohr-Coulomb soil, jacked fast: a thick wall and a coarse mesh keep it
-/// short.
+/// A small monopile in Mohr-Coulomb soil, jacked fast, with a band of `band` above and below
+/// the tip.
 std::string jacked_pile(double band) {
-  std::ostringstream s;
-  s << R"(
-title = "moving mesh test"
-[materials.soil]
-type = "mohr_coulomb"
-young_modulus = 20e6
-poisson_ratio = 0.3
-cohesion = 5e3
-friction_angle = 30.0
-density = 1800.0
-[materials.steel]
-type = "linear_elastic"
-young_modulus = 200e9
-poisson_ratio = 0.0
-density = 8000.0
-[monopile]
-pile_length = 4.0
-diameter = 1.0
-wall_thickness = 0.1
-embedment = 1.0
-soil_width = 2.5
-soil_depth = 5.0
-head_room = 0.8
-fine_cell = 0.1
-fine_width = 0.2
-shaft_cell = 0.1
-coarse_cell = 0.4
-soil_material = "soil"
-pile_material = "steel"
-friction = 0.4
-band_below = )"
-    << band << "\nband_above = " << band << R"(
-[monopile.drive]
-velocity_y = { type = "ramp", value = -1.0, duration = 0.1 }
-angular_velocity = 0.0
-[solver]
-gravity = [0.0, -9.81]
-flip_fraction = 0.99
-[[phases]]
-name = "jacking"
-duration = 0.65
-k0 = [{ material = "soil", surface = 5.0, k0 = 0.5 }]
-)";
-  return s.str();
+  std::ostringstream extra;
+  extra << "band_below = " << band << "\nband_above = " << band << "\n";
+  return jacked_thick_pile(extra.str(), "", 0.65);
 }
 
 struct JackedReactions {
