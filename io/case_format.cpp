@@ -464,7 +464,8 @@ std::vector<TableSpec> declare() {
         boolean("split_particles", "split a particle grown longer than its cell into halves")
             .or_default(solver.split_particles),
         boolean("stress_free_inside_rigid",
-                "soil whose centre lies inside a rigid body carries no stress and sets no step")
+                "soil stretched below half its density inside a rigid body carries no stress "
+                "and sets no step")
             .or_default(solver.stress_free_inside_rigid),
         number("mass_scaling", "-", "inertia multiplier for quasi-static work")
             .or_default(solver.mass_scaling)
