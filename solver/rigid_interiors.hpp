@@ -4,8 +4,10 @@
 // (SolverSettings::stress_free_inside_rigid, solver/stress_update.cpp).
 
 #include "engine/scene.hpp"
+#include "solver/solver_settings.hpp"
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace mpile::passes {
@@ -64,5 +66,19 @@ private:
   std::vector<Interior> interiors_;
   std::vector<double> stretched_density_; // per material
 };
+
+/// The rigid bodies' interiors when the settings make soil there stress-free and the scene has a
+/// rigid body with an outline; nothing otherwise.
+inline std::optional<RigidInteriors> kept_rigid_interiors(const Scene& scene,
+                                                          const SolverSettings& settings) {
+  if (!settings.stress_free_inside_rigid || scene.contacts.empty()) {
+    return std::nullopt;
+  }
+  std::optional<RigidInteriors> interiors(std::in_place, scene);
+  if (interiors->empty()) {
+    return std::nullopt;
+  }
+  return interiors;
+}
 
 } // namespace mpile::passes

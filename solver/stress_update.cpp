@@ -315,11 +315,9 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
-  std::optional<RigidInteriors> interiors;
-  if (contact && settings.stress_free_inside_rigid) {
-    interiors.emplace(scene);
-  }
-  const RigidInteriors* inside_rigid = interiors && !interiors->empty() ? &*interiors : nullptr;
+  const std::optional<RigidInteriors> interiors =
+      contact ? kept_rigid_interiors(scene, settings) : std::nullopt;
+  const RigidInteriors* inside_rigid = interiors ? &*interiors : nullptr;
   std::vector<BlockResult> block_results(static_cast<std::size_t>(bins.block_count()));
 
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {

@@ -15,18 +15,6 @@ namespace mpile::passes {
 
 namespace {
 
-/// The rigid bodies' interiors when soil there sets no step (null otherwise).
-std::optional<RigidInteriors> interiors_of(const Scene& scene, const SolverSettings& settings) {
-  if (!settings.stress_free_inside_rigid || scene.contacts.empty()) {
-    return std::nullopt;
-  }
-  std::optional<RigidInteriors> interiors(std::in_place, scene);
-  if (interiors->empty()) {
-    return std::nullopt;
-  }
-  return interiors;
-}
-
 /// Particle i's crossing time and what makes it; soil inside a rigid body carries no stress and
 /// has no wave speed (RigidInteriors).
 StepLimit crossing_of(const Scene& scene, const SolverSettings& settings,
@@ -50,7 +38,7 @@ StepLimit crossing_of(const Scene& scene, const SolverSettings& settings,
 } // namespace
 
 double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
-  const std::optional<RigidInteriors> interiors = interiors_of(scene, settings);
+  const std::optional<RigidInteriors> interiors = kept_rigid_interiors(scene, settings);
   return parallel_reduce(
       scene.particles.size(), std::numeric_limits<double>::infinity(),
       [&](std::size_t begin, std::size_t end, double limit) {
@@ -63,7 +51,7 @@ double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
 }
 
 StepLimit step_limit(const Scene& scene, const SolverSettings& settings) {
-  const std::optional<RigidInteriors> interiors = interiors_of(scene, settings);
+  const std::optional<RigidInteriors> interiors = kept_rigid_interiors(scene, settings);
   StepLimit limit;
   limit.crossing_time = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {

@@ -160,24 +160,32 @@ double HardeningSoil::failure_deviator(double sigma_3) const {
   return 2.0 * sin_phi_ * std::max(sigma_3 + a_, 0.0) / (1.0 - sin_phi_);
 }
 
+HardeningSoil::YieldHyperbola HardeningSoil::yield_hyperbola(double qf, double sigma_3) const {
+  // E50 and Eur share the stress factor, so the power law is evaluated once: it dominates the cost
+  // of the return, which needs the yield deviator at every iteration.
+  YieldHyperbola h;
+  const double c_cos = parameters_.cohesion * cos_phi_;
+  h.raw_ratio = (c_cos + sigma_3 * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
+  h.ratio = std::max(h.raw_ratio, parameters_.stiffness_floor);
+  const double factor = std::pow(h.ratio, parameters_.power);
+  const double initial = 2.0 * parameters_.e50_ref * factor / (2.0 - parameters_.failure_ratio);
+  h.A = 2.0 / initial;
+  h.B = 2.0 / (parameters_.eur_ref * factor);
+  h.qa = qf / parameters_.failure_ratio;
+  return h;
+}
+
 double HardeningSoil::yield_deviator(double gamma_p, double sigma_3) const {
-  // The value alone, by the same operations as yield_deviator_slopes (so the two agree to the
-  // bit): the residual checks of every candidate state need no slopes.
+  // The value alone (the residual checks of every candidate state need no slopes), by the same
+  // operations as yield_deviator_slopes, so the two agree to the bit.
   const double qf = failure_deviator(sigma_3);
   if (qf <= 0.0 || gamma_p <= 0.0) {
     return 0.0;
   }
-  const double c_cos = parameters_.cohesion * cos_phi_;
-  const double raw_ratio = (c_cos + sigma_3 * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
-  const double factor =
-      std::pow(std::max(raw_ratio, parameters_.stiffness_floor), parameters_.power);
-  const double initial = 2.0 * parameters_.e50_ref * factor / (2.0 - parameters_.failure_ratio);
-  const double A = 2.0 / initial;
-  const double B = 2.0 / (parameters_.eur_ref * factor);
-  const double qa = qf / parameters_.failure_ratio;
-  const double b = (A - B) * qa + gamma_p;
-  const double root = std::sqrt(b * b + 4.0 * B * gamma_p * qa);
-  return std::min(2.0 * gamma_p * qa / (b + root), qf);
+  const YieldHyperbola h = yield_hyperbola(qf, sigma_3);
+  const double b = (h.A - h.B) * h.qa + gamma_p;
+  const double root = std::sqrt(b * b + 4.0 * h.B * gamma_p * h.qa);
+  return std::min(2.0 * gamma_p * h.qa / (b + root), qf);
 }
 
 YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_3) const {
@@ -185,22 +193,18 @@ YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_
   if (qf <= 0.0) {
     return {};
   }
-  // q_y inverts f-bar(q) = gamma without the 1/(qa - q) singularity (hardening_soil.md 1.3).
-  // E50 and Eur share the stress factor, so the power law is evaluated once: it dominates the cost
-  // of the return, which calls this function at every iteration. The slopes are exact derivatives
-  // of the same closed form and cost no further power law.
+  // q_y inverts f-bar(q) = gamma without the 1/(qa - q) singularity (hardening_soil.md 1.3). The
+  // slopes are exact derivatives of the same closed form and cost no further power law.
   const double qf_slope = 2.0 * sin_phi_ / (1.0 - sin_phi_);
-  const double c_cos = parameters_.cohesion * cos_phi_;
-  const double raw_ratio = (c_cos + sigma_3 * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
-  const double ratio = std::max(raw_ratio, parameters_.stiffness_floor);
-  const double ratio_slope = raw_ratio > parameters_.stiffness_floor
-                                 ? sin_phi_ / (c_cos + parameters_.p_ref * sin_phi_)
-                                 : 0.0;
-  const double factor = std::pow(ratio, parameters_.power);
-  const double initial = 2.0 * parameters_.e50_ref * factor / (2.0 - parameters_.failure_ratio);
-  const double A = 2.0 / initial;
-  const double B = 2.0 / (parameters_.eur_ref * factor);
-  const double qa = qf / parameters_.failure_ratio;
+  const YieldHyperbola h = yield_hyperbola(qf, sigma_3);
+  const double ratio = h.ratio;
+  const double ratio_slope =
+      h.raw_ratio > parameters_.stiffness_floor
+          ? sin_phi_ / (parameters_.cohesion * cos_phi_ + parameters_.p_ref * sin_phi_)
+          : 0.0;
+  const double A = h.A;
+  const double B = h.B;
+  const double qa = h.qa;
   if (gamma_p <= 0.0) {
     // q_y = gamma / (A - B) near gamma = 0: its slope there starts a Newton iteration from zero.
     return {0.0, 1.0 / (A - B), 0.0};

@@ -83,6 +83,12 @@ private:
   double substep(Stress& stress, double* state, const StrainIncrement& part, double young,
                  double sin_psi) const;
   double stress_ratio(double sigma) const;
+  /// The yield deviator's hyperbola at sigma_3 (with qf > 0): the stiffnesses' stress ratio (raw
+  /// and floored), A = 2 / E_i, B = 2 / Eur and the asymptote qa.
+  struct YieldHyperbola {
+    double raw_ratio, ratio, A, B, qa;
+  };
+  YieldHyperbola yield_hyperbola(double qf, double sigma_3) const;
   void derive_cap();
 
   HardeningSoilParameters parameters_;
