@@ -396,6 +396,33 @@ public:
     return out;
   }
 
+  /// The trial's deviator after shear multipliers, and its derivative with respect to their sum.
+  struct ShearedDeviator {
+    Principal value{}, by_shear{};
+  };
+
+  ShearedDeviator sheared_deviator(const ShearSplit& shear) const {
+    const double s = sin_psi_;
+    const std::array<double, 3>& m = shear.multiplier;
+    const double shear_sum = m[S13] + m[S12] + m[S23];
+    // Flow of each shear plane, with trace -sin psi each.
+    const Principal g13{(1.0 - s) / 2.0, 0.0, -(1.0 + s) / 2.0};
+    const Principal g12{(1.0 - s) / 2.0, -(1.0 + s) / 2.0, 0.0};
+    const Principal g23{0.0, (1.0 - s) / 2.0, -(1.0 + s) / 2.0};
+    const double G = elastic_.shear;
+    const double p_trial = mean(trial_);
+    ShearedDeviator out;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double shear_flow =
+          m[S13] * g13[k] + m[S12] * g12[k] + m[S23] * g23[k] + s * shear_sum / 3.0;
+      const double flow_slope = shear.slope[S13] * g13[k] + shear.slope[S12] * g12[k] +
+                                shear.slope[S23] * g23[k] + s / 3.0;
+      out.value[k] = trial_[k] - p_trial - 2.0 * G * shear_flow;
+      out.by_shear[k] = -2.0 * G * flow_slope;
+    }
+    return out;
+  }
+
   /// A state after multipliers with its derivatives with respect to the shear sum and the cap
   /// multiplier: the Jacobian of Newton's method, exact (the map is rational in the multipliers).
   struct Linearised {
@@ -411,25 +438,14 @@ public:
     const double s = sin_psi_;
     const std::array<double, 3>& m = shear.multiplier;
     const double shear_sum = m[S13] + m[S12] + m[S23];
-    // Flow of each shear plane, with trace -sin psi each.
-    const Principal g13{(1.0 - s) / 2.0, 0.0, -(1.0 + s) / 2.0};
-    const Principal g12{(1.0 - s) / 2.0, -(1.0 + s) / 2.0, 0.0};
-    const Principal g23{0.0, (1.0 - s) / 2.0, -(1.0 + s) / 2.0};
     const double K = elastic_.bulk, G = elastic_.shear;
-    const double p_trial = mean(trial_);
     const double volumetric = 1.0 + 2.0 * K * lambda_c;
-    const double p = (p_trial + K * s * shear_sum) / volumetric;
+    const double p = (mean(trial_) + K * s * shear_sum) / volumetric;
     const double p_by_shear = K * s / volumetric; // the slopes of a split sum to one
     const double p_by_cap = -2.0 * K * p / volumetric;
-    Principal a{}, a_by_shear{};
-    for (std::size_t k = 0; k < 3; ++k) {
-      const double shear_flow =
-          m[S13] * g13[k] + m[S12] * g12[k] + m[S23] * g23[k] + s * shear_sum / 3.0;
-      const double flow_slope = shear.slope[S13] * g13[k] + shear.slope[S12] * g12[k] +
-                                shear.slope[S23] * g23[k] + s / 3.0;
-      a[k] = trial_[k] - p_trial - 2.0 * G * shear_flow;
-      a_by_shear[k] = -2.0 * G * flow_slope;
-    }
+    const ShearedDeviator sheared = sheared_deviator(shear);
+    const Principal& a = sheared.value;
+    const Principal& a_by_shear = sheared.by_shear;
     const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     const double cap_stiffness = 4.0 * G * n2 / (alpha_ * alpha_);
     const double deviatoric = 1.0 + 4.0 * G * lambda_c * n2 / (alpha_ * alpha_);
@@ -448,6 +464,32 @@ public:
     l.state.cap_pressure = cap_n_ + cap_modulus_ * 2.0 * p * lambda_c;
     l.cap_pressure_by_shear = cap_modulus_ * 2.0 * lambda_c * p_by_shear;
     l.cap_pressure_by_cap = cap_modulus_ * 2.0 * (p + lambda_c * p_by_cap);
+    return l;
+  }
+
+  /// The state after shear multipliers alone and its derivative with respect to their sum: the
+  /// general map at a zero cap multiplier, where its cap terms vanish exactly, by the same
+  /// operations otherwise, so the shear return's results are the general iteration's to the bit
+  /// at a third of its arithmetic.
+  struct ShearLinearised {
+    ReturnState state;
+    Principal stress_by_shear{};
+  };
+
+  ShearLinearised shear_linearised(const ShearSplit& shear) const {
+    const std::array<double, 3>& m = shear.multiplier;
+    const double shear_sum = m[S13] + m[S12] + m[S23];
+    const double K = elastic_.bulk;
+    const double p = mean(trial_) + K * sin_psi_ * shear_sum;
+    const double p_by_shear = K * sin_psi_;
+    const ShearedDeviator sheared = sheared_deviator(shear);
+    ShearLinearised l;
+    for (std::size_t k = 0; k < 3; ++k) {
+      l.state.stress[k] = p + sheared.value[k];
+      l.stress_by_shear[k] = p_by_shear + sheared.by_shear[k];
+    }
+    l.state.gamma = gamma_n_ + shear_sum;
+    l.state.cap_pressure = cap_n_;
     return l;
   }
 
@@ -478,16 +520,54 @@ public:
     return std::max(high, 1e-300);
   }
 
-  /// Newton's method on the residuals of the mechanisms (the shear plane or corner, the cap, or
-  /// both) in their multipliers (the shear sum of the corner, the cap multiplier), from zero, with
-  /// the complementarity of each: a multiplier stays non-negative, and one at zero whose surface is
+  /// The shear plane or corner alone by Newton's method on its residual in the shear sum, from
+  /// zero. Each iteration costs one power law (the yield deviator with its slopes); the residual
+  /// is convex in the shear sum, so the iterates approach its root from below. Returns nothing if
+  /// it does not converge within the iterations allowed; the bracketed return then takes over.
+  /// The same iteration, convergence test and last step as combined_newton with the cap inactive.
+  std::optional<ReturnState> shear_newton(int corner) const {
+    const double limit = shear_limit(corner);
+    double total = 0.0;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      const ShearLinearised l = shear_linearised(split(corner, total));
+      const Principal& st = l.state.stress;
+      const YieldDeviator y = model_.yield_deviator_slopes(l.state.gamma, st[2]);
+      double residual = st[0] - st[2] - y.value;
+      double slope = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
+                     y.by_sigma * l.stress_by_shear[2];
+      if (total == 0.0 && residual <= tolerance_) {
+        residual = 0.0, slope = 1.0; // not violated at zero: the plane is inactive
+      }
+      const bool converged = std::abs(residual) <= tolerance_;
+      if (!(std::abs(slope) > 0.0) || !std::isfinite(slope)) {
+        return converged ? std::optional<ReturnState>(l.state) : std::nullopt;
+      }
+      const double next = total - residual / slope;
+      if (!std::isfinite(next)) {
+        return std::nullopt;
+      }
+      if (converged) {
+        // One more step costs no power law: the state is a rational function of the multiplier
+        // alone, so the result satisfies the surface to rounding rather than to the tolerance,
+        // and is a smooth function of the strain (mixed-control drivers differentiate it).
+        return next >= 0.0 ? shear_linearised(split(corner, next)).state : l.state;
+      }
+      total = std::max(next, 0.0);
+      if (total > limit) {
+        total = 0.5 * (total + limit);
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// Newton's method on the residuals of the shear plane or corner and the cap together in their
+  /// multipliers (the shear sum of the corner, the cap multiplier), from zero, with the
+  /// complementarity of each: a multiplier stays non-negative, and one at zero whose surface is
   /// not violated there drops out of the system (as the bracketed returns find a root only where
-  /// the residual at zero is positive). Each iteration costs one power law (the yield deviator
-  /// with its slopes); the shear residual is convex in the shear sum, so from zero the iterates
-  /// approach its root from below. Returns nothing if it does not converge within the iterations
-  /// allowed; the bracketed returns then take over.
-  std::optional<ReturnState> newton_return(int corner, bool shear, bool cap, int cap_corner) const {
-    const Principal n = cap_direction(cap_corner);
+  /// the residual at zero is positive). Returns nothing if it does not converge within the
+  /// iterations allowed; the bracketed returns then take over.
+  std::optional<ReturnState> combined_newton(int corner) const {
+    const Principal n = cap_direction(corner);
     const double limit = shear_limit(corner);
     double total = 0.0, lambda_c = 0.0;
     for (int iteration = 0; iteration < 40; ++iteration) {
@@ -495,7 +575,7 @@ public:
       const Principal& st = l.state.stress;
       // Rows of the residuals and their derivatives (j: d/d shear sum, d/d cap multiplier).
       double r1 = 0.0, j11 = 1.0, j12 = 0.0;
-      if (shear) {
+      {
         const YieldDeviator y = model_.yield_deviator_slopes(l.state.gamma, st[2]);
         r1 = st[0] - st[2] - y.value;
         j11 = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
@@ -503,7 +583,7 @@ public:
         j12 = l.stress_by_cap[0] - l.stress_by_cap[2] - y.by_sigma * l.stress_by_cap[2];
       }
       double r2 = 0.0, j21 = 0.0, j22 = 1.0;
-      if (cap) {
+      {
         const double q = model_.cap_deviator(st);
         const double p = mean(st);
         const double norm = std::sqrt(q * q / (alpha_ * alpha_) + p * p);
@@ -518,8 +598,8 @@ public:
       }
       // A mechanism at zero multiplier that its surface does not call for is inactive: its
       // variable stays zero and its row is the identity.
-      const bool shear_active = shear && !(total == 0.0 && r1 <= tolerance_);
-      const bool cap_active = cap && !(lambda_c == 0.0 && r2 <= tolerance_);
+      const bool shear_active = !(total == 0.0 && r1 <= tolerance_);
+      const bool cap_active = !(lambda_c == 0.0 && r2 <= tolerance_);
       if (!shear_active) {
         r1 = 0.0, j11 = 1.0, j12 = 0.0, j21 = 0.0;
       }
@@ -559,7 +639,7 @@ public:
   /// out of the cap deviator, so q-tilde = q-tilde(a) - (4 G / alpha^2) lambda_c q_n(lambda_c)
   /// q-tilde(n) and p = p_trial / (1 + 2 K lambda_c): a residual of a few operations, where the
   /// general iteration rebuilds the whole state. The state is built once, at the end, as the
-  /// general return builds it. Same convergence test and last step as newton_return.
+  /// general return builds it. Same convergence test and last step as combined_newton.
   std::optional<ReturnState> cap_newton(int corner) const {
     const Principal n = cap_direction(corner);
     const double K = elastic_.bulk, G = elastic_.shear;
@@ -619,7 +699,7 @@ public:
   }
 
   ReturnState shear_return(int corner) const {
-    if (auto r = newton_return(corner, true, false, 0)) {
+    if (auto r = shear_newton(corner)) {
       return *r;
     }
     return bracketed_shear_return(corner);
@@ -629,7 +709,7 @@ public:
   /// for each cap multiplier the shear multiplier is the scalar shear root, and the cap
   /// multiplier is the root of the cap residual along that curve.
   ReturnState combined_return(int corner) const {
-    if (auto r = newton_return(corner, true, true, corner)) {
+    if (auto r = combined_newton(corner)) {
       return *r;
     }
     auto along = [&](double lambda_c) { return bracketed_shear_return(corner, lambda_c, corner); };
