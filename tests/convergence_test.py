@@ -4,7 +4,10 @@
 f(h) = f0 + C h^p with p = 1.5 at three unevenly refined cell sizes must give p and f0 to the
 bisection's precision (1e-9 relative: 200 halvings leave far less, round-off remains); values
 that oscillate with refinement must be reported as having no observed order. End to end, three
-synthetic histories with such forces must be read at a penetration and extrapolated the same way.
+synthetic histories with such forces must be read at a penetration and extrapolated the same way,
+and an ensemble of three runs at the finest resolution, offset by -0.3, 0 and +0.3, must give the
+same limit with a scatter of exactly 0.3 (their standard deviation, n - 1) and the sum of their
+wall times.
 """
 import os
 import subprocess
@@ -31,7 +34,7 @@ def check(name, ok):
     return ok
 
 
-def write_history(path, h, wall, status="complete"):
+def write_history(path, h, wall, status="complete", offset=0.0):
     rows = 101
     with h5py.File(path, "w") as f:
         f.attrs["status"] = status
@@ -42,7 +45,7 @@ def write_history(path, h, wall, status="complete"):
         f["/phase"] = np.r_[np.zeros(1), np.ones(rows - 1)]
         f["/bodies/pile/u_y"] = -np.linspace(0.0, 0.1, rows)
         # A force that does not vary with depth, so the window's mean is the value itself.
-        f["/reactions/pile/tip/F_y"] = np.full(rows, exact(h) * 1e3)
+        f["/reactions/pile/tip/F_y"] = np.full(rows, (exact(h) + offset) * 1e3)
 
 
 def main():
@@ -73,6 +76,26 @@ def main():
         print(out.stdout, out.stderr)
         ok &= check("tool exit status", out.returncode == 0)
         ok &= check("tool prints order and limit", "1.50  12.5 +-" in out.stdout)
+        # An ensemble at the finest resolution: the members' mean is the exact value, their
+        # standard deviation 0.3, their cost the sum of their wall times (10 + 11 + 12 s).
+        members = []
+        for k, offset in enumerate((-0.3, 0.0, 0.3)):
+            run = os.path.join(directory, f"member{k}")
+            os.makedirs(run)
+            write_history(os.path.join(run, "history.h5"), H[0], 10.0 + k, offset=offset)
+            members.append(run)
+        ensemble = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "convergence.py"),
+                                   "+".join(members) + f":{H[0]}", *specs[1:], "--at", "0.05",
+                                   "--quantities", "tip_Fy"], capture_output=True, text=True)
+        print(ensemble.stdout, ensemble.stderr)
+        ok &= check("an ensemble's mean is extrapolated as one run's value",
+                    ensemble.returncode == 0 and "1.50  12.5 +-" in ensemble.stdout)
+        # 0.3 exceeds the finest two's difference (0.04), so the table says the extrapolation
+        # rests on noise.
+        ok &= check("an ensemble's scatter is its members' standard deviation",
+                    "  0.3  (the finest two differ by less than it)" in ensemble.stdout)
+        ok &= check("an ensemble's wall time is its members' sum",
+                    f"h={H[0]:g}: 33" in ensemble.stdout)
         # A run still going (it reached 0.1 m): refused unless --running, and then read only at
         # depths it has passed.
         write_history(os.path.join(directory, "run0", "history.h5"), H[0], 10.0, "running")

@@ -8,6 +8,13 @@ cell size (m) of that run (for example the cell at the pile tip):
   tools/convergence.py out/w2:0.00795 out/w3:0.0053 out/w4:0.003975 --at 0.05,0.1
   tools/convergence.py out/quick:0.05 out/mid:0.035 out/paper:0.025 --at 0.1,0.3 \\
       --quantities tip_Fy,int_Fr,ext_Fr --csv study.csv --figure error_vs_time.png
+  tools/convergence.py out/w2_c8+out/w2_c4+out/w2_c79:0.00795 out/w3_c8+out/w3_c4:0.0053 ...
+
+Runs joined by '+' before the ':H' are an ensemble at one resolution: runs of the same case that
+differ only by a perturbation (the Courant number, the seeding). Where pile forces respond to
+such perturbations (resolved pile walls: docs/results.md), one run's value is a draw, and the
+ensemble's mean is the value, the standard deviation of its members' values (n - 1) the scatter,
+and the sum of their wall times its cost.
 
 For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the soil's force on
 the pile in kN/rad, or tip_qb for the tip's unit end resistance in MPa) and penetration, the value
@@ -61,11 +68,32 @@ def dataset(quantity, body):
 
 
 def load(spec, quantities, depths, window, body, running=False):
-    """One run: its cell size, wall time and {(quantity, depth): value}. With `running`, a run
-    still going is read at the depths it has passed (its rows there are final)."""
-    directory, separator, h = spec.rpartition(":")
+    """One resolution, DIRECTORY:H or an ensemble DIR+DIR+...:H: its cell size, wall time,
+    directory and {(quantity, depth): (value, scatter)}. An ensemble's value is its members' mean,
+    its scatter the larger of their standard deviation and the members' own within-window scatter,
+    its wall time the sum of theirs."""
+    directories, separator, h = spec.rpartition(":")
     if not separator:
         sys.exit(f"convergence: give each run as DIRECTORY:H, got '{spec}'")
+    members = [load_run(directory, quantities, depths, window, body, running)
+               for directory in directories.split("+")]
+    if len(members) == 1:
+        wall, values = members[0]
+        return float(h), wall, directories, values
+    values = {}
+    for key in members[0][1]:
+        means = np.array([member[1][key][0] for member in members])
+        within = max(member[1][key][1] for member in members)
+        values[key] = (float(means.mean()), max(float(means.std(ddof=1)), within))
+    return float(h), sum(member[0] for member in members), directories, values
+
+
+def load_run(directory, quantities, depths, window, body, running=False):
+    """One run: its wall time and {(quantity, depth): (mean, standard deviation) of the rows
+    within the window}. With `running`, a run still going is read at the depths it has passed
+    (its rows there are final)."""
+    if not directory:
+        sys.exit("convergence: an empty run directory (two '+' in a row?)")
     path = directory if directory.endswith(".h5") else os.path.join(directory, "history.h5")
     if not os.path.isfile(path):
         sys.exit(f"convergence: no history {path}")
@@ -100,7 +128,7 @@ def load(spec, quantities, depths, window, body, running=False):
         wall = float(history.attrs.get("wall_time", float("nan")))
         if math.isfinite(wall) and "wall_time" in history and len(history["wall_time"]) > 0:
             wall = max(wall, float(history["wall_time"][-1]))
-    return float(h), wall, directory, values
+    return wall, values
 
 
 def observed_order(h, f):
@@ -142,7 +170,8 @@ def extrapolate(h, f, fallback_order):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("runs", nargs="+", help="DIRECTORY:H, at least two resolutions")
+    parser.add_argument("runs", nargs="+",
+                        help="DIRECTORY:H or an ensemble DIR+DIR+...:H, at least two resolutions")
     parser.add_argument("--at", required=True, help="penetrations (m), comma-separated")
     parser.add_argument("--quantities", default="tip_Fy,tip_qb,ext_Fr,ext_Fy,int_Fr,int_Fy")
     parser.add_argument("--window", type=float, default=0.01,
