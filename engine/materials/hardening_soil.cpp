@@ -574,28 +574,22 @@ public:
       const Linearised l = linearised(split(corner, total), lambda_c, n);
       const Principal& st = l.state.stress;
       // Rows of the residuals and their derivatives (j: d/d shear sum, d/d cap multiplier).
-      double r1 = 0.0, j11 = 1.0, j12 = 0.0;
-      {
-        const YieldDeviator y = model_.yield_deviator_slopes(l.state.gamma, st[2]);
-        r1 = st[0] - st[2] - y.value;
-        j11 = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
-              y.by_sigma * l.stress_by_shear[2];
-        j12 = l.stress_by_cap[0] - l.stress_by_cap[2] - y.by_sigma * l.stress_by_cap[2];
-      }
-      double r2 = 0.0, j21 = 0.0, j22 = 1.0;
-      {
-        const double q = model_.cap_deviator(st);
-        const double p = mean(st);
-        const double norm = std::sqrt(q * q / (alpha_ * alpha_) + p * p);
-        r2 = norm - l.state.cap_pressure;
-        auto slope = [&](const Principal& ds, double d_cap_pressure) {
-          const double dq = model_.cap_deviator(ds);
-          const double dp = mean(ds);
-          return (norm > 0.0 ? (q * dq / (alpha_ * alpha_) + p * dp) / norm : 0.0) - d_cap_pressure;
-        };
-        j21 = slope(l.stress_by_shear, l.cap_pressure_by_shear);
-        j22 = slope(l.stress_by_cap, l.cap_pressure_by_cap);
-      }
+      const YieldDeviator y = model_.yield_deviator_slopes(l.state.gamma, st[2]);
+      double r1 = st[0] - st[2] - y.value;
+      double j11 = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
+                   y.by_sigma * l.stress_by_shear[2];
+      double j12 = l.stress_by_cap[0] - l.stress_by_cap[2] - y.by_sigma * l.stress_by_cap[2];
+      const double q = model_.cap_deviator(st);
+      const double p = mean(st);
+      const double norm = std::sqrt(q * q / (alpha_ * alpha_) + p * p);
+      auto cap_slope = [&](const Principal& ds, double d_cap_pressure) {
+        const double dq = model_.cap_deviator(ds);
+        const double dp = mean(ds);
+        return (norm > 0.0 ? (q * dq / (alpha_ * alpha_) + p * dp) / norm : 0.0) - d_cap_pressure;
+      };
+      double r2 = norm - l.state.cap_pressure;
+      double j21 = cap_slope(l.stress_by_shear, l.cap_pressure_by_shear);
+      double j22 = cap_slope(l.stress_by_cap, l.cap_pressure_by_cap);
       // A mechanism at zero multiplier that its surface does not call for is inactive: its
       // variable stays zero and its row is the identity.
       const bool shear_active = !(total == 0.0 && r1 <= tolerance_);
