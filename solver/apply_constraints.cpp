@@ -80,7 +80,11 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
     // The prescribed velocity is the mean over the step, so displacements are exact. The FLIP
     // velocity increment of a constrained DOF is the change of the prescribed velocity (the
     // prescribed acceleration times dt), never the jump from the velocity mapped from particles:
-    // that jump would drag particles next to a support towards its velocity.
+    // that jump would drag particles next to a support towards its velocity. A motion prescribed
+    // on one structure's field instead drives that body, whose particles surround the nodes: they
+    // take the jump, so that their velocities stay the motion they make (docs/design.md,
+    // "Numerical choices").
+    const bool drives_a_body = c.field > 0;
     double prescribed[3] = {0.0, 0.0, 0.0};
     double prescribed_change[3] = {0.0, 0.0, 0.0};
     for (int d = 0; d < 3; ++d) {
@@ -120,11 +124,19 @@ double apply_constraints(Scene& scene, const SolverSettings& settings, const Ste
           const double target = prescribed[d] * scale;
           const double change = target - node.velocity()[d];
           if (record_reactions) {
-            node.velocity_increment()[d] = prescribed_change[d] * scale;
             // A force, or for the angular DOF a torque; its work is the same product.
             const double reaction =
                 (angular_dof ? node.inertia : node.mass) * change * inertia_per_dt;
-            work += reaction * target * step.dt;
+            if (drives_a_body) {
+              // The particles' mean velocity over the step runs from the one mapped to the node
+              // to the prescribed one: the kinetic energy the impulse gives them exactly.
+              const double start = node.velocity()[d] - node.velocity_increment()[d];
+              node.velocity_increment()[d] = target - start;
+              work += reaction * step.dt * 0.5 * (start + target);
+            } else {
+              node.velocity_increment()[d] = prescribed_change[d] * scale;
+              work += reaction * target * step.dt;
+            }
             if (angular_dof) {
               c.torque += reaction;
               // The torque as a theta force at the node (on the axis a torque has none).
