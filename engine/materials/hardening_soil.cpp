@@ -340,9 +340,21 @@ public:
       : model_(model), elastic_(elastic), sin_psi_(sin_psi_mobilised), delta_(delta), alpha_(alpha),
         cap_modulus_(cap_modulus_now), trial_(trial), gamma_n_(gamma), cap_n_(cap_pressure) {
     tolerance_ = surface_tolerance(trial, parameters.p_ref);
+    // Every return starts from zero multipliers, where each map gives the trial's mean plus its
+    // deviator: the same numbers for every plane, corner and mechanism. The yield deviator and its
+    // slopes there are evaluated once, for the trial's residual and every Newton iteration's first.
+    const double p = mean(trial_);
+    at_zero_sigma_3_ = p + (trial_[2] - p);
+    at_zero_ = model_.yield_deviator_slopes(gamma_n_, at_zero_sigma_3_);
   }
 
   double tolerance() const { return tolerance_; }
+
+  /// The shear residual at zero multipliers (the trial's, at the state every return starts from).
+  double shear_residual_at_zero() const {
+    const double p = mean(trial_);
+    return (p + (trial_[0] - p)) - at_zero_sigma_3_ - at_zero_.value;
+  }
 
   /// Residual of the governing shear plane (1, 3); at a corner its two planes have equal stresses,
   /// so this plane speaks for both.
@@ -531,7 +543,8 @@ public:
     for (int iteration = 0; iteration < 40; ++iteration) {
       const ShearLinearised l = shear_linearised(split(corner, total));
       const Principal& st = l.state.stress;
-      const YieldDeviator y = model_.yield_deviator_slopes(l.state.gamma, st[2]);
+      const YieldDeviator y =
+          iteration == 0 ? at_zero_ : model_.yield_deviator_slopes(l.state.gamma, st[2]);
       double residual = st[0] - st[2] - y.value;
       double slope = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
                      y.by_sigma * l.stress_by_shear[2];
@@ -574,7 +587,8 @@ public:
       const Linearised l = linearised(split(corner, total), lambda_c, n);
       const Principal& st = l.state.stress;
       // Rows of the residuals and their derivatives (j: d/d shear sum, d/d cap multiplier).
-      const YieldDeviator y = model_.yield_deviator_slopes(l.state.gamma, st[2]);
+      const YieldDeviator y =
+          iteration == 0 ? at_zero_ : model_.yield_deviator_slopes(l.state.gamma, st[2]);
       double r1 = st[0] - st[2] - y.value;
       double j11 = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
                    y.by_sigma * l.stress_by_shear[2];
@@ -733,6 +747,8 @@ private:
   double gamma_n_;
   double cap_n_;
   double tolerance_ = 0.0;
+  double at_zero_sigma_3_ = 0.0;
+  YieldDeviator at_zero_;
 };
 
 /// Whether a shear return without the cap, on any plane or corner, can end inside the cap. With
@@ -942,7 +958,7 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
   const HardeningSoilReturn returner = returner_at(trial_state);
   const double tolerance = returner.tolerance();
   // The trial's residuals, once: they decide both whether it stands and which mechanisms to try.
-  const double shear_trial = returner.shear_residual(trial_state);
+  const double shear_trial = returner.shear_residual_at_zero();
   const double cap_trial = returner.cap_residual(trial_state);
   if (shear_trial <= tolerance && cap_trial <= tolerance) {
     // Inside after all (the quick test keeps a margin; the decomposition's values are ordered).
