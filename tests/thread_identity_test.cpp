@@ -3,15 +3,20 @@
 // so re-binning and physical re-sorting happen), small blocks (many per colour), B-bar, a FLIP/PIC
 // blend, damping, gravity and a circumferential swirl.
 #include "cases/verification/verification_case.hpp"
+#include "engine/materials/hardening_soil.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"
 #include "tests/bitwise.hpp"
+#include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <iostream>
+#include <map>
+#include <utility>
 
 namespace mpile {
 namespace {
@@ -106,6 +111,90 @@ TEST(ThreadIdentity, XpicResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
   const Outcome one = collapse(GeometryMode::axisymmetric, 1, ShapeFunctions::linear, 3);
   expect_identical(one, collapse(GeometryMode::axisymmetric, 2, ShapeFunctions::linear, 3));
   expect_identical(one, collapse(GeometryMode::axisymmetric, 3, ShapeFunctions::linear, 3));
+}
+
+// The production path: the quick GDP case (Hardening Soil with its ordered return and substeps,
+// Coulomb contact with adhesion against the rigid pile, the torque drive, the moving mesh with
+// GIMP, B-bar and the particles' own time step) from its K0 state. The geostatic phase is left out
+// and its K0 procedure applied directly, so that a few hundredths of a second of driving, with
+// plastic returns from the first step, reach every pass.
+struct GdpOutcome {
+  Particles particles;
+  std::vector<std::array<double, 3>> surface_force;
+  std::vector<RigidBody> rigid;
+  std::vector<double> grid_lines;
+  double time = 0.0;
+  int hardened = 0; // soil particles whose plastic shear strain grew during the drive
+};
+
+GdpOutcome drive_quick_gdp(int threads) {
+  std::string text = read_text(source / "tests/data/gdp_quick_flat.toml");
+  text = replaced(text,
+                  "name = \"geostatic\"\nduration = 2.0\nlocal_damping = 0.7\n"
+                  "equilibrium_tolerance = 0.01\nk0 = [{ material = \"sand\", surface = 10.0, "
+                  "k0 = 0.5 }]\n\n[[phases]]\nname = \"installation\"\nduration = 30.0",
+                  "name = \"installation\"\nduration = 0.006\nk0 = [{ material = \"sand\", "
+                  "surface = 10.0, k0 = 0.5 }]");
+  GdpOutcome outcome;
+  with_threads(threads, [&] {
+    CaseRun run(text);
+    EXPECT_EQ(run.spec.phases[0].name, "installation");
+    apply_k0(*run.scene, run.spec, run.spec.phases[0]);
+    // The K0 state's plastic shear strain of each particle, by its initial position (the run
+    // re-sorts the particles).
+    std::map<std::pair<double, double>, double> k0_gamma;
+    const Particles& p = run.scene->particles;
+    const auto stride = static_cast<std::size_t>(p.state_stride);
+    ASSERT_GT(stride, 0u);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      k0_gamma[{p.r0[i], p.y0[i]}] = p.state[i * stride + HardeningSoil::GAMMA_P];
+    }
+    // The solver as `mpile run` makes it, after the K0 stresses: its first step is taken from them.
+    run.solver = std::make_unique<ExplicitSolver>(
+        *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+    switch_on_absorbing_faces(*run.solver, run.spec, 0);
+    run.run([] {});
+    outcome.particles = run.scene->particles;
+    outcome.surface_force = run.pair().surface_force;
+    outcome.rigid = run.scene->rigid_bodies;
+    const auto y = run.scene->grid.y_axis().nodes();
+    outcome.grid_lines.assign(y.begin(), y.end());
+    outcome.time = run.solver->time();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const auto start = k0_gamma.find({p.r0[i], p.y0[i]});
+      if (start != k0_gamma.end() && p.state[i * stride + HardeningSoil::GAMMA_P] > start->second) {
+        ++outcome.hardened;
+      }
+    }
+  });
+  return outcome;
+}
+
+void expect_identical(const GdpOutcome& a, const GdpOutcome& b) {
+  EXPECT_EQ(std::memcmp(&a.time, &b.time, sizeof(double)), 0);
+  expect_particles_identical(a.particles, b.particles);
+  EXPECT_TRUE(bitwise_equal(a.particles.state, b.particles.state)); // gamma_p and the cap
+  EXPECT_TRUE(bitwise_equal(a.surface_force, b.surface_force));
+  EXPECT_TRUE(bitwise_equal(a.grid_lines, b.grid_lines));
+  ASSERT_EQ(a.rigid.size(), b.rigid.size());
+  for (std::size_t k = 0; k < a.rigid.size(); ++k) {
+    EXPECT_EQ(std::memcmp(&a.rigid[k].velocity, &b.rigid[k].velocity, sizeof(a.rigid[k].velocity)),
+              0);
+    EXPECT_EQ(std::memcmp(&a.rigid[k].contact, &b.rigid[k].contact, sizeof(a.rigid[k].contact)), 0);
+  }
+}
+
+TEST(ThreadIdentity, TheQuickGdpInstallationIsBitwiseIdenticalForOneTwoAndThreeThreads) {
+  const GdpOutcome one = drive_quick_gdp(1);
+  // The run must have reached the pile's twist and the soil's plastic state, or it tests little.
+  ASSERT_EQ(one.rigid.size(), 1u);
+  EXPECT_GT(std::abs(one.rigid[0].velocity[2]), 0.0) << "the pile did not turn";
+  EXPECT_GT(one.hardened, 100) << "too few plastic returns to test the Hardening Soil path";
+  std::cout << "quick GDP driven for " << one.time << " s: pile omega " << one.rigid[0].velocity[2]
+            << " rad/s, " << one.hardened << " of " << one.particles.size()
+            << " particles hardened in shear\n";
+  expect_identical(one, drive_quick_gdp(2));
+  expect_identical(one, drive_quick_gdp(3));
 }
 
 } // namespace
