@@ -3,6 +3,7 @@
 // Bitwise comparison of run results, for the thread-count identity tests.
 
 #include "engine/particles.hpp"
+#include "engine/structures/rigid_body.hpp"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -37,6 +38,16 @@ inline void expect_particles_identical(const Particles& a, const Particles& b) {
   EXPECT_TRUE(bitwise_equal(a.volume, b.volume));
   EXPECT_TRUE(bitwise_equal(a.stress, b.stress));
   EXPECT_TRUE(bitwise_equal(a.r0, b.r0)); // same particle order
+}
+
+/// Each rigid body's velocity and the contact force on it, bit for bit.
+inline void expect_rigid_bodies_identical(const std::vector<RigidBody>& a,
+                                          const std::vector<RigidBody>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(std::memcmp(&a[k].velocity, &b[k].velocity, sizeof(a[k].velocity)), 0);
+    EXPECT_EQ(std::memcmp(&a[k].contact, &b[k].contact, sizeof(a[k].contact)), 0);
+  }
 }
 
 } // namespace mpile

@@ -479,12 +479,7 @@ ContactOutcome run_with_threads(const std::string& text, int threads) {
 void expect_identical(const ContactOutcome& a, const ContactOutcome& b) {
   expect_particles_identical(a.particles, b.particles);
   EXPECT_TRUE(bitwise_equal(a.surface_force, b.surface_force));
-  ASSERT_EQ(a.rigid.size(), b.rigid.size());
-  for (std::size_t k = 0; k < a.rigid.size(); ++k) {
-    EXPECT_EQ(std::memcmp(&a.rigid[k].velocity, &b.rigid[k].velocity, sizeof(a.rigid[k].velocity)),
-              0);
-    EXPECT_EQ(std::memcmp(&a.rigid[k].contact, &b.rigid[k].contact, sizeof(a.rigid[k].contact)), 0);
-  }
+  expect_rigid_bodies_identical(a.rigid, b.rigid);
 }
 
 TEST(ContactThreadIdentity, TorsionWithAdhesionOneAndTwoThreads) {

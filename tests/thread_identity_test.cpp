@@ -176,12 +176,7 @@ void expect_identical(const GdpOutcome& a, const GdpOutcome& b) {
   EXPECT_TRUE(bitwise_equal(a.particles.state, b.particles.state)); // gamma_p and the cap
   EXPECT_TRUE(bitwise_equal(a.surface_force, b.surface_force));
   EXPECT_TRUE(bitwise_equal(a.grid_lines, b.grid_lines));
-  ASSERT_EQ(a.rigid.size(), b.rigid.size());
-  for (std::size_t k = 0; k < a.rigid.size(); ++k) {
-    EXPECT_EQ(std::memcmp(&a.rigid[k].velocity, &b.rigid[k].velocity, sizeof(a.rigid[k].velocity)),
-              0);
-    EXPECT_EQ(std::memcmp(&a.rigid[k].contact, &b.rigid[k].contact, sizeof(a.rigid[k].contact)), 0);
-  }
+  expect_rigid_bodies_identical(a.rigid, b.rigid);
 }
 
 TEST(ThreadIdentity, TheQuickGdpInstallationIsBitwiseIdenticalForOneTwoAndThreeThreads) {
