@@ -186,9 +186,18 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
            " of rigid bodies, which a run may drop; a run may split particles, but not into " +
            std::to_string(most_halves) + " times as many)");
   }
+  // Each array holds as many values per particle as the case's own (the material state: as many
+  // as its materials keep, which a checkpoint of another build of the material models may not).
+  const std::size_t made = p.size();
   p.stress.resize(n);
   for (const auto& [name, field] : double_fields(p)) {
+    const std::size_t per_particle = made > 0 ? field->size() / made : 0;
     *field = file.read_doubles(std::string("/particles/") + name);
+    if (field->size() != per_particle * n) {
+      refuse("its particles' " + std::string(name) + " holds " + std::to_string(field->size()) +
+             " values for " + std::to_string(n) + " particles, this case keeps " +
+             std::to_string(per_particle) + " per particle");
+    }
   }
   const std::vector<double> stress = file.read_doubles("/particles/stress");
   for (std::size_t i = 0; i < n; ++i) {

@@ -910,6 +910,41 @@ TEST(RunCommand, ARestartThatCannotContinueItsHistoryIsRefused) {
       << err.str();
 }
 
+// A checkpoint whose per-particle arrays do not hold what this build keeps per particle (a state
+// of another build's material models, or a damaged file) is refused, naming the array, before
+// any of it is used: read as it stands it would be read past its end.
+TEST(RunCommand, ACheckpointWhoseArraysDoNotFitItsParticlesIsRefused) {
+  const auto directory = fresh_directory("restart_arrays");
+  const std::string path = write_case(directory);
+  std::ostringstream out, err;
+  RunOptions first;
+  first.case_path = path;
+  first.output_directory = (directory / "out").string();
+  first.stop_after_steps = 37;
+  ASSERT_EQ(run_case(first, out, err), exit_interrupted) << err.str();
+  const std::string checkpoint = (directory / "out" / "checkpoint.h5").string();
+  std::size_t particles = 0;
+  {
+    Hdf5File file(checkpoint, Hdf5File::Mode::append);
+    std::vector<double> v_r = file.read_doubles("/particles/v_r");
+    particles = v_r.size();
+    v_r.pop_back();
+    ASSERT_GE(H5Ldelete(file.id(), "/particles/v_r", H5P_DEFAULT), 0);
+    file.write("/particles/v_r", v_r, "m/s", {v_r.size()});
+  }
+  RunOptions again = first;
+  again.stop_after_steps = 0;
+  again.restart = checkpoint;
+  err.str("");
+  EXPECT_EQ(run_case(again, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("cannot restart: its particles' v_r holds " +
+                           std::to_string(particles - 1) + " values for " +
+                           std::to_string(particles) +
+                           " particles, this case keeps 1 per particle"),
+            std::string::npos)
+      << err.str();
+}
+
 TEST(RunCommand, ASignalWhileTheCaseIsBuiltStopsItBeforeAnythingIsWritten) {
   // The quick monopile case takes tens of milliseconds to read, seed and set to K0; a SIGINT 2 ms
   // after the start falls in there. Without the handler installed first, the default action

@@ -74,8 +74,10 @@ public:
   double cap_deviator(const std::array<double, 3>& principal) const; // q-tilde
   double cap_surface(const std::array<double, 3>& principal, double p_p) const;
 
-  /// Indices of the state variables.
-  enum : int { GAMMA_P = 0, P_P = 1 };
+  /// Indices of the state variables. LAST_ACTIVE_SET is the active set the last plastic return
+  /// kept (0: none yet; 1 + 3 mechanism + corner, mechanisms 0 shear, 1 cap, 2 both, corners 0
+  /// plane, 1 triaxial compression, 2 triaxial extension); the next return tries it first.
+  enum : int { GAMMA_P = 0, P_P = 1, LAST_ACTIVE_SET = 2 };
 
 private:
   /// One substep of update_point at Young's modulus `young` and mobilised dilatancy sin_psi: the
@@ -92,7 +94,7 @@ private:
   void derive_cap();
 
   HardeningSoilParameters parameters_;
-  std::vector<std::string> names_{"gamma_p", "p_p"};
+  std::vector<std::string> names_{"gamma_p", "p_p", "last_active_set"};
   double sin_phi_, cos_phi_, sin_psi_, a_, delta_, alpha_ = 1.0, cap_modulus_ = 0.0;
 };
 
