@@ -293,26 +293,41 @@ double violation(const HardeningSoil& model, const Stress& stress, const double*
   return std::max({shear, cap, tension, 0.0}) / std::max(p_ref, std::abs(s[0]));
 }
 
-/// A random walk of strain increments of log-uniform size, with a compressive bias so that the
-/// path keeps visiting confined states and not only the apex. Returns the worst violation.
+/// Strain increments of log-uniform size in random directions of all six components (theta shears
+/// included, so the trials rotate as under torsion), with a compressive bias so that a walk keeps
+/// visiting confined states and not only the apex.
+class RandomIncrements {
+public:
+  RandomIncrements(double smallest, double largest, unsigned seed)
+      : random_(seed), exponent_(std::log10(smallest), std::log10(largest)) {}
+  StrainIncrement next() {
+    StrainIncrement de;
+    const double size = std::pow(10.0, exponent_(random_));
+    for (double& c : de) {
+      c = size * direction_(random_);
+    }
+    de[RR] -= 0.3 * size;
+    de[YY] -= 0.3 * size;
+    de[TT] -= 0.3 * size;
+    return de;
+  }
+
+private:
+  std::mt19937_64 random_;
+  std::uniform_real_distribution<double> direction_{-1.0, 1.0};
+  std::uniform_real_distribution<double> exponent_;
+};
+
+/// A random walk of strain increments (RandomIncrements). Returns the worst violation.
 double random_walk(const HardeningSoil& model, double p_ref, int increments, double smallest,
                    double largest, unsigned seed) {
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> direction(-1.0, 1.0);
-  std::uniform_real_distribution<double> exponent(std::log10(smallest), std::log10(largest));
+  RandomIncrements increment(smallest, largest, seed);
   Stress stress{-50 * kPa, -100 * kPa, -50 * kPa, 0.0, 0.0, 0.0};
   double state[3];
   model.initialise_state(stress, state);
   double worst = 0.0;
   for (int k = 0; k < increments; ++k) {
-    StrainIncrement de;
-    const double size = std::pow(10.0, exponent(random));
-    for (double& c : de) {
-      c = size * direction(random);
-    }
-    de[RR] -= 0.3 * size;
-    de[YY] -= 0.3 * size;
-    de[TT] -= 0.3 * size;
+    const StrainIncrement de = increment.next();
     model.update_point(stress, state, de);
     for (const double c : stress) {
       EXPECT_TRUE(std::isfinite(c)) << "increment " << k;
@@ -350,28 +365,18 @@ TEST(HardeningSoil, VeryLargeIncrementsStayOnOrInsideTheSurfaces) {
 // Each plastic return first tries the active set the particle's last return kept, and keeps its
 // state if it satisfies every surface and the principal order (a corner variant only at its
 // corner). That must be the state the ordered search alone finds: every increment of a random walk
-// (all six strain components, theta shears included, so the trials rotate as under torsion) is
-// taken twice from the same state, once as stored and once with the last active set cleared.
+// is taken twice from the same state, once as stored and once with the last active set cleared.
 TEST(HardeningSoil, TheLastActiveSetGivesTheOrderedSearchsState) {
   const HardeningSoilParameters parameters = seed_parameters();
   const HardeningSoil model(parameters);
-  std::mt19937_64 random(11);
-  std::uniform_real_distribution<double> direction(-1.0, 1.0);
-  std::uniform_real_distribution<double> exponent(-7.0, -4.0);
+  RandomIncrements increment(1e-7, 1e-4, 11);
   Stress stress{-50 * kPa, -100 * kPa, -50 * kPa, 0.0, 0.0, 0.0};
   double state[3];
   model.initialise_state(stress, state);
   double worst_stress = 0.0, worst_gamma = 0.0, worst_cap = 0.0;
   int kept = 0;
   for (int k = 0; k < 200000; ++k) {
-    StrainIncrement de;
-    const double size = std::pow(10.0, exponent(random));
-    for (double& c : de) {
-      c = size * direction(random);
-    }
-    de[RR] -= 0.3 * size;
-    de[YY] -= 0.3 * size;
-    de[TT] -= 0.3 * size;
+    const StrainIncrement de = increment.next();
     Stress searched = stress;
     double searched_state[3] = {state[0], state[1], 0.0};
     model.update_point(searched, searched_state, de);
