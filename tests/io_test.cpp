@@ -19,6 +19,7 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <filesystem>
@@ -945,21 +946,43 @@ TEST(RunCommand, ACheckpointWhoseArraysDoNotFitItsParticlesIsRefused) {
       << err.str();
 }
 
+volatile std::sig_atomic_t stray_interrupts = 0;
+void count_stray_interrupt(int) {
+  stray_interrupts = 1;
+}
+
 TEST(RunCommand, ASignalWhileTheCaseIsBuiltStopsItBeforeAnythingIsWritten) {
-  // The quick monopile case takes tens of milliseconds to read, seed and set to K0; a SIGINT 2 ms
-  // after the start falls in there. Without the handler installed first, the default action
-  // would kill this test process.
+  // The quick monopile case takes tens of milliseconds to read, seed and set to K0. The SIGINT is
+  // sent as soon as run_case has replaced this test's own handler with its own, so it falls in
+  // there. (A fixed delay instead let a loaded machine send it before run_case had started, and
+  // the default action killed the test process.) Had run_case installed its handler only after
+  // building the case, the signal would come during the run and the expectations below fail; one
+  // that came too late would reach the test's handler, not kill the process.
   const auto directory = fresh_directory("early_signal");
   RunOptions options;
   options.case_path = std::string(MPILE_SOURCE_DIR) + "/cases/monopile/gdp_quick.toml";
   options.output_directory = (directory / "out").string();
-  std::thread signal([] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    kill(getpid(), SIGINT);
+  stray_interrupts = 0;
+  const auto test_handler = std::signal(SIGINT, count_stray_interrupt);
+  std::atomic<bool> finished{false};
+  std::thread signal([&finished] {
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!finished && std::chrono::steady_clock::now() < give_up) {
+      struct sigaction current {};
+      sigaction(SIGINT, nullptr, &current);
+      if (current.sa_handler != count_stray_interrupt) {
+        kill(getpid(), SIGINT);
+        return;
+      }
+      std::this_thread::yield();
+    }
   });
   std::ostringstream out, err;
   const int status = run_case(options, out, err);
+  finished = true;
   signal.join();
+  std::signal(SIGINT, test_handler);
+  EXPECT_EQ(stray_interrupts, 0);
   EXPECT_EQ(status, exit_interrupted);
   EXPECT_NE(err.str().find("interrupted before the run started; nothing was written"),
             std::string::npos)
