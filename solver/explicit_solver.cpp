@@ -147,6 +147,9 @@ void ExplicitSolver::change_settings(const SolverSettings& settings) {
   }
   stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
                         settings_.max_time_step);
+  // A fall is measured from the new phase's own step: mass scaling or another Courant number moves
+  // the step at once, and a fall from there would otherwise go unreported.
+  step_report_below_ = 0.5 * stable_dt_;
   if (scaling_changed) {
     report_settings();
   }
