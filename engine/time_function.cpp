@@ -29,11 +29,11 @@ TimeFunction TimeFunction::table(std::vector<std::pair<double, double>> points) 
   return TimeFunction(Table{std::move(points)});
 }
 
-TimeFunction TimeFunction::harmonic(double amplitude, double frequency, double phase) {
+TimeFunction TimeFunction::harmonic(double amplitude, double frequency, double phase, double mean) {
   if (!(frequency > 0.0)) {
     throw std::invalid_argument("harmonic frequency must be positive");
   }
-  return TimeFunction(Harmonic{amplitude, frequency, phase});
+  return TimeFunction(Harmonic{amplitude, frequency, phase, mean});
 }
 
 TimeFunction TimeFunction::pulse_train(double amplitude, double pulse_duration, double interval) {
@@ -109,7 +109,8 @@ double TimeFunction::local_value(double t) const {
           }
           return p.back().second;
         } else if constexpr (std::is_same_v<T, Harmonic>) {
-          return f.amplitude * std::sin(2.0 * std::numbers::pi * f.frequency * t + f.phase);
+          return f.mean +
+                 f.amplitude * std::sin(2.0 * std::numbers::pi * f.frequency * t + f.phase);
         } else {
           const double local = std::fmod(t, f.interval);
           return t >= 0.0 && local <= f.duration
@@ -130,7 +131,7 @@ double TimeFunction::local_primitive(double t) const {
           return table_primitive(f.points, t) - table_primitive(f.points, 0.0);
         } else if constexpr (std::is_same_v<T, Harmonic>) {
           const double w = 2.0 * std::numbers::pi * f.frequency;
-          return f.amplitude / w * (std::cos(f.phase) - std::cos(w * t + f.phase));
+          return f.mean * t + f.amplitude / w * (std::cos(f.phase) - std::cos(w * t + f.phase));
         } else {
           if (t <= 0.0) {
             return 0.0;

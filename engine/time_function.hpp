@@ -9,7 +9,8 @@ namespace mpile {
 
 /// A scalar function of time for loads and prescribed motions, zero before its start time (0 unless
 /// moved with starting_at): constant, piecewise-linear table
-/// (a ramp is a two-point table), harmonic A sin(2 pi f t + phase), and a train of half-sine pulses
+/// (a ramp is a two-point table), harmonic mean + A sin(2 pi f t + phase) (a vibrator's force about
+/// a static load, say), and a train of half-sine pulses
 /// (amplitude, pulse duration, interval between pulse starts). Each has an exact integral, so that
 /// a prescribed velocity or load applied as its mean over a time step gives the exact displacement
 /// or impulse whatever the step size.
@@ -22,7 +23,8 @@ public:
   static TimeFunction ramp(double value, double duration);
   /// Points (t, value) with increasing t; the first value holds before, the last after.
   static TimeFunction table(std::vector<std::pair<double, double>> points);
-  static TimeFunction harmonic(double amplitude, double frequency, double phase = 0.0);
+  static TimeFunction harmonic(double amplitude, double frequency, double phase = 0.0,
+                               double mean = 0.0);
   static TimeFunction pulse_train(double amplitude, double pulse_duration, double interval);
 
   /// The same function started at time start: zero before it, f(t - start) after.
@@ -45,7 +47,7 @@ private:
     std::vector<std::pair<double, double>> points;
   };
   struct Harmonic {
-    double amplitude, frequency, phase;
+    double amplitude, frequency, phase, mean;
   };
   struct PulseTrain {
     double amplitude, duration, interval;

@@ -268,7 +268,8 @@ std::vector<TableSpec> declare() {
        "A function of time (or, in a velocity_profile, of position): a number is a constant; a "
        "table has a `type` and that type's keys.",
        {string("type", "constant: value; ramp: value, duration; table: points; harmonic: "
-                       "amplitude, frequency, phase; pulse_train: amplitude, duration, interval")
+                       "amplitude, frequency, phase, mean; pulse_train: amplitude, duration, "
+                       "interval")
             .needed()
             .one_of({"constant", "ramp", "table", "harmonic", "pulse_train"}),
         number("value", "", "constant: the value; ramp: the value reached after duration"),
@@ -278,10 +279,13 @@ std::vector<TableSpec> declare() {
             "table: [[t0, v0], [t1, v1], ...], times strictly increasing; v0 "
             "before t0, the last value after the last time"),
         number("amplitude", "",
-               "harmonic: amplitude sin(2 pi frequency t + phase); "
+               "harmonic: mean + amplitude sin(2 pi frequency t + phase); "
                "pulse_train: the pulses' peak"),
         number("frequency", "Hz", "harmonic: its frequency").above(0.0),
         number("phase", "rad", "harmonic: its phase angle").or_default(0.0),
+        number("mean", "",
+               "harmonic: the value it oscillates about (a static load beside a vibration)")
+            .or_default(0.0),
         number("interval", "s",
                "pulse_train: time from one pulse's start to the next's, at "
                "least duration")

@@ -100,8 +100,8 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
         f.fail("points", e.what());
       }
     } else if (type == "harmonic") {
-      result =
-          TimeFunction::harmonic(f.number("amplitude"), f.number("frequency"), f.number("phase"));
+      result = TimeFunction::harmonic(f.number("amplitude"), f.number("frequency"),
+                                      f.number("phase"), f.number("mean"));
     } else if (type == "pulse_train") {
       const double amplitude = f.number("amplitude");
       const double duration = f.number("duration");

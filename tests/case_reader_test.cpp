@@ -650,6 +650,30 @@ TEST(CaseReader, TheContactCaseReads) {
   EXPECT_EQ(spec.bodies[1].rigid->drive[RIGID_ROTATION]->kind, RigidDrive::Kind::velocity);
 }
 
+// Both modes of a vibrator at once: an axial force oscillating about a static weight beside a
+// torsional drive, each a harmonic of its own frequency.
+TEST(CaseReader, AnAxialHarmonicAboutAStaticWeightReadsBesideATorsionalOne) {
+  const CaseSpec spec = read_case_text(
+      contact_edited("force_y = -8000.0",
+                     "force_y = { type = \"harmonic\", amplitude = 2e4, frequency = 25.0, "
+                     "mean = -8e3 }"),
+      "case.toml");
+  const RigidSpec& rigid = *spec.bodies[1].rigid;
+  const TimeFunction& axial = rigid.drive[RIGID_Y]->function;
+  EXPECT_NEAR(axial.value(0.01), -8e3 + 2e4, 1e-9); // a quarter period: the weight plus the peak
+  EXPECT_NEAR(axial.mean(0.0, 0.2), -8e3, 1e-9);    // five periods: the weight
+  EXPECT_NEAR(rigid.drive[RIGID_ROTATION]->function.value(1.0 / 240.0), 0.1, 1e-12);
+  // The mean belongs to the harmonic only.
+  try {
+    read_case_text(contact_edited("force_y = -8000.0",
+                                  "force_y = { type = \"constant\", value = 1.0, mean = 2.0 }"),
+                   "case.toml");
+    ADD_FAILURE() << "a constant with a mean was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("mean"), std::string::npos) << e.what();
+  }
+}
+
 TEST(CaseReader, ACptOutputNamesTheConeAndSleeveSurfaces) {
   const CaseSpec spec = read_case_text(
       contact_case + "\n[output.cpt]\ncone = \"tip\"\nsleeve = \"outer_shaft\"\n", "case.toml");

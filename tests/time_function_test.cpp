@@ -24,6 +24,7 @@ TEST(TimeFunction, PrimitivesMatchNumericalIntegration) {
       TimeFunction::ramp(3.0, 0.4),
       TimeFunction::table({{0.1, 1.0}, {0.3, -2.0}, {0.5, 0.5}}),
       TimeFunction::harmonic(414.5e3, 60.0, 0.3),
+      TimeFunction::harmonic(20e3, 23.0, 0.0, -8e3), // an axial vibrator on a static weight
       TimeFunction::pulse_train(750e3, 0.005, 0.02),
   };
   for (const TimeFunction& f : functions) {
@@ -48,6 +49,12 @@ TEST(TimeFunction, ValuesOfEachKind) {
   const TimeFunction torque = TimeFunction::harmonic(1.0, 60.0);
   EXPECT_NEAR(torque.value(1.0 / 240.0), 1.0, 1e-12);
   EXPECT_NEAR(torque.mean(0.0, 1.0 / 60.0), 0.0, 1e-12);
+  // About a mean: a vibrator's force on a static weight has that weight as its mean over any
+  // whole number of periods, and the weight plus the amplitude at a quarter period.
+  const TimeFunction axial = TimeFunction::harmonic(20e3, 25.0, 0.0, -8e3);
+  EXPECT_NEAR(axial.value(0.01), 12e3, 1e-9);
+  EXPECT_NEAR(axial.mean(0.013, 0.013 + 3.0 / 25.0), -8e3, 1e-9);
+  EXPECT_NEAR(axial.primitive(0.4), -8e3 * 0.4, 1e-9);
 }
 
 TEST(TimeFunction, RejectsMeaninglessParameters) {
