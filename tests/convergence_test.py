@@ -5,9 +5,9 @@ f(h) = f0 + C h^p with p = 1.5 at three unevenly refined cell sizes must give p 
 bisection's precision (1e-9 relative: 200 halvings leave far less, round-off remains); values
 that oscillate with refinement must be reported as having no observed order. End to end, three
 synthetic histories with such forces must be read at a penetration and extrapolated the same way,
-and an ensemble of three runs at the finest resolution, offset by -0.3, 0 and +0.3, must give the
-same limit with a scatter of exactly 0.3 (their standard deviation, n - 1) and the sum of their
-wall times.
+the body's whole axial force (total_Fy) likewise, and an ensemble of three runs at the finest
+resolution, offset by -0.3, 0 and +0.3, must give the same limit with a scatter of exactly 0.3
+(their standard deviation, n - 1) and the sum of their wall times.
 """
 import os
 import subprocess
@@ -46,6 +46,8 @@ def write_history(path, h, wall, status="complete", offset=0.0):
         f["/bodies/pile/u_y"] = -np.linspace(0.0, 0.1, rows)
         # A force that does not vary with depth, so the window's mean is the value itself.
         f["/reactions/pile/tip/F_y"] = np.full(rows, (exact(h) + offset) * 1e3)
+        # The body's whole axial force: twice the tip's, so its limit is 2 F0 at the same order.
+        f["/bodies/pile/contact_F_y"] = np.full(rows, 2.0 * (exact(h) + offset) * 1e3)
 
 
 def main():
@@ -76,6 +78,12 @@ def main():
         print(out.stdout, out.stderr)
         ok &= check("tool exit status", out.returncode == 0)
         ok &= check("tool prints order and limit", "1.50  12.5 +-" in out.stdout)
+        total = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "convergence.py"),
+                                *specs, "--at", "0.05", "--quantities", "total_Fy"],
+                               capture_output=True, text=True)
+        ok &= check("the body's whole axial force is read from its contact_F_y",
+                    total.returncode == 0 and "total_Fy" in total.stdout
+                    and "1.50  25 +-" in total.stdout)
         # An ensemble at the finest resolution: the members' mean is the exact value, their
         # standard deviation 0.3, their cost the sum of their wall times (10 + 11 + 12 s).
         members = []

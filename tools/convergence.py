@@ -17,7 +17,10 @@ ensemble's mean is the value, the standard deviation of its members' values (n -
 and the sum of their wall times its cost.
 
 For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the soil's force on
-the pile in kN/rad, or tip_qb for the tip's unit end resistance in MPa) and penetration, the value
+the pile in kN/rad, tip_qb for the tip's unit end resistance in MPa, or total_Fy for the soil's
+whole axial force on the body, /bodies/<body>/contact_F_y: at a corner node shared by two
+surfaces each reports its share turned into its own normal and tangent, so the surfaces' F_y
+need not add up to it) and penetration, the value
 of each run is the mean over the installation rows within --window of that penetration (default
 10 mm: stick-slip makes pile forces scatter by several per cent from row to row, so a single row
 is no value to extrapolate), and its scatter the standard deviation there. The three
@@ -58,8 +61,10 @@ def text(value):
 def dataset(quantity, body):
     """The history dataset and the scale to the reported unit of a quantity name."""
     surface, _, component = quantity.partition("_")
+    if quantity == "total_Fy":
+        return f"/bodies/{body}/contact_F_y", 1e-3, "kN/rad"
     if surface not in SURFACES:
-        sys.exit(f"convergence: unknown surface in '{quantity}' (tip, ext or int)")
+        sys.exit(f"convergence: unknown surface in '{quantity}' (tip, ext or int; total_Fy)")
     if component == "qb" and surface == "tip":
         return f"/reactions/{body}/tip/unit_end_resistance", 1e-6, "MPa"
     if component not in COMPONENTS:
