@@ -218,13 +218,14 @@ struct NodeSurface {
   double area = 0.0;
 };
 
-/// The outline's normal and area where the node has them (nearest edge's normal and no area
-/// otherwise), or the normalised mass gradient with the area of a straight surface through the
-/// node across its share of the cells. None where the soil does not reach the outline yet, or
-/// where the gradient vanishes.
+/// The outline's normal and area where the node has them (inside the outline, the facing edge's
+/// normal for the soil's relative velocity `relative`, and no area), or the normalised mass
+/// gradient with the area of a straight surface through the node across its share of the cells.
+/// None where the soil does not reach the outline yet, or where the gradient vanishes.
 template <GeometryMode mode>
 std::optional<NodeSurface> node_surface(const Grid& grid, const NodeField& field,
-                                        const ContactPair& pair, std::size_t i) {
+                                        const ContactPair& pair, std::size_t i,
+                                        const std::array<double, 3>& relative) {
   NodeSurface at;
   if (pair.outline) {
     if (pair.gap[i] > 0.0) {
@@ -234,9 +235,9 @@ std::optional<NodeSurface> node_surface(const Grid& grid, const NodeField& field
       at.normal = pair.normal[i];
       at.area = pair.area[i];
     } else {
-      int surface = 0;
-      at.normal = nearest_edge_normal(*pair.outline, grid.node_r(static_cast<int>(i)),
-                                      grid.node_y(static_cast<int>(i)), surface);
+      at.normal = facing_edge_normal(*pair.outline, grid.node_r(static_cast<int>(i)),
+                                     grid.node_y(static_cast<int>(i)), {-relative[0], -relative[1]})
+                      .normal;
     }
     return at;
   }
@@ -277,13 +278,14 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
     if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
       return;
     }
-    const std::optional<NodeSurface> surface = node_surface<mode>(nodes.grid, nodes.field, pair, i);
+    const NodeDofs at = nodes.dofs_at(i);
+    const auto relative = nodes.relative_velocity(i, at, s, k);
+    const std::optional<NodeSurface> surface =
+        node_surface<mode>(nodes.grid, nodes.field, pair, i, relative);
     if (!surface) {
       return;
     }
     const auto& n = surface->normal;
-    const NodeDofs at = nodes.dofs_at(i);
-    const auto relative = nodes.relative_velocity(i, at, s, k);
     const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
     const bool bonded = !nodes.rigid && k.mass < structure_bonded_share * (s.mass + k.mass);
     if (normal_velocity > 0.0 && !bonded) {
@@ -368,8 +370,9 @@ double sum_surface_forces(Scene& scene, ContactPair& pair) {
               }
             }
           } else {
-            int surface = 0;
-            nearest_edge_normal(*pair.outline, r, y, surface);
+            // Inside the outline: the surface of the edge whose normal the contact took.
+            const int surface =
+                facing_edge_normal(*pair.outline, r, y, pair.contact_normal[i]).surface;
             add(static_cast<std::size_t>(surface), 1.0);
           }
           if (body != nullptr) {

@@ -117,6 +117,117 @@ TEST(ContactAreas, CornerNodeOnGridLinesGetsTheAreaWeightedNormal) {
   EXPECT_EQ(pair.area[static_cast<std::size_t>(grid.node_index(6, 10))], 0.0);
 }
 
+TEST(ContactNormals, InsideTheOutlineTiesGoToTheFaceTheSoilMovesInto) {
+  // A wall two cells thick (r from 0.4 to 0.6, tip at y = 0.5; the inner face is the surface 1,
+  // the outer 2, the tip 0): the node line r = 0.5 is as far from both faces, to rounding, so the
+  // nearest edge alone picks one face for soil from either side.
+  const StructureOutline wall = StructureOutline::rectangle(0.4, 0.6, 0.5, 1.0, 0, 2, -1, 1);
+  const Grid grid(GradedAxis::uniform(0.0, 1.0, 10), GradedAxis::uniform(0.0, 1.0, 10));
+  const double r = grid.node_r(grid.node_index(5, 8));
+  const double y = grid.node_y(grid.node_index(5, 8));
+  // Soil moving outward (from the plug) meets the inner face, soil moving inward the outer one.
+  const EdgeNormal from_plug = facing_edge_normal(wall, r, y, {-1.0, 0.0});
+  EXPECT_EQ(from_plug.surface, 1);
+  EXPECT_EQ(from_plug.normal[0], -1.0);
+  const EdgeNormal from_outside = facing_edge_normal(wall, r, y, {1.0, 0.0});
+  EXPECT_EQ(from_outside.surface, 2);
+  EXPECT_EQ(from_outside.normal[0], 1.0);
+  // Three cells (r from 0.3 to 0.6): the node one cell above the tip and one cell from the inner
+  // face is as far from both; soil pushed up from below meets the tip, soil from the plug the face.
+  const StructureOutline thick = StructureOutline::rectangle(0.3, 0.6, 0.5, 1.0, 0, 2, -1, 1);
+  const double r1 = grid.node_r(grid.node_index(4, 6));
+  const double y1 = grid.node_y(grid.node_index(4, 6));
+  EXPECT_EQ(facing_edge_normal(thick, r1, y1, {0.0, -1.0}).surface, 0);
+  EXPECT_EQ(facing_edge_normal(thick, r1, y1, {-1.0, 0.0}).surface, 1);
+  // Without a tie the nearest edge decides, whatever the soil does: (0.4, 0.8) is a cell from the
+  // inner face and two from the outer one.
+  const double r2 = grid.node_r(grid.node_index(4, 8));
+  EXPECT_EQ(facing_edge_normal(thick, r2, y, {1.0, 0.0}).surface, 1);
+  EXPECT_EQ(facing_edge_normal(thick, r2, y, {0.0, -1.0}).surface, 1);
+}
+
+/// Elastic soil to y = 2 m, weightless, and a rigid wall two cells thick (r from 0.25 to 0.5 m,
+/// 0.125 m cells, all exact in binary) seeded above it and then moved 0.5 m down into it, to y
+/// from 1.75 to 2.125 m, as a pile wall that soil has got into: the soil particles in it (two per
+/// cell and axis) are given v_r = `soil_velocity_r`, everything else is at rest. The wall's contact
+/// surfaces are its tip, inner (left) and outer (right) faces.
+CaseRun soil_moving_inside_a_wall(double soil_velocity_r) {
+  CaseRun run(R"(geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 8 }]
+y = [{ start = 0.0, end = 3.0, cells = 24 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 50e6
+poisson_ratio = 0.3
+density = 1650.0
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 200e9
+poisson_ratio = 0.0
+density = 8000.0
+[[bodies]]
+name = "soil"
+material = "soil"
+region = { r = [0.0, 1.0], y = [0.0, 2.0] }
+[[bodies]]
+name = "wall"
+material = "steel"
+region = { r = [0.25, 0.5], y = [2.25, 2.625] }
+[bodies.rigid]
+velocity_y = 0.0
+[[contact]]
+structure = "wall"
+surfaces = { bottom = "tip", right = "outer", left = "inner" }
+[solver]
+gravity = [0.0, 0.0]
+[[phases]]
+name = "one step"
+duration = 0.1
+)");
+  run.scene->contacts.at(0).outline->translate(0.0, -0.5);
+  Particles& p = run.scene->particles;
+  const StructureOutline& outline = *run.scene->contacts.at(0).outline;
+  for (std::size_t q = 0; q < p.size(); ++q) {
+    if (run.scene->body_names[p.body[q]] == "wall") {
+      p.y[q] -= 0.5;
+    } else if (outline.contains(p.r[q], p.y[q])) {
+      p.v_r[q] = soil_velocity_r;
+    }
+  }
+  // A solver made after the changes, which locates the particles where they now are.
+  run.solver = std::make_unique<ExplicitSolver>(
+      *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+  run.solver->step(1.0);
+  return run;
+}
+
+TEST(ContactNormals, SoilMovingIntoAWallFromEitherFaceIsStoppedByThatFace) {
+  // The nodes on r = 0.375 m at y = 1.875 and 2.0 m lie inside the wall, as far from its inner face
+  // as from its outer one (the first also from its tip). Soil there moving outward came in
+  // through the inner face and must be stopped by it; soil moving inward, by the outer face. A
+  // choice of face by rounding alone would call one of the two motions separating and let it on.
+  for (const double v : {0.1, -0.1}) {
+    const CaseRun run = soil_moving_inside_a_wall(v);
+    const ContactPair& pair = run.pair();
+    const Grid& grid = run.scene->grid;
+    for (const int iy : {15, 16}) {
+      const auto i = static_cast<std::size_t>(grid.node_index(3, iy));
+      ASSERT_EQ(pair.area[i], 0.0) << iy;            // inside the outline, off its edges
+      EXPECT_NE(pair.state[i], 0) << v << " " << iy; // 0: not in contact
+      EXPECT_EQ(pair.contact_normal[i][0], v > 0.0 ? -1.0 : 1.0) << v << " " << iy;
+      EXPECT_EQ(pair.contact_normal[i][1], 0.0) << v << " " << iy;
+    }
+    // The force those nodes take is booked to the face that stopped the soil: with the soil
+    // moving outward, nothing pushes the outer face (its nodes see the soil leave), so its force
+    // is exactly zero; moving inward, nothing pushes the inner one.
+    const double inner = run.surface_force("inner", 0);
+    const double outer = run.surface_force("outer", 0);
+    EXPECT_EQ(v > 0.0 ? outer : inner, 0.0) << v;
+    EXPECT_NE(v > 0.0 ? inner : outer, 0.0) << v;
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // V7: block on an incline (plane strain), from cases/verification/v7_block_on_incline.toml.
 

@@ -249,12 +249,15 @@ void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair) {
   }
 }
 
-std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
-                                          int& surface, int only_surface) {
+namespace {
+
+/// Calls visit(distance, normal, surface) for each edge of the outline that bounds a surface (of
+/// surface `only_surface` when it is not negative), with the distance from (r, y) to the edge and
+/// the edge's outward normal.
+template <class Visit>
+void visit_edges(const StructureOutline& outline, double r, double y, int only_surface,
+                 Visit&& visit) {
   const std::size_t edges = outline.vertices.size();
-  double best = std::numeric_limits<double>::infinity();
-  std::array<double, 2> normal{0.0, 0.0};
-  surface = 0;
   for (std::size_t e = 0; e < edges; ++e) {
     const auto& a = outline.vertices[e];
     const auto& b = outline.vertices[(e + 1) % edges];
@@ -267,14 +270,49 @@ std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, doubl
     }
     const double s = std::clamp(((r - a[0]) * dr + (y - a[1]) * dy) / length2, 0.0, 1.0);
     const double distance = std::hypot(r - (a[0] + s * dr), y - (a[1] + s * dy));
-    if (distance < best) {
-      best = distance;
-      const double length = std::sqrt(length2);
-      normal = {dy / length, -dr / length};
-      surface = outline.edge_surface[e];
-    }
+    const double length = std::sqrt(length2);
+    visit(distance, std::array<double, 2>{dy / length, -dr / length}, outline.edge_surface[e]);
   }
+}
+
+} // namespace
+
+std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
+                                          int& surface, int only_surface) {
+  double best = std::numeric_limits<double>::infinity();
+  std::array<double, 2> normal{0.0, 0.0};
+  surface = 0;
+  visit_edges(outline, r, y, only_surface,
+              [&](double distance, const std::array<double, 2>& n, int edge_surface) {
+                if (distance < best) {
+                  best = distance;
+                  normal = n;
+                  surface = edge_surface;
+                }
+              });
   return normal;
+}
+
+EdgeNormal facing_edge_normal(const StructureOutline& outline, double r, double y,
+                              const std::array<double, 2>& direction) {
+  double best = std::numeric_limits<double>::infinity();
+  visit_edges(outline, r, y, -1, [&](double distance, const std::array<double, 2>&, int) {
+    best = std::min(best, distance);
+  });
+  // A node on a line of symmetry of the outline (midway between a wall's faces, or as far from
+  // the tip as from a face) is as near, to rounding, to several edges: rounding must not choose.
+  const double tie = best * (1.0 + 1e-9) + 1e-12;
+  EdgeNormal chosen;
+  double most = -std::numeric_limits<double>::infinity();
+  visit_edges(outline, r, y, -1,
+              [&](double distance, const std::array<double, 2>& n, int edge_surface) {
+                const double along = direction[0] * n[0] + direction[1] * n[1];
+                if (distance <= tie && along > most) {
+                  most = along;
+                  chosen = {n, edge_surface};
+                }
+              });
+  return chosen;
 }
 
 } // namespace mpile

@@ -148,4 +148,17 @@ std::vector<SurfaceAreas> surface_areas(const StructureOutline& outline, std::si
 std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
                                           int& surface, int only_surface = -1);
 
+/// An edge's outward normal and the surface the edge belongs to.
+struct EdgeNormal {
+  std::array<double, 2> normal{0.0, 0.0};
+  int surface = 0;
+};
+
+/// Normal and surface of a node inside the outline: those of the nearest edge, and where several
+/// edges are as near to rounding, of the one whose normal points most along `direction`. Contact
+/// passes the direction the soil moves into the structure (minus the relative velocity), so that
+/// soil reaching the middle of a wall from either face meets that face.
+EdgeNormal facing_edge_normal(const StructureOutline& outline, double r, double y,
+                              const std::array<double, 2>& direction);
+
 } // namespace mpile
