@@ -146,50 +146,31 @@ TEST(ContactNormals, InsideTheOutlineTiesGoToTheFaceTheSoilMovesInto) {
   EXPECT_EQ(facing_edge_normal(thick, r2, y, {0.0, -1.0}).surface, 1);
 }
 
-/// Elastic soil to y = 2 m, weightless, and a rigid wall two cells thick (r from 0.25 to 0.5 m,
-/// 0.125 m cells, all exact in binary) seeded above it and then moved 0.5 m down into it, to y
-/// from 1.75 to 2.125 m, as a pile wall that soil has got into: the soil particles in it (two per
-/// cell and axis) are given v_r = `soil_velocity_r`, everything else is at rest. The wall's contact
-/// surfaces are its tip, inner (left) and outer (right) faces.
+/// block_above_soil's elastic soil to y = 2 m, weightless, and a rigid wall two cells thick (r from
+/// 0.25 to 0.5 m, 0.125 m cells, all exact in binary) seeded above it and then moved 0.5 m down
+/// into it, to y from 1.75 to 2.125 m, as a pile wall that soil has got into: the soil particles in
+/// it (two per cell and axis) are given v_r = `soil_velocity_r`, everything else is at rest. The
+/// wall's contact surfaces are its tip, inner (left) and outer (right) faces.
 CaseRun soil_moving_inside_a_wall(double soil_velocity_r) {
-  CaseRun run(R"(geometry = "axisymmetric"
-[grid]
-r = [{ start = 0.0, end = 1.0, cells = 8 }]
-y = [{ start = 0.0, end = 3.0, cells = 24 }]
-[materials.soil]
-type = "linear_elastic"
-young_modulus = 50e6
-poisson_ratio = 0.3
-density = 1650.0
-[materials.steel]
-type = "linear_elastic"
-young_modulus = 200e9
-poisson_ratio = 0.0
-density = 8000.0
-[[bodies]]
-name = "soil"
-material = "soil"
-region = { r = [0.0, 1.0], y = [0.0, 2.0] }
-[[bodies]]
-name = "wall"
-material = "steel"
-region = { r = [0.25, 0.5], y = [2.25, 2.625] }
-[bodies.rigid]
-velocity_y = 0.0
-[[contact]]
-structure = "wall"
-surfaces = { bottom = "tip", right = "outer", left = "inner" }
-[solver]
-gravity = [0.0, 0.0]
-[[phases]]
-name = "one step"
-duration = 0.1
-)");
+  // block_above_soil on a grid of 0.125 m cells, without its moving mesh, the block made the wall.
+  std::string text = replaced(
+      replaced(std::string(block_above_soil),
+               "cells = 10 }]\ny = [{ start = 0.0, end = 1.0, cells = 10 }, { start = 1.0, end = "
+               "1.4, cells = 8 },\n     { start = 1.4, end = 2.5, cells = 11 }]",
+               "cells = 8 }]\ny = [{ start = 0.0, end = 3.0, cells = 24 }]"),
+      "r = [0.5, 0.6], y = [2.3, 2.4]", "r = [0.25, 0.5], y = [2.25, 2.625]");
+  text = replaced(text, "velocity_y = -0.5", "velocity_y = 0.0");
+  text = replaced(text, "structure = \"block\"\n",
+                  "structure = \"block\"\nsurfaces = { bottom = \"tip\", right = \"outer\", left = "
+                  "\"inner\" }\n");
+  text = replaced(text, "[moving_mesh]\nbody = \"block\"\nband = [1.0, 1.4]\ntravel = 0.2\n", "");
+  CaseRun run(text +
+              "[solver]\ngravity = [0.0, 0.0]\n[[phases]]\nname = \"one step\"\nduration = 0.1\n");
   run.scene->contacts.at(0).outline->translate(0.0, -0.5);
   Particles& p = run.scene->particles;
   const StructureOutline& outline = *run.scene->contacts.at(0).outline;
   for (std::size_t q = 0; q < p.size(); ++q) {
-    if (run.scene->body_names[p.body[q]] == "wall") {
+    if (run.scene->body_names[p.body[q]] == "block") {
       p.y[q] -= 0.5;
     } else if (outline.contains(p.r[q], p.y[q])) {
       p.v_r[q] = soil_velocity_r;
