@@ -346,9 +346,7 @@ double sum_surface_forces(Scene& scene, ContactPair& pair) {
           // (which would show a shaft friction ratio above mu). The rigid body gets the force as
           // it acts.
           auto add_turned = [&](std::size_t surface, double share) {
-            int unused = 0;
-            const auto m =
-                nearest_edge_normal(*pair.outline, r, y, unused, static_cast<int>(surface));
+            const auto m = nearest_edge_normal(*pair.outline, r, y, static_cast<int>(surface));
             const auto& n = pair.contact_normal[i];
             const double length = std::hypot(n[0], n[1]);
             const double normal = (f[0] * n[0] + f[1] * n[1]) / length;

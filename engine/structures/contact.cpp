@@ -278,18 +278,15 @@ void visit_edges(const StructureOutline& outline, double r, double y, int only_s
 } // namespace
 
 std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
-                                          int& surface, int only_surface) {
+                                          int surface) {
   double best = std::numeric_limits<double>::infinity();
   std::array<double, 2> normal{0.0, 0.0};
-  surface = 0;
-  visit_edges(outline, r, y, only_surface,
-              [&](double distance, const std::array<double, 2>& n, int edge_surface) {
-                if (distance < best) {
-                  best = distance;
-                  normal = n;
-                  surface = edge_surface;
-                }
-              });
+  visit_edges(outline, r, y, surface, [&](double distance, const std::array<double, 2>& n, int) {
+    if (distance < best) {
+      best = distance;
+      normal = n;
+    }
+  });
   return normal;
 }
 

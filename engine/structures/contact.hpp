@@ -143,10 +143,10 @@ struct SurfaceAreas {
 std::vector<SurfaceAreas> surface_areas(const StructureOutline& outline, std::size_t surfaces,
                                         GeometryMode mode);
 
-/// Normal and surface of a node the outline gives no area (a structure node off its outline):
-/// those of the nearest edge (of surface `only_surface` when it is not negative).
+/// The outward normal of the edge of surface `surface` nearest to (r, y): the direction a tip
+/// corner node's force is turned into for that surface's share.
 std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
-                                          int& surface, int only_surface = -1);
+                                          int surface);
 
 /// An edge's outward normal and the surface the edge belongs to.
 struct EdgeNormal {
