@@ -116,6 +116,27 @@ class Snapshot:
             frame = frame.set_index("id")
         return frame
 
+    def vertical_force(self, heights, r_min=0.0, r_max=np.inf, slab=0.01):
+        """The vertical force the soil carries across horizontal sections, compression positive:
+        at each height y (m), -sum(sigma_yy * volume) / slab over the deformable particles whose
+        centre is within slab / 2 of y and whose r is in [r_min, r_max). That is the slab's mean of
+        -integral sigma_yy r dr, in N per radian in an axisymmetric run (volumes are per radian) and N
+        per metre in plane strain. Between r = 0 and a pile's inner radius it is the load the soil
+        plug carries; a slab of at least a particle spacing keeps the count of particles steady."""
+        if not slab > 0.0:
+            raise ValueError(f"slab must be positive, not {slab}")
+        for name in ("sigma_yy", "volume"):
+            if name not in self.arrays:
+                raise KeyError(f"{self.path} has no point array {name}; it has: " + ", ".join(self.scalars()))
+        r, y = self.positions[:, 0], self.positions[:, 1]
+        inside = (r >= r_min) & (r < r_max)
+        rigid = [k for k, name in enumerate(self.material_names) if name.endswith("(rigid)")]
+        if rigid and "material" in self.arrays:
+            inside &= ~np.isin(self.arrays["material"].astype(int), rigid)
+        load = -self.arrays["sigma_yy"] * self.arrays["volume"]
+        heights = np.atleast_1d(np.asarray(heights, float))
+        return np.array([load[inside & (np.abs(y - h) < 0.5 * slab)].sum() / slab for h in heights])
+
     def __repr__(self):
         return f"Snapshot(time={self.time:g}, path={str(self.path)!r})"
 

@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonCore import VTK_INT, vtkPoints
+from vtkmodules.vtkCommonCore import VTK_INT, vtkPoints, vtkStringArray
 from vtkmodules.vtkCommonDataModel import VTK_VERTEX, vtkCellArray, vtkUnstructuredGrid
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
@@ -118,3 +118,48 @@ def test_real_run_follows_a_sliding_particle(real_run):
                                                                          abs=1e-12)
         # The reference slide s(1 s) = 1.1781 m; docs/verification.md holds V7 to 3 %.
         assert track["r"].iloc[-1] - track["r"].iloc[0] == pytest.approx(1.1781, rel=0.03)
+
+
+def test_vertical_force_across_sections(tmp_path):
+    """Soil particles on a 1 cm grid over r in [0, 0.5] m, y in [0, 1] m, with axisymmetric volumes
+    (r dr dy, per radian) and sigma_yy = -(100 kPa + 50 kPa/m * y); a rigid block beside them at
+    1e9 Pa. Across y the soil between r_min and r_max carries (100 kPa + 50 kPa/m * y) (r_max^2 - r_min^2) / 2:
+    the particles' r are cell centres (the midpoint rule is exact for the integrand r) and a slab of
+    three rows centred on a row averages the linear stress exactly, so only round-off is allowed."""
+    h = 0.01
+    r, y = [a.ravel() for a in np.meshgrid((np.arange(50) + 0.5) * h, (np.arange(100) + 0.5) * h)]
+    rigid_r, rigid_y = [a.ravel() for a in np.meshgrid(0.505 + np.arange(3) * h, (np.arange(100) + 0.5) * h)]
+    all_r, all_y = np.concatenate([r, rigid_r]), np.concatenate([y, rigid_y])
+    sigma_yy = np.concatenate([-(1e5 + 5e4 * y), np.full(rigid_r.size, -1e9)])
+    material = np.concatenate([np.zeros(r.size), np.ones(rigid_r.size)]).astype(np.int32)
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.column_stack([all_r, all_y, np.zeros_like(all_r)]), deep=True))
+    cells = vtkCellArray()
+    for i in range(all_r.size):
+        cells.InsertNextCell(1, [i])
+    grid = vtkUnstructuredGrid()
+    grid.SetPoints(points)
+    grid.SetCells(VTK_VERTEX, cells)
+    for name, values, kind in [("sigma_yy", sigma_yy, None), ("volume", all_r * h * h, None),
+                               ("material", material, VTK_INT)]:
+        array = numpy_to_vtk(values, deep=True, array_type=kind)
+        array.SetName(name)
+        grid.GetPointData().AddArray(array)
+    names = vtkStringArray()
+    names.SetName("material_names")
+    for name in ("sand", "pile (rigid)"):
+        names.InsertNextValue(name)
+    grid.GetFieldData().AddArray(names)
+    writer = vtkXMLUnstructuredGridWriter()
+    writer.SetFileName(str(tmp_path / "column.vtu"))
+    writer.SetInputData(grid)
+    assert writer.Write() == 1
+
+    snapshot = mpile.open_snapshots(tmp_path / "column.vtu")[0]
+    heights = np.array([0.205, 0.505, 0.805])
+    expected = (1e5 + 5e4 * heights) * (0.3**2 - 0.1**2) / 2
+    np.testing.assert_allclose(snapshot.vertical_force(heights, 0.1, 0.3, slab=3 * h), expected, rtol=1e-12)
+    whole = (1e5 + 5e4 * heights) * 0.5**2 / 2  # the rigid block's 1e9 Pa is left out
+    np.testing.assert_allclose(snapshot.vertical_force(heights, slab=3 * h), whole, rtol=1e-12)
+    with pytest.raises(ValueError, match="slab must be positive"):
+        snapshot.vertical_force(0.5, slab=0.0)
