@@ -5,7 +5,7 @@ f(h) = f0 + C h^p with p = 1.5 at three unevenly refined cell sizes must give p 
 bisection's precision (1e-9 relative: 200 halvings leave far less, round-off remains); values
 that oscillate with refinement must be reported as having no observed order. End to end, three
 synthetic histories with such forces must be read at a penetration and extrapolated the same way,
-the body's whole axial force (total_Fy) likewise, and an ensemble of three runs at the finest
+the body's whole axial force (total_Fy) and tip plus inner wall (base_Fy) likewise, and an ensemble of three runs at the finest
 resolution, offset by -0.3, 0 and +0.3, must give the same limit with a scatter of exactly 0.3
 (their standard deviation, n - 1) and the sum of their wall times.
 """
@@ -48,6 +48,9 @@ def write_history(path, h, wall, status="complete", offset=0.0):
         f["/reactions/pile/tip/F_y"] = np.full(rows, (exact(h) + offset) * 1e3)
         # The body's whole axial force: twice the tip's, so its limit is 2 F0 at the same order.
         f["/bodies/pile/contact_F_y"] = np.full(rows, 2.0 * (exact(h) + offset) * 1e3)
+        # The inner wall: three times the tip's plus 1, so tip plus inner wall has the limit
+        # 4 F0 + 1 at the same order (and is told apart from the tip or the inner wall alone).
+        f["/reactions/pile/internal_shaft/F_y"] = np.full(rows, (3.0 * (exact(h) + offset) + 1.0) * 1e3)
 
 
 def main():
@@ -84,6 +87,11 @@ def main():
         ok &= check("the body's whole axial force is read from its contact_F_y",
                     total.returncode == 0 and "total_Fy" in total.stdout
                     and "1.50  25 +-" in total.stdout)
+        base = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "convergence.py"),
+                               *specs, "--at", "0.05", "--quantities", "base_Fy"],
+                              capture_output=True, text=True)
+        ok &= check("tip plus inner wall is the sum of their F_y",
+                    base.returncode == 0 and "1.50  51 +-" in base.stdout)
         # An ensemble at the finest resolution: the members' mean is the exact value, their
         # standard deviation 0.3, their cost the sum of their wall times (10 + 11 + 12 s).
         members = []

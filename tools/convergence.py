@@ -20,7 +20,8 @@ For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the 
 the pile in kN/rad, tip_qb for the tip's unit end resistance in MPa, or total_Fy for the soil's
 whole axial force on the body, /bodies/<body>/contact_F_y: at a corner node shared by two
 surfaces each reports its share turned into its own normal and tangent, so the surfaces' F_y
-need not add up to it) and penetration, the value
+need not add up to it; base_Fy for tip plus internal shaft F_y, the load the annulus and the soil
+plug take together, which varies less with the mesh than their split) and penetration, the value
 of each run is the mean over the installation rows within --window of that penetration (default
 10 mm: stick-slip makes pile forces scatter by several per cent from row to row, so a single row
 is no value to extrapolate), and its scatter the standard deviation there. The three
@@ -59,17 +60,19 @@ def text(value):
 
 
 def dataset(quantity, body):
-    """The history dataset and the scale to the reported unit of a quantity name."""
+    """The history datasets whose sum is a quantity, and the scale to its reported unit."""
     surface, _, component = quantity.partition("_")
     if quantity == "total_Fy":
-        return f"/bodies/{body}/contact_F_y", 1e-3, "kN/rad"
+        return [f"/bodies/{body}/contact_F_y"], 1e-3, "kN/rad"
+    if quantity == "base_Fy":
+        return [f"/reactions/{body}/tip/F_y", f"/reactions/{body}/internal_shaft/F_y"], 1e-3, "kN/rad"
     if surface not in SURFACES:
-        sys.exit(f"convergence: unknown surface in '{quantity}' (tip, ext or int; total_Fy)")
+        sys.exit(f"convergence: unknown surface in '{quantity}' (tip, ext or int; total_Fy, base_Fy)")
     if component == "qb" and surface == "tip":
-        return f"/reactions/{body}/tip/unit_end_resistance", 1e-6, "MPa"
+        return [f"/reactions/{body}/tip/unit_end_resistance"], 1e-6, "MPa"
     if component not in COMPONENTS:
         sys.exit(f"convergence: unknown component in '{quantity}' (Fr, Fy, Ft; tip_qb)")
-    return f"/reactions/{body}/{SURFACES[surface]}/{COMPONENTS[component]}", 1e-3, "kN/rad"
+    return [f"/reactions/{body}/{SURFACES[surface]}/{COMPONENTS[component]}"], 1e-3, "kN/rad"
 
 
 def load(spec, quantities, depths, window, body, running=False):
@@ -114,10 +117,11 @@ def load_run(directory, quantities, depths, window, body, running=False):
         rows = phase == len(case["phases"]) - 1  # the installation is the last phase
         penetration = -history[f"/bodies/{body}/u_y"][rows]
         for quantity in quantities:
-            name, scale, _ = dataset(quantity, body)
-            if name not in history:
-                sys.exit(f"convergence: {path} has no dataset {name}")
-            series = history[name][rows] * scale
+            names, scale, _ = dataset(quantity, body)
+            for name in names:
+                if name not in history:
+                    sys.exit(f"convergence: {path} has no dataset {name}")
+            series = sum(history[name][rows] for name in names) * scale
             for depth in depths:
                 near = np.abs(penetration - depth) <= window
                 if running and status == "running" and penetration.max(initial=0.0) < depth + window:
