@@ -602,7 +602,8 @@ std::vector<TableSpec> declare() {
                "run stops")
             .or_default(output.checkpoint_interval)
             .at_least(0.0),
-        boolean("grid_snapshots", "also write the grid at every snapshot")
+        boolean("grid_snapshots",
+                "also write the grid at every snapshot (nodal mass, velocity and contact)")
             .or_default(output.grid_snapshots),
         numbers("snapshot_penetrations", "m",
                 "further snapshots when a rigid body's penetration "

@@ -172,6 +172,63 @@ std::string numbered_name(const char* prefix, std::size_t index, const char* ext
   return name.str();
 }
 
+/// The contact of the last step at each node, summed over the contact pairs: the force of the soil
+/// on the structure (N [/rad]), that force over the node's share of the outline (Pa: the traction
+/// whose resultant it is, 0 where the node has no outline area), the surface holding most of that
+/// area (an index into the field data contact_surface_names, "<structure>/<surface>"; -1 for
+/// none) and the kind of contact (0 free, 1 sliding, 2 sticking). Along a pile's faces the
+/// traction is the profile of radial stress and shaft friction the surface sums leave out.
+void add_contact_arrays(const Scene& scene, vtkRectilinearGrid& grid) {
+  const auto n = static_cast<vtkIdType>(scene.grid.node_count());
+  auto force = vector_array("contact_force", n);
+  auto traction = vector_array("contact_traction", n);
+  vtkNew<vtkIntArray> surface, state;
+  surface->SetName("contact_surface");
+  surface->SetNumberOfTuples(n);
+  state->SetName("contact_state");
+  state->SetNumberOfTuples(n);
+  force->Fill(0.0);
+  traction->Fill(0.0);
+  surface->Fill(-1);
+  state->Fill(0);
+  vtkNew<vtkStringArray> names;
+  names->SetName("contact_surface_names");
+  for (const ContactPair& pair : scene.contacts) {
+    const std::size_t surfaces = pair.surface_count();
+    const auto offset = static_cast<int>(names->GetNumberOfValues()); // this pair's first surface
+    for (const std::string& name : pair.surfaces) {
+      names->InsertNextValue(pair.name + "/" + name);
+    }
+    if (pair.node_force.size() != static_cast<std::size_t>(n)) {
+      continue; // not sized yet: the solver has not been set up
+    }
+    for (vtkIdType k = 0; k < n; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      const auto& f = pair.node_force[i];
+      double* total = force->GetPointer(3 * k);
+      for (int d = 0; d < 3; ++d) {
+        total[d] += f[static_cast<std::size_t>(d)];
+      }
+      state->SetValue(k, std::max<int>(state->GetValue(k), pair.state[i]));
+      if (!pair.outline || pair.area[i] <= 0.0) {
+        continue;
+      }
+      double* t = traction->GetPointer(3 * k);
+      for (int d = 0; d < 3; ++d) {
+        t[d] += f[static_cast<std::size_t>(d)] / pair.area[i];
+      }
+      const auto shares = pair.surface_area.begin() + static_cast<std::ptrdiff_t>(i * surfaces);
+      const auto largest = std::max_element(shares, shares + static_cast<std::ptrdiff_t>(surfaces));
+      surface->SetValue(k, offset + static_cast<int>(largest - shares));
+    }
+  }
+  grid.GetPointData()->AddArray(force);
+  grid.GetPointData()->AddArray(traction);
+  grid.GetPointData()->AddArray(surface);
+  grid.GetPointData()->AddArray(state);
+  grid.GetFieldData()->AddArray(names);
+}
+
 void write_grid_vtr(const Scene& scene, const std::string& path) {
   const Grid& g = scene.grid;
   vtkNew<vtkDoubleArray> r, y, z;
@@ -200,6 +257,9 @@ void write_grid_vtr(const Scene& scene, const std::string& path) {
   }
   grid->GetPointData()->AddArray(mass);
   grid->GetPointData()->AddArray(velocity);
+  if (scene.has_contact()) {
+    add_contact_arrays(scene, *grid);
+  }
   write_xml<vtkXMLRectilinearGridWriter>(grid, path);
 }
 

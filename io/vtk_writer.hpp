@@ -11,7 +11,8 @@ namespace mpile {
 /// A time series of snapshots for ParaView: one binary, zlib-compressed .vtu file of the particles
 /// per snapshot, and one .pvd collection listing them with their times, rewritten (atomically)
 /// after every snapshot so that ParaView can open the run while it goes on. With grid snapshots
-/// on, a second series of .vtr files holds the nodal mass and velocity.
+/// on, a second series of .vtr files holds the nodal mass and velocity, and the contact force,
+/// traction, surface and state of the last step.
 class SnapshotWriter {
 public:
   SnapshotWriter(std::string directory, bool grid_snapshots);

@@ -15,8 +15,10 @@
 #include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkRectilinearGrid.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLRectilinearGridReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <atomic>
@@ -129,6 +131,98 @@ TEST(VtkOutput, TwoMaterialsWithTheSameStateVariablesShareOneArray) {
   ASSERT_NE(names, nullptr);
   EXPECT_EQ(names->GetValue(0), "loose");
   EXPECT_EQ(names->GetValue(1), "dense");
+}
+
+TEST(VtkOutput, GridSnapshotHoldsTheContactTractionUnderASoilColumn) {
+  // An elastic soil column 1 m high and 1 m in radius (roller at r = 1 m) rests on a rigid floor
+  // held still, brought to rest by local damping. The floor's top face must carry the column's
+  // weight, rho g H = 1650 * 9.81 * 1 = 16 187 Pa, as a uniform traction (downward: the force of
+  // the soil on the structure): at rest a node's contact
+  // force balances its internal and body forces, whose sum for a stress linear in depth is the
+  // traction times the node's area. The particles' quadrature is exact for that in y but not for
+  // the axisymmetric weight r in r, and the column is at rest only to the phase's equilibrium
+  // tolerance (1e-3): 1 % holds both (the nodes read -16 200 Pa, 0.08 % off).
+  CaseRun run(R"(geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 8 }]
+y = [{ start = 0.0, end = 2.0, cells = 16 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 20e6
+poisson_ratio = 0.0
+density = 1650.0
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 200e9
+poisson_ratio = 0.0
+density = 8000.0
+[[bodies]]
+name = "soil"
+material = "soil"
+region = { r = [0.0, 1.0], y = [0.5, 1.5] }
+[[bodies]]
+name = "floor"
+material = "steel"
+region = { r = [0.0, 1.0], y = [0.25, 0.5] }
+[bodies.rigid]
+velocity_y = 0.0
+[[contact]]
+structure = "floor"
+surfaces = { top = "top" }
+[boundaries]
+r_max = "roller"
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+[[phases]]
+name = "settle"
+duration = 2.0
+local_damping = 0.7
+equilibrium_tolerance = 1e-3
+)");
+  run.run([] {});
+  const auto directory = fresh_directory("vtk_contact");
+  SnapshotWriter writer(directory.string(), true);
+  writer.write(*run.scene, run.solver->time());
+
+  vtkNew<vtkXMLRectilinearGridReader> reader;
+  reader->SetFileName((directory / "grid_000000.vtr").string().c_str());
+  reader->Update();
+  vtkRectilinearGrid* grid = reader->GetOutput();
+  vtkDataArray* force = grid->GetPointData()->GetArray("contact_force");
+  vtkDataArray* traction = grid->GetPointData()->GetArray("contact_traction");
+  vtkDataArray* surface = grid->GetPointData()->GetArray("contact_surface");
+  vtkDataArray* state = grid->GetPointData()->GetArray("contact_state");
+  ASSERT_TRUE(force && traction && surface && state);
+  auto* names =
+      vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("contact_surface_names"));
+  ASSERT_NE(names, nullptr);
+  ASSERT_EQ(names->GetNumberOfValues(), 1);
+  EXPECT_EQ(names->GetValue(0), "floor/top");
+
+  const double weight_pressure = 1650.0 * 9.81 * 1.0;
+  const Grid& g = run.scene->grid;
+  double total = 0.0;
+  int checked = 0;
+  for (vtkIdType k = 0; k < grid->GetNumberOfPoints(); ++k) {
+    total += force->GetComponent(k, 1);
+    const double r = g.node_r(static_cast<int>(k));
+    const double y = g.node_y(static_cast<int>(k));
+    if (y == 0.5 && r > 0.0 && r < 1.0) { // the top face's nodes off its two ends
+      EXPECT_EQ(surface->GetTuple1(k), 0.0) << r;
+      EXPECT_NE(state->GetTuple1(k), 0.0) << r;
+      EXPECT_NEAR(traction->GetComponent(k, 1), -weight_pressure, 0.01 * weight_pressure) << r;
+      EXPECT_NEAR(traction->GetComponent(k, 0), 0.0, 0.01 * weight_pressure) << r;
+      ++checked;
+    } else if (y != 0.5) {
+      EXPECT_EQ(surface->GetTuple1(k), -1.0) << r << " " << y;
+    }
+  }
+  EXPECT_EQ(checked, 7);
+  // Every node's force is written: they add up to the surface's sum, and to the weight
+  // rho g H R^2 / 2 per radian (the equilibrium tolerance: 1 %).
+  EXPECT_NEAR(total, run.surface_force("top", 1), 1e-9 * std::abs(total));
+  EXPECT_NEAR(total, -weight_pressure * 0.5, 0.01 * weight_pressure * 0.5);
 }
 
 TEST(Hdf5Output, SeriesAndArraysReadBackWithUnits) {
