@@ -6,6 +6,7 @@
     mpile.phases("out/jacked_quick")                      # name, start, end, ended
     snaps = mpile.open_snapshots("out/jacked_quick")      # particles.pvd
     mpile.follow_particle(snaps, 1234)                    # one particle through time
+    mpile.open_grid_snapshots("out/run")[-1].contact_profile("pile/tip")  # traction along a surface
     run = mpile.installation("out/jacked_quick")          # the seed's figures 3 to 7
     mpile.radiation("out/gdp_quick")                      # radiated energy, peak particle velocity
     mpile.load_test("out/gdp_quick_capacity")             # load-settlement curve, capacity
@@ -26,6 +27,7 @@ _EXPORTS = {
     "phases": "phase_table",
     "open_snapshots": "snapshots",
     "follow_particle": "snapshots",
+    "open_grid_snapshots": "grid",
     "Snapshot": "snapshots",
     "Snapshots": "snapshots",
     "open_sweep": "sweep",

@@ -24,13 +24,16 @@ def history_path(path):
     return path
 
 
-def snapshots_path(path):
-    """The particles.pvd of a run directory, or `path` itself when it is a file (.pvd or one .vtu)."""
+def snapshots_path(path, collection="particles.pvd"):
+    """The `collection` (particles.pvd, or grid.pvd) of a run directory, or `path` itself when it is
+    a file (.pvd or one .vtu / .vtr)."""
     path = Path(path)
     if path.is_dir():
-        path = path / "particles.pvd"
+        path = path / collection
         if not path.is_file():
-            raise RunFileError(f"{path.parent} holds no particles.pvd (is it an mpile output directory?)")
+            hint = (" (written with [output] grid_snapshots = true)" if collection == "grid.pvd"
+                    else " (is it an mpile output directory?)")
+            raise RunFileError(f"{path.parent} holds no {collection}{hint}")
         return path
     if not path.exists():
         raise RunFileError(f"{path}: no such file or directory")

@@ -141,8 +141,8 @@ class Snapshot:
         return f"Snapshot(time={self.time:g}, path={str(self.path)!r})"
 
 
-class Snapshots(list):
-    """The snapshots of a run in time order (a list of `Snapshot`), with `times` and the tables below."""
+class TimeOrdered(list):
+    """Snapshots in time order, each with a `time` (s)."""
 
     @property
     def times(self):
@@ -153,6 +153,10 @@ class Snapshots(list):
         if not self:
             raise IndexError("no snapshots")
         return min(self, key=lambda snapshot: abs(snapshot.time - time))
+
+
+class Snapshots(TimeOrdered):
+    """The snapshots of a run in time order (a list of `Snapshot`), with `times` and the tables below."""
 
     def to_xarray(self, arrays=("sigma_rr", "sigma_yy", "sigma_ry")):
         """The chosen scalar arrays and the positions r, y as an xarray Dataset on dims (time, id):
