@@ -134,52 +134,15 @@ TEST(VtkOutput, TwoMaterialsWithTheSameStateVariablesShareOneArray) {
 }
 
 TEST(VtkOutput, GridSnapshotHoldsTheContactTractionUnderASoilColumn) {
-  // An elastic soil column 1 m high and 1 m in radius (roller at r = 1 m) rests on a rigid floor
-  // held still, brought to rest by local damping. The floor's top face must carry the column's
-  // weight, rho g H = 1650 * 9.81 * 1 = 16 187 Pa, as a uniform traction (downward: the force of
-  // the soil on the structure): at rest a node's contact
-  // force balances its internal and body forces, whose sum for a stress linear in depth is the
-  // traction times the node's area. The particles' quadrature is exact for that in y but not for
-  // the axisymmetric weight r in r, and the column is at rest only to the phase's equilibrium
-  // tolerance (1e-3): 1 % holds both (the nodes read -16 200 Pa, 0.08 % off).
-  CaseRun run(R"(geometry = "axisymmetric"
-[grid]
-r = [{ start = 0.0, end = 1.0, cells = 8 }]
-y = [{ start = 0.0, end = 2.0, cells = 16 }]
-[materials.soil]
-type = "linear_elastic"
-young_modulus = 20e6
-poisson_ratio = 0.0
-density = 1650.0
-[materials.steel]
-type = "linear_elastic"
-young_modulus = 200e9
-poisson_ratio = 0.0
-density = 8000.0
-[[bodies]]
-name = "soil"
-material = "soil"
-region = { r = [0.0, 1.0], y = [0.5, 1.5] }
-[[bodies]]
-name = "floor"
-material = "steel"
-region = { r = [0.0, 1.0], y = [0.25, 0.5] }
-[bodies.rigid]
-velocity_y = 0.0
-[[contact]]
-structure = "floor"
-surfaces = { top = "top" }
-[boundaries]
-r_max = "roller"
-y_min = "fixed"
-[solver]
-gravity = [0.0, -9.81]
-[[phases]]
-name = "settle"
-duration = 2.0
-local_damping = 0.7
-equilibrium_tolerance = 1e-3
-)");
+  // tests/data/column_on_floor.toml: an elastic soil column 1 m high and 1 m in radius (roller at
+  // r = 1 m) rests on a rigid floor held still, brought to rest by local damping. The floor's top
+  // face must carry the column's weight, rho g H = 1650 * 9.81 * 1 = 16 187 Pa, as a uniform
+  // traction (downward: the force of the soil on the structure): at rest a node's contact force
+  // balances its internal and body forces, whose sum for a stress linear in depth is the traction
+  // times the node's area. The particles' quadrature is exact for that in y but not for the
+  // axisymmetric weight r in r, and the column is at rest only to the phase's equilibrium tolerance
+  // (1e-3): 1 % holds both (the nodes read -16 200 Pa, 0.08 % off).
+  CaseRun run(read_text(source / "tests/data/column_on_floor.toml"));
   run.run([] {});
   const auto directory = fresh_directory("vtk_contact");
   SnapshotWriter writer(directory.string(), true);

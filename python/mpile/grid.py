@@ -7,13 +7,10 @@ faces, the radial stress and the shaft friction whose sums the history's reactio
 
 Needs numpy and VTK (`vtkmodules`); pandas for the profile.
 """
-import os
-from pathlib import Path
-
 import numpy as np
 
-from .files import RunFileError, snapshots_path
-from .snapshots import COMPONENTS, TimeOrdered, read_pvd
+from .files import snapshots_path
+from .snapshots import COMPONENTS, LazyFile, TimeOrdered, read_pvd, read_xml
 
 
 def read_vtr(path):
@@ -22,40 +19,18 @@ def read_vtr(path):
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLRectilinearGridReader
 
-    if not os.path.isfile(path):
-        raise RunFileError(f"{path}: no such file")
-    reader = vtkXMLRectilinearGridReader()
-    if not reader.CanReadFile(str(path)):
-        raise RunFileError(f"{path} is not a VTK XML rectilinear grid (.vtr)")
-    reader.SetFileName(str(path))
-    reader.Update()
-    grid = reader.GetOutput()
-    data = grid.GetPointData()
-    arrays = {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
-    fields = {}
-    for i in range(grid.GetFieldData().GetNumberOfArrays()):
-        array = grid.GetFieldData().GetAbstractArray(i)
-        if array.IsA("vtkStringArray"):
-            fields[array.GetName()] = [array.GetValue(j) for j in range(array.GetNumberOfValues())]
+    grid, arrays, fields = read_xml(path, vtkXMLRectilinearGridReader, "rectilinear grid (.vtr)")
     r = vtk_to_numpy(grid.GetXCoordinates()).copy()
     y = vtk_to_numpy(grid.GetYCoordinates()).copy()
     return r, y, arrays, fields
 
 
-class GridSnapshot:
+class GridSnapshot(LazyFile):
     """One grid snapshot: `time` (s), `path`, and once read, `r` and `y` (the node coordinates of
     each axis, m), `arrays` ({name: array over the nodes, r fastest}) and `surface_names` (the
     contact surfaces, "<structure>/<surface>", that `contact_surface` indexes)."""
 
-    def __init__(self, time, path):
-        self.time = time
-        self.path = Path(path)
-        self._data = None
-
-    def _load(self):
-        if self._data is None:
-            self._data = read_vtr(self.path)
-        return self._data
+    reader = staticmethod(read_vtr)
 
     @property
     def r(self):
@@ -66,12 +41,8 @@ class GridSnapshot:
         return self._load()[1]
 
     @property
-    def arrays(self):
-        return self._load()[2]
-
-    @property
     def surface_names(self):
-        return self._load()[3].get("contact_surface_names", [])
+        return self._names("contact_surface_names")
 
     def contact_profile(self, surface):
         """The nodes whose outline share lies mostly on `surface` ("<structure>/<surface>", or the
@@ -98,9 +69,6 @@ class GridSnapshot:
                 frame[f"{prefix}_{component}"] = self.arrays[name][nodes, k]
         frame["state"] = self.arrays["contact_state"][nodes]
         return pd.DataFrame(frame).sort_values(["y", "r"], ignore_index=True)
-
-    def __repr__(self):
-        return f"GridSnapshot(time={self.time:g}, path={str(self.path)!r})"
 
 
 class GridSnapshots(TimeOrdered):

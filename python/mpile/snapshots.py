@@ -36,17 +36,16 @@ def read_pvd(path):
     return sorted(entries, key=lambda entry: entry[0])
 
 
-def read_vtu(path):
-    """(r-y positions as an (n, 2) array, {name: point array}, {name: field data strings}) of one
-    .vtu, arrays in the file's order."""
+def read_xml(path, reader_class, kind):
+    """(data set, {name: point array}, {name: field data strings}) of one VTK XML file read by
+    `reader_class` (`kind` names the format in the error), arrays in the file's order."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 
     if not os.path.isfile(path):
         raise RunFileError(f"{path}: no such file")
-    reader = vtkXMLUnstructuredGridReader()
+    reader = reader_class()
     if not reader.CanReadFile(str(path)):
-        raise RunFileError(f"{path} is not a VTK XML unstructured grid (.vtu)")
+        raise RunFileError(f"{path} is not a VTK XML {kind}")
     reader.SetFileName(str(path))
     reader.Update()
     grid = reader.GetOutput()
@@ -58,14 +57,27 @@ def read_vtu(path):
         array = field_data.GetAbstractArray(i)
         if array.IsA("vtkStringArray"):
             fields[array.GetName()] = [array.GetValue(j) for j in range(array.GetNumberOfValues())]
+    return grid, arrays, fields
+
+
+def read_vtu(path):
+    """(r-y positions as an (n, 2) array, {name: point array}, {name: field data strings}) of one
+    .vtu, arrays in the file's order."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+    grid, arrays, fields = read_xml(path, vtkXMLUnstructuredGridReader, "unstructured grid (.vtu)")
     points = grid.GetPoints()
     positions = vtk_to_numpy(points.GetData())[:, :2] if points is not None else np.zeros((0, 2))
     return positions, arrays, fields
 
 
-class Snapshot:
-    """One particle snapshot: `time` (s), `path`, and once read, `positions` ((n, 2): r, y in m),
-    `arrays` ({name: array}, stresses in Pa, compression negative), `body_names`, `material_names`."""
+class LazyFile:
+    """A snapshot file at a `time` (s), read by the class's `reader` only when its data is first
+    asked for. A reader returns the file's geometry, then {name: point array} and {name: field data
+    strings}."""
+
+    reader = None
 
     def __init__(self, time, path):
         self.time = time
@@ -74,26 +86,39 @@ class Snapshot:
 
     def _load(self):
         if self._data is None:
-            self._data = read_vtu(self.path)
+            self._data = type(self).reader(self.path)
         return self._data
+
+    def __repr__(self):
+        return f"{type(self).__name__}(time={self.time:g}, path={str(self.path)!r})"
+
+    @property
+    def arrays(self):
+        return self._load()[-2]
+
+    def _names(self, key):
+        return self._load()[-1].get(key, [])
+
+
+class Snapshot(LazyFile):
+    """One particle snapshot: `time` (s), `path`, and once read, `positions` ((n, 2): r, y in m),
+    `arrays` ({name: array}, stresses in Pa, compression negative), `body_names`, `material_names`."""
+
+    reader = staticmethod(read_vtu)
 
     @property
     def positions(self):
         return self._load()[0]
 
     @property
-    def arrays(self):
-        return self._load()[1]
-
-    @property
     def body_names(self):
         """Names of the body indices of the array `body` (index k is body k); [] for files without."""
-        return self._load()[2].get("body_names", [])
+        return self._names("body_names")
 
     @property
     def material_names(self):
         """Names of the material indices; a rigid body's material is called "<body> (rigid)"."""
-        return self._load()[2].get("material_names", [])
+        return self._names("material_names")
 
     def scalars(self):
         """Names of the one-component point arrays, in the file's order."""
@@ -136,9 +161,6 @@ class Snapshot:
         load = -self.arrays["sigma_yy"] * self.arrays["volume"]
         heights = np.atleast_1d(np.asarray(heights, float))
         return np.array([load[inside & (np.abs(y - h) < 0.5 * slab)].sum() / slab for h in heights])
-
-    def __repr__(self):
-        return f"Snapshot(time={self.time:g}, path={str(self.path)!r})"
 
 
 class TimeOrdered(list):

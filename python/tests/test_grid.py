@@ -1,58 +1,13 @@
-"""open_grid_snapshots and contact_profile on a real run: a soil column resting on a rigid floor."""
+"""open_grid_snapshots and contact_profile on a real run: a soil column resting on a rigid floor
+(tests/data/column_on_floor.toml)."""
 import subprocess
 
 import numpy as np
 import pytest
 
 import mpile
-from conftest import mpile_binary
+from conftest import REPOSITORY, mpile_binary
 from mpile.files import RunFileError
-
-# An elastic column 1 m high and 1 m in radius (roller at r = 1 m) on a rigid floor held still,
-# brought to rest by local damping, with grid snapshots (the case of the C++ test
-# VtkOutput.GridSnapshotHoldsTheContactTractionUnderASoilColumn).
-COLUMN = """geometry = "axisymmetric"
-title = "column on a floor"
-[grid]
-r = [{ start = 0.0, end = 1.0, cells = 8 }]
-y = [{ start = 0.0, end = 2.0, cells = 16 }]
-[materials.soil]
-type = "linear_elastic"
-young_modulus = 20e6
-poisson_ratio = 0.0
-density = 1650.0
-[materials.steel]
-type = "linear_elastic"
-young_modulus = 200e9
-poisson_ratio = 0.0
-density = 8000.0
-[[bodies]]
-name = "soil"
-material = "soil"
-region = { r = [0.0, 1.0], y = [0.5, 1.5] }
-[[bodies]]
-name = "floor"
-material = "steel"
-region = { r = [0.0, 1.0], y = [0.25, 0.5] }
-[bodies.rigid]
-velocity_y = 0.0
-[[contact]]
-structure = "floor"
-surfaces = { top = "top" }
-[boundaries]
-r_max = "roller"
-y_min = "fixed"
-[solver]
-gravity = [0.0, -9.81]
-[[phases]]
-name = "settle"
-duration = 2.0
-local_damping = 0.7
-equilibrium_tolerance = 1e-3
-[output]
-grid_snapshots = true
-snapshot_interval = 0.05
-"""
 
 
 @pytest.fixture(scope="module")
@@ -61,9 +16,9 @@ def column_run(tmp_path_factory):
     if binary is None:
         pytest.skip("no mpile program: set MPILE to its path (ctest does)")
     directory = tmp_path_factory.mktemp("column")
-    (directory / "column.toml").write_text(COLUMN)
-    subprocess.run([binary, "run", str(directory / "column.toml"), "--out", str(directory / "run"),
-                    "--threads", "1"], check=True, capture_output=True, timeout=300)
+    case = REPOSITORY / "tests" / "data" / "column_on_floor.toml"
+    subprocess.run([binary, "run", str(case), "--out", str(directory / "run"), "--threads", "1"],
+                   check=True, capture_output=True, timeout=300)
     return directory / "run"
 
 
