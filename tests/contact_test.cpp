@@ -117,6 +117,36 @@ TEST(ContactAreas, CornerNodeOnGridLinesGetsTheAreaWeightedNormal) {
   EXPECT_EQ(pair.area[static_cast<std::size_t>(grid.node_index(6, 10))], 0.0);
 }
 
+TEST(ContactAreas, ATipARoundingOffItsGridLineGivesTheNextRowNoArea) {
+  // A two-cell pile wall whose tip lies a rounding error (3e-16 m, as a pile translated step by
+  // step drifts from the moving mesh's line set from its total displacement) above or below the
+  // grid line y = 0.5 m. The nodes on the line must carry the tip's whole area and the nodes one
+  // cell away, inside the wall or in the soil below the tip, exactly none: a share of 1e-15 of a
+  // cell made them outline nodes with the tip's normal and surface.
+  Grid grid(GradedAxis::uniform(0.0, 1.0, 10), GradedAxis::uniform(0.0, 1.0, 10));
+  for (const double drift : {3e-16, -3e-16}) {
+    ContactPair pair;
+    pair.surfaces = {"tip", "outer", "inner"};
+    pair.outline = StructureOutline::rectangle(0.4, 0.6, 0.5 + drift, 1.0, 0, 1, -1, 2);
+    ASSERT_NE(pair.outline->vertices[0][1], 0.5) << drift; // the drift is representable there
+    pair.allocate(grid.node_count());
+    integrate_outline(grid, GeometryMode::axisymmetric, pair);
+    for (int ir = 4; ir <= 6; ++ir) {
+      EXPECT_EQ(pair.area[static_cast<std::size_t>(grid.node_index(ir, 4))], 0.0)
+          << drift << " " << ir;
+      EXPECT_GT(pair.area[static_cast<std::size_t>(grid.node_index(ir, 5))], 0.0)
+          << drift << " " << ir;
+    }
+    // Inside the wall, one cell above the tip at its mid line: no edge within half a cell.
+    EXPECT_EQ(pair.area[static_cast<std::size_t>(grid.node_index(5, 6))], 0.0) << drift;
+    // The middle node of the tip has the tip's normal and the integral of N r dr over two cells.
+    const auto middle = static_cast<std::size_t>(grid.node_index(5, 5));
+    EXPECT_NEAR(pair.surface_area[middle * 3], 0.1 * 0.5, 1e-15) << drift;
+    EXPECT_EQ(pair.normal[middle][0], 0.0) << drift;
+    EXPECT_EQ(pair.normal[middle][1], -1.0) << drift;
+  }
+}
+
 TEST(ContactNormals, InsideTheOutlineTiesGoToTheFaceTheSoilMovesInto) {
   // A wall two cells thick (r from 0.4 to 0.6, tip at y = 0.5; the inner face is the surface 1,
   // the outer 2, the tip 0): the node line r = 0.5 is as far from both faces, to rounding, so the

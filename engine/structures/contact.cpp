@@ -170,6 +170,26 @@ int cell_of(const GradedAxis& axis, double x) {
   return c;
 }
 
+/// A coordinate within rounding of one of its cell's lines, put on that line. A structure moved
+/// along with its grid line (a pile's tip on the moving mesh's band) is translated step by step
+/// while the line is set from the total displacement, so the two drift apart by rounding, either
+/// way. Off by 1e-15 of a cell, the edge would give the nodes one cell away a share of 1e-15 of a
+/// cell's area: enough to make them outline nodes, with the edge's normal and surface, inside the
+/// wall or in the soil below the tip. A billionth of a cell is far beyond rounding and far below
+/// any geometry a case can mean.
+double on_cell_line(const GradedAxis& axis, int cell, double x) {
+  const double a = axis.node(cell);
+  const double b = axis.node(cell + 1);
+  const double tolerance = 1e-9 * (b - a);
+  if (std::abs(x - a) <= tolerance) {
+    return a;
+  }
+  if (std::abs(x - b) <= tolerance) {
+    return b;
+  }
+  return x;
+}
+
 } // namespace
 
 void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair) {
@@ -217,8 +237,8 @@ void integrate_outline(const Grid& grid, GeometryMode mode, ContactPair& pair) {
       }
       for (const double t : gauss) {
         const double s = s0 + t * (s1 - s0);
-        const double r = a[0] + s * dr;
-        const double y = a[1] + s * dy;
+        const double r = on_cell_line(grid.r_axis(), cr, a[0] + s * dr);
+        const double y = on_cell_line(grid.y_axis(), cy, a[1] + s * dy);
         const double weight =
             0.5 * (s1 - s0) * length * (mode == GeometryMode::axisymmetric ? r : 1.0);
         const CellWeights w = bilinear_weights(grid, cr, cy, r, y);
