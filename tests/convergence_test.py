@@ -5,9 +5,10 @@ f(h) = f0 + C h^p with p = 1.5 at three unevenly refined cell sizes must give p 
 bisection's precision (1e-9 relative: 200 halvings leave far less, round-off remains); values
 that oscillate with refinement must be reported as having no observed order. End to end, three
 synthetic histories with such forces must be read at a penetration and extrapolated the same way,
-the body's whole axial force (total_Fy) and tip plus inner wall (base_Fy) likewise, and an ensemble of three runs at the finest
-resolution, offset by -0.3, 0 and +0.3, must give the same limit with a scatter of exactly 0.3
-(their standard deviation, n - 1) and the sum of their wall times.
+the body's whole axial force (total_Fy) and tip plus inner wall (base_Fy) likewise, and an
+ensemble of three runs at the finest resolution, offset by -0.3, 0 and +0.3, must give the same
+limit with a scatter of exactly 0.3 (their standard deviation, n - 1) and the sum of their wall
+times.
 """
 import os
 import subprocess

@@ -49,7 +49,7 @@ class GridSnapshot(LazyFile):
         surface's name alone where one structure has it), as a pandas DataFrame ordered by y then r:
         r, y (m), force_r, force_y, force_theta (the soil's force on the structure at the node over
         the last step, N [/rad]), traction_r, traction_y, traction_theta (that force over the node's
-        share of the outline, Pa; compression on a face is the traction against its outward normal)
+        share of the outline, Pa; soil pressing on a face gives a traction against its outward normal)
         and state (0 free, 1 sliding, 2 sticking)."""
         import pandas as pd
 
