@@ -7,9 +7,11 @@
 
 #include "engine/parallel.hpp"
 #include "engine/structures/coulomb_slip.hpp"
+#include "engine/structures/surface_split.hpp"
 
 #include <cmath>
 #include <optional>
+#include <span>
 
 namespace mpile::passes {
 
@@ -311,8 +313,8 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
   });
 }
 
-/// The pair's node forces summed per surface (a node's force split by its area shares) and on the
-/// rigid body's DOFs, with the energy the corrections took; written to the pair and its body.
+/// The pair's node forces summed per surface (a node's force split over its surfaces' areas) and on
+/// the rigid body's DOFs, with the energy the corrections took; written to the pair and its body.
 double sum_surface_forces(Scene& scene, ContactPair& pair) {
   const Grid& grid = scene.grid;
   const NodeBox& reach = grid.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
@@ -339,33 +341,35 @@ double sum_surface_forces(Scene& scene, ContactPair& pair) {
             }
             sum.surface[4 * surface + 3] += share * torque;
           };
-          // A node shared by two surfaces (a tip corner) pushes along its mean normal. Each
-          // surface reports its share turned from that normal into its own: normal force along
-          // the surface's normal, friction along its tangent, so a sliding share keeps the
-          // Coulomb ratio on that surface instead of carrying the other surface's normal force
-          // (which would show a shaft friction ratio above mu). The rigid body gets the force as
-          // it acts.
-          auto add_turned = [&](std::size_t surface, double share) {
-            const auto m = nearest_edge_normal(*pair.outline, r, y, static_cast<int>(surface));
-            const auto& n = pair.contact_normal[i];
-            const double length = std::hypot(n[0], n[1]);
-            const double normal = (f[0] * n[0] + f[1] * n[1]) / length;
-            const double tangential = (-f[0] * n[1] + f[1] * n[0]) / length;
-            sum.surface[4 * surface] += share * (normal * m[0] - tangential * m[1]);
-            sum.surface[4 * surface + 1] += share * (normal * m[1] + tangential * m[0]);
-            sum.surface[4 * surface + 2] += share * f[2];
-            sum.surface[4 * surface + 3] += share * torque;
-          };
           if (!pair.outline) {
             add(0, 1.0);
           } else if (pair.area[i] > 0.0) {
+            // A node shared by surfaces (a tip corner): its force split as one traction over each
+            // surface's part of its area (engine/structures/surface_split.hpp), so that the
+            // surfaces add up to the body's force and each keeps the node's friction ratio.
+            std::array<double, max_contact_surfaces> share{};
+            std::array<std::array<double, 2>, max_contact_surfaces> normal{};
+            std::array<std::array<double, 3>, max_contact_surfaces> part{};
+            std::array<std::size_t, max_contact_surfaces> surface{};
+            std::size_t shared = 0;
             for (std::size_t q = 0; q < surfaces; ++q) {
-              const double share = pair.surface_area[i * surfaces + q] / pair.area[i];
-              if (share == 1.0) {
-                add(q, share);
-              } else if (share != 0.0) {
-                add_turned(q, share);
+              const double s = pair.surface_area[i * surfaces + q] / pair.area[i];
+              if (s == 1.0) {
+                add(q, 1.0);
+              } else if (s != 0.0) {
+                share[shared] = s;
+                normal[shared] = nearest_edge_normal(*pair.outline, r, y, static_cast<int>(q));
+                surface[shared++] = q;
               }
+            }
+            split_over_surfaces(f, std::span(share).first(shared),
+                                std::span<const std::array<double, 2>>(normal).first(shared),
+                                std::span(part).first(shared));
+            for (std::size_t k = 0; k < shared; ++k) {
+              for (std::size_t d = 0; d < 3; ++d) {
+                sum.surface[4 * surface[k] + d] += part[k][d];
+              }
+              sum.surface[4 * surface[k] + 3] += share[k] * torque;
             }
           } else {
             // Inside the outline: the surface of the edge whose normal the contact took.

@@ -143,8 +143,8 @@ struct SurfaceAreas {
 std::vector<SurfaceAreas> surface_areas(const StructureOutline& outline, std::size_t surfaces,
                                         GeometryMode mode);
 
-/// The outward normal of the edge of surface `surface` nearest to (r, y): the direction a tip
-/// corner node's force is turned into for that surface's share.
+/// The outward normal of the edge of surface `surface` nearest to (r, y): the normal a tip corner
+/// node's traction acts along on that surface's share of its area.
 std::array<double, 2> nearest_edge_normal(const StructureOutline& outline, double r, double y,
                                           int surface);
 
