@@ -362,14 +362,16 @@ double sum_surface_forces(Scene& scene, ContactPair& pair) {
                 surface[shared++] = q;
               }
             }
-            split_over_surfaces(f, std::span(share).first(shared),
-                                std::span<const std::array<double, 2>>(normal).first(shared),
-                                std::span(part).first(shared));
-            for (std::size_t k = 0; k < shared; ++k) {
-              for (std::size_t d = 0; d < 3; ++d) {
-                sum.surface[4 * surface[k] + d] += part[k][d];
+            if (shared > 0) { // not on most nodes, whose one surface took the whole force
+              split_over_surfaces(f, std::span(share).first(shared),
+                                  std::span<const std::array<double, 2>>(normal).first(shared),
+                                  std::span(part).first(shared));
+              for (std::size_t k = 0; k < shared; ++k) {
+                for (std::size_t d = 0; d < 3; ++d) {
+                  sum.surface[4 * surface[k] + d] += part[k][d];
+                }
+                sum.surface[4 * surface[k] + 3] += share[k] * torque;
               }
-              sum.surface[4 * surface[k] + 3] += share[k] * torque;
             }
           } else {
             // Inside the outline: the surface of the edge whose normal the contact took.
