@@ -35,13 +35,13 @@ def check(name, ok):
     return ok
 
 
-def write_history(path, h, wall, status="complete", offset=0.0):
+def write_history(path, h, wall, status="complete", offset=0.0, monopile=""):
     rows = 101
     with h5py.File(path, "w") as f:
         f.attrs["status"] = status
         if status != "running":  # written when a run ends
             f.attrs["wall_time"] = wall
-        f.attrs["case_text"] = '[[phases]]\nname = "a"\n[[phases]]\nname = "b"\n'
+        f.attrs["case_text"] = monopile + '[[phases]]\nname = "a"\n[[phases]]\nname = "b"\n'
         f["/time"] = np.linspace(0.0, 1.0, rows)
         f["/phase"] = np.r_[np.zeros(1), np.ones(rows - 1)]
         f["/bodies/pile/u_y"] = -np.linspace(0.0, 0.1, rows)
@@ -52,6 +52,46 @@ def write_history(path, h, wall, status="complete", offset=0.0):
         # The inner wall: three times the tip's plus 1, so tip plus inner wall has the limit
         # 4 F0 + 1 at the same order (and is told apart from the tip or the inner wall alone).
         f["/reactions/pile/internal_shaft/F_y"] = np.full(rows, (3.0 * (exact(h) + offset) + 1.0) * 1e3)
+
+
+def check_sweep():
+    """A resolution sweep's output read by --sweep: each variant's h is wall_thickness /
+    wall_cells from the case it ran (0.0159 / 2, 3 and 4: ratios 1.5 and 1.33), two variants at one wall_cells are an ensemble, a variant without a history stops the
+    tool unless --running, and a sweep that does not finish is reported, not read."""
+    ok = True
+    tool = [sys.executable, os.path.join(ROOT, "tools", "convergence.py")]
+    with tempfile.TemporaryDirectory() as directory:
+        variants = [("v01", 4, -0.3), ("v02", 3, 0.0), ("v03", 2, 0.0), ("v04", 4, 0.3),
+                    ("v05", 1, 0.0)]
+        with open(os.path.join(directory, "sweep.toml"), "w") as f:
+            for name, cells, _ in variants:
+                f.write(f'[[variants]]\nid = "{name}"\nvalues = ["{cells}"]\nsets = []\n')
+        for name, cells, offset in variants[:4]:  # v05 has not run yet
+            run = os.path.join(directory, "variants", name)
+            os.makedirs(run)
+            write_history(os.path.join(run, "history.h5"), 0.0159 / cells, 10.0, offset=offset,
+                          monopile=f"[monopile]\nwall_thickness = 0.0159\nwall_cells = {cells}\n")
+        refused = subprocess.run(tool + ["--sweep", directory, "--at", "0.05",
+                                         "--quantities", "tip_Fy"], capture_output=True, text=True)
+        ok &= check("a variant without a history stops the sweep's study",
+                    refused.returncode != 0 and "variant v05 has no history" in refused.stderr)
+        read = subprocess.run(tool + ["--sweep", directory, "--at", "0.05", "--quantities",
+                                      "tip_Fy", "--running"], capture_output=True, text=True)
+        print(read.stdout, read.stderr)
+        ok &= check("the sweep's cell sizes are the wall's thickness over its cells",
+                    read.returncode == 0 and "h=0.003975  h=0.0053  h=0.00795" in read.stdout)
+        # The exact f0 + C h^1.5 at the three wall resolutions, the four-cell pair's mean exact.
+        ok &= check("the sweep is extrapolated to the known limit and order",
+                    "1.50  12.5 +-" in read.stdout)
+        # Members offset by -0.3 and +0.3: standard deviation (n - 1) 0.3 sqrt(2) = 0.42.
+        ok &= check("two variants at one wall resolution are an ensemble (wall time 10 + 10 s)",
+                    "h=0.003975: 20" in read.stdout and "  0.42  (the finest" in read.stdout)
+        failed = subprocess.run(tool + ["--sweep", os.path.join(directory, "study.toml"),
+                                        "--out", directory, "--mpile", "/bin/false", "--at",
+                                        "0.05"], capture_output=True, text=True)
+        ok &= check("a sweep that does not finish is reported, not read",
+                    failed.returncode != 0 and "did not finish" in failed.stderr)
+    return ok
 
 
 def main():
@@ -127,6 +167,7 @@ def main():
         ahead = subprocess.run(tool + ["--at", "0.095", "--running"], capture_output=True, text=True)
         ok &= check("--running refuses a depth not passed yet", ahead.returncode != 0
                     and "has not passed" in ahead.stderr)
+    ok &= check_sweep()
     print("all ok" if ok else "FAILED")
     return 0 if ok else 1
 

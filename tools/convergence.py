@@ -10,6 +10,12 @@ cell size (m) of that run (for example the cell at the pile tip):
       --quantities tip_Fy,int_Fr,ext_Fr --csv study.csv --figure error_vs_time.png
   tools/convergence.py out/w2_c8+out/w2_c4+out/w2_c79:0.00795 out/w3_c8+out/w3_c4:0.0053 ...
 
+Or a resolution sweep (docs/sweeps.md) whose variants set [monopile] wall_cells, each variant's H
+the pile tip's cell (wall_thickness / wall_cells); given its sweep file, the tool runs it first
+(what has finished is not rerun), which makes the whole study one command:
+
+  tools/convergence.py --sweep cases/sweeps/jacked_resolution.toml --at 0.1,0.2,0.29
+
 Runs joined by '+' before the ':H' are an ensemble at one resolution: runs of the same case that
 differ only by a perturbation (the Courant number, the seeding). Where pile forces respond to
 such perturbations (resolved pile walls: docs/results.md), one run's value is a draw, and the
@@ -18,10 +24,9 @@ and the sum of their wall times its cost.
 
 For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the soil's force on
 the pile in kN/rad, tip_qb for the tip's unit end resistance in MPa, or total_Fy for the soil's
-whole axial force on the body, /bodies/<body>/contact_F_y: at a corner node shared by two
-surfaces each reports its share turned into its own normal and tangent, so the surfaces' F_y
-need not add up to it; base_Fy for tip plus internal shaft F_y, the load the annulus and the soil
-plug take together, which varies less with the mesh than their split) and penetration, the value
+whole axial force on the body, /bodies/<body>/contact_F_y, which the surfaces' F_y add up to;
+base_Fy for tip plus internal shaft F_y, the load the annulus and the soil plug take together,
+which varies less with the mesh than their split) and penetration, the value
 of each run is the mean over the installation rows within --window of that penetration (default
 10 mm: stick-slip makes pile forces scatter by several per cent from row to row, so a single row
 is no value to extrapolate), and its scatter the standard deviation there. The three
@@ -42,6 +47,7 @@ import argparse
 import csv
 import math
 import os
+import subprocess
 import sys
 import tomllib
 
@@ -83,17 +89,23 @@ def load(spec, quantities, depths, window, body, running=False):
     directories, separator, h = spec.rpartition(":")
     if not separator:
         sys.exit(f"convergence: give each run as DIRECTORY:H, got '{spec}'")
+    return load_group(directories.split("+"), float(h), quantities, depths, window, body, running)
+
+
+def load_group(directories, h, quantities, depths, window, body, running=False):
+    """Runs at one cell size h: one run, or an ensemble whose mean is the value (load)."""
     members = [load_run(directory, quantities, depths, window, body, running)
-               for directory in directories.split("+")]
+               for directory in directories]
+    label = "+".join(directories)
     if len(members) == 1:
         wall, values = members[0]
-        return float(h), wall, directories, values
+        return h, wall, label, values
     values = {}
     for key in members[0][1]:
         means = np.array([member[1][key][0] for member in members])
         within = max(member[1][key][1] for member in members)
         values[key] = (float(means.mean()), max(float(means.std(ddof=1)), within))
-    return float(h), sum(member[0] for member in members), directories, values
+    return h, sum(member[0] for member in members), label, values
 
 
 def load_run(directory, quantities, depths, window, body, running=False):
@@ -140,6 +152,57 @@ def load_run(directory, quantities, depths, window, body, running=False):
     return wall, values
 
 
+def tip_cell(case):
+    """The cell size at the pile tip of a monopile case as it ran: the wall's thickness over the
+    cells across it (docs/case-format.md, [monopile] wall_cells; its defaults where unset)."""
+    if "monopile" not in case:
+        return None
+    monopile = case["monopile"]
+    return monopile.get("wall_thickness", 0.0159) / monopile.get("wall_cells", 1)
+
+
+def sweep_groups(target, mpile, cores, out, running):
+    """The runs of a resolution sweep grouped by cell size: [(h, [run directory, ...])], finest
+    first. A sweep file (.toml) is run first with `mpile sweep` (which runs only the variants that
+    have not finished, docs/sweeps.md) unless `running`; a directory is a sweep's output. Variants
+    at one cell size that differ in another parameter (the Courant number, say) are an ensemble."""
+    if target.endswith(".toml"):
+        directory = out or os.path.join("out", "sweeps", os.path.splitext(os.path.basename(target))[0])
+        if not running:
+            command = [mpile, "sweep", target, "--out", directory, "--cores", str(cores)]
+            print("convergence: " + " ".join(command), flush=True)
+            status = subprocess.run(command).returncode
+            if status != 0:
+                sys.exit(f"convergence: the sweep {target} did not finish (mpile sweep exit status "
+                         f"{status}); its failed variants are listed above")
+    else:
+        directory = target
+    record = os.path.join(directory, "sweep.toml")
+    if not os.path.isfile(record):
+        sys.exit(f"convergence: {directory} holds no sweep (no sweep.toml; run `mpile sweep` first)")
+    with open(record, "rb") as f:
+        variants = tomllib.load(f).get("variants", [])
+    groups = {}
+    for variant in variants:
+        run = os.path.join(directory, "variants", variant["id"])
+        path = os.path.join(run, "history.h5")
+        if not os.path.isfile(path):
+            if running:
+                print(f"convergence: variant {variant['id']} has no history yet; left out",
+                      file=sys.stderr)
+                continue
+            sys.exit(f"convergence: variant {variant['id']} has no history ({path})")
+        with h5py.File(path, "r") as history:
+            case = tomllib.loads(text(history.attrs.get("case_resolved",
+                                                        history.attrs["case_text"])))
+        h = tip_cell(case)
+        if h is None:
+            sys.exit(f"convergence: {path} is not a monopile case, so its cell size is not known; "
+                     "give its runs as DIRECTORY:H")
+        groups.setdefault(round(h, 12), []).append(run)
+    return sorted(groups.items())
+
+
 def observed_order(h, f):
     """p of f = f0 + C h^p through three points (h[0] < h[1] < h[2]), or None where the differences
     change sign (no monotone convergence) or no p in ORDER_RANGE fits."""
@@ -179,8 +242,15 @@ def extrapolate(h, f, fallback_order):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("runs", nargs="+",
+    parser.add_argument("runs", nargs="*",
                         help="DIRECTORY:H or an ensemble DIR+DIR+...:H, at least two resolutions")
+    parser.add_argument("--sweep", help="a resolution sweep instead of runs: its sweep file (run "
+                        "first with `mpile sweep`) or its output directory; each variant's h is "
+                        "the pile tip's cell, [monopile] wall_thickness / wall_cells")
+    parser.add_argument("--out", help="the sweep's output directory (default out/sweeps/<name>)")
+    parser.add_argument("--cores", type=int, default=2, help="cores the sweep's runs share")
+    parser.add_argument("--mpile", default=os.path.join(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__))), "build", "release", "bin", "mpile"), help="the mpile binary")
     parser.add_argument("--at", required=True, help="penetrations (m), comma-separated")
     parser.add_argument("--quantities", default="tip_Fy,tip_qb,ext_Fr,ext_Fy,int_Fr,int_Fy")
     parser.add_argument("--window", type=float, default=0.01,
@@ -194,15 +264,22 @@ def main():
                         help="also read runs still going, at depths they have passed (the rows "
                              "there are final; no figure, their wall times are not)")
     args = parser.parse_args()
-    if len(args.runs) < 2:
-        sys.exit("convergence: give at least two runs")
+    if args.sweep and args.runs:
+        sys.exit("convergence: give runs or --sweep, not both")
     quantities = [q for q in args.quantities.split(",") if q]
     depths = [float(d) for d in args.at.split(",") if d]
     if args.running and args.figure:
         sys.exit("convergence: --figure needs complete runs (a running run's wall time is not final)")
-    runs = sorted((load(spec, quantities, depths, args.window, args.body, args.running)
-                   for spec in args.runs),
-                  key=lambda run: run[0])
+    if args.sweep:
+        groups = sweep_groups(args.sweep, args.mpile, args.cores, args.out, args.running)
+        runs = [load_group(directories, h, quantities, depths, args.window, args.body, args.running)
+                for h, directories in groups]
+    else:
+        runs = sorted((load(spec, quantities, depths, args.window, args.body, args.running)
+                       for spec in args.runs),
+                      key=lambda run: run[0])
+    if len(runs) < 2:
+        sys.exit("convergence: give at least two resolutions")
     h = [run[0] for run in runs]
     if len(set(h)) != len(h):
         sys.exit("convergence: two runs have the same cell size")
