@@ -153,6 +153,28 @@ def main():
                     "  0.3  (the finest two differ by less than it)" in ensemble.stdout)
         ok &= check("an ensemble's wall time is its members' sum",
                     f"h={H[0]:g}: 33" in ensemble.stdout)
+        # Values that oscillate (no order) with the finest two 0.3 apart, less than the finest
+        # ensemble's scatter of 0.42: the finest value itself, 12.6, +- that scatter, not an
+        # extrapolation of the noise (which would give 12.6 + 0.3 / 0.325 = 13.5).
+        noisy = []
+        for k, offset in enumerate((-0.3, 0.3)):
+            run = os.path.join(directory, f"noisy{k}")
+            os.makedirs(run)
+            write_history(os.path.join(run, "history.h5"), H[0], 10.0,
+                          offset=F0 + 0.1 - exact(H[0]) + offset)
+            noisy.append(run)
+        for k, value in ((1, F0 - 0.2), (2, F0 + 0.4)):
+            run = os.path.join(directory, f"noisy{k + 1}")
+            os.makedirs(run)
+            write_history(os.path.join(run, "history.h5"), H[k], 10.0, offset=value - exact(H[k]))
+            noisy.append(run)
+        within = subprocess.run([sys.executable, os.path.join(ROOT, "tools", "convergence.py"),
+                                 "+".join(noisy[:2]) + f":{H[0]}", f"{noisy[2]}:{H[1]}",
+                                 f"{noisy[3]}:{H[2]}", "--at", "0.05", "--quantities", "tip_Fy"],
+                                capture_output=True, text=True)
+        print(within.stdout, within.stderr)
+        ok &= check("no order and the finest two within the scatter: the finest value +- scatter",
+                    within.returncode == 0 and "12.6 +- 0.42" in within.stdout)
         # A run still going (it reached 0.1 m): refused unless --running, and then read only at
         # depths it has passed.
         write_history(os.path.join(directory, "run0", "history.h5"), H[0], 10.0, "running")

@@ -39,7 +39,8 @@ GIMP transfer) and widens the safety factor to 3, as for two runs. Each run's er
 |f - f0|, plotted against its wall time (the history's wall_time) on log-log axes, one line per
 quantity and penetration. Where the two finest runs differ by less than the larger of their
 scatters, the table says so: the extrapolation then rests on noise, and the honest statement is
-the scatter itself.
+the scatter itself. If in addition no order is observed, the value given is the finest run's,
+with the larger of the scatter and the finest two's difference as its band (no extrapolation).
 
 Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (tools/setup.sh).
 """
@@ -294,6 +295,11 @@ def main():
             f = [run[3][(quantity, depth)][0] for run in runs]
             scatter = max(run[3][(quantity, depth)][1] for run in runs[:2])
             f0, band, p, observed = extrapolate(h, f, args.order)
+            if not observed and abs(f[0] - f[1]) < scatter:
+                # No order, and the finest two apart by less than the noise: extrapolating that
+                # difference would amplify noise. The finest run is the value, its error the
+                # larger of the scatter and the difference.
+                f0, band = f[0], max(scatter, abs(f[0] - f[1]))
             table.append([quantity, unit, depth] + f + [p, observed, f0, band, scatter]
                          + [abs(x - f0) for x in f])
 
@@ -308,8 +314,14 @@ def main():
             reason = "oscillates with refinement"
         else:
             reason = f"differences shrink as no h^p, {ORDER_RANGE[0]:g} <= p <= {ORDER_RANGE[1]:g}"
-        order = f"{p:.2f}" if observed else f"{p:g} (assumed: {reason})"
-        noise = "  (the finest two differ by less than it)" if abs(row[3] - row[4]) < scatter else ""
+        within = abs(row[3] - row[4]) < scatter
+        if observed:
+            order = f"{p:.2f}"
+        elif within:
+            order = f"none ({reason}; the finest run's value, not extrapolated)"
+        else:
+            order = f"{p:g} (assumed: {reason})"
+        noise = "  (the finest two differ by less than it)" if within else ""
         print(f"{row[0]}  {row[1]}  {row[2]:g}  {values}  {order}  {f0:.4g} +- {band:.2g}  "
               f"{scatter:.2g}{noise}")
     print("wall time (s): " + "  ".join(f"h={x:g}: {run[1]:.0f}" for x, run in zip(h, runs)))
@@ -330,10 +342,12 @@ def main():
         wall = [run[1] for run in runs]
         for row in table:
             errors = row[8 + len(h):]
-            relative = [e / abs(row[5 + len(h)]) if row[5 + len(h)] else math.nan for e in errors]
+            # A run that is the value itself (no order, within the scatter) has no error to draw.
+            relative = [e / abs(row[5 + len(h)]) if row[5 + len(h)] and e > 0.0 else math.nan
+                        for e in errors]
             axes.loglog(wall, relative, "o-", label=f"{row[0]} at {row[2]:g} m")
         axes.set_xlabel("wall time (s)")
-        axes.set_ylabel("|f - f0| / |f0| (Richardson)")
+        axes.set_ylabel("|f - f0| / |f0|")
         axes.grid(True, which="both", alpha=0.3)
         axes.legend(fontsize=7)
         figure.tight_layout()
