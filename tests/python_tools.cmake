@@ -104,6 +104,13 @@ add_test(NAME CptTool.HistoryHoldsQcFsAndRfOverTheStandardAreas
 set_tests_properties(CptTool.HistoryHoldsQcFsAndRfOverTheStandardAreas PROPERTIES
                      FIXTURES_REQUIRED cpt_coarse LABELS study PASS_REGULAR_EXPRESSION "\nok\n")
 
+# The chamber's plane-strain strip (docs/cpt.md, "The pile tip against the cone"): written by
+# make_cases.py, run 2 cm (about 4 s), held to its plane of symmetry, q over its half-width.
+add_test(NAME CptTool.PlaneStrainStripStaysOnItsPlaneOfSymmetry
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/check_plane_strain_strip.py
+                 $<TARGET_FILE:mpile> ${CMAKE_CURRENT_BINARY_DIR}/plane_strain_strip)
+set_tests_properties(CptTool.PlaneStrainStripStaysOnItsPlaneOfSymmetry PROPERTIES LABELS study)
+
 # The convergence tool (Richardson extrapolation, observed order, error bands) on values whose
 # limit and order are known exactly.
 add_test(NAME Convergence.RecoversTheLimitAndOrderOfAKnownSeries

@@ -14,6 +14,11 @@ The grid is fine (R / N) in a band that moves with the cone, from 4 radii below 
 above the sleeve, and in r out to 3 radii; it grows by 1.15 per cell to 50 mm away from them.
 Lines above the band stretch up to the loaded surface, which stays put; above it there is only the
 rod. Run `python3 cases/cpt/make_cases.py` to rewrite the files after changing this script.
+
+Variants for docs/cpt.md: `make_cases.py OUT.toml N PENETRATION key=value ...` with the keywords of
+case(). `geometry=plane_strain moving=false` makes the rod a plane-strain strip of the same
+half-width (a rigid half strip held to its plane of symmetry) on a fixed grid, whose fine band
+reaches the end of the penetration: the moving mesh follows axisymmetric bodies only.
 """
 import math
 import pathlib
@@ -81,6 +86,8 @@ def case(
     particles_per_cell=2,
     normals="outline",
     sand=None,
+    geometry="axisymmetric",
+    moving=True,
 ):
     """The case text; the keywords vary it for docs/cpt.md's study. `sand` holds Hardening Soil
     keys set beside Table 5 (the model's own settings: ocr, stiffness_floor, cap_floor) or over it
@@ -90,7 +97,9 @@ def case(
     tip = SURFACE - EMBEDMENT
     shoulder = tip + (0.0 if flat else CONE_HEIGHT)
     sleeve_top = shoulder + SLEEVE
-    band_bottom = tip - 4.0 * RADIUS
+    # On a fixed grid (`moving=false`; the moving mesh is axisymmetric only) the fine band reaches
+    # down to 4 radii below where the tip ends.
+    band_bottom = tip - 4.0 * RADIUS - (0.0 if moving else penetration)
     band_top = sleeve_top + 2.0 * RADIUS
     # Band lines on multiples of h from the tip, so that the tip is a grid line.
     below_cells = math.ceil((tip - band_bottom) / h - 1e-9)
@@ -125,6 +134,10 @@ def case(
     bbar_line = "" if bbar else "bbar = false\n"
     # Mass-gradient normals know no outline, so no named surfaces and no q_c: the rod's total force.
     outlined = normals == "outline"
+    # In plane strain the "rod" is a strip of half-width RADIUS per metre, symmetric about r = 0
+    # (a roller there), and q is its base's F_y over RADIUS: the engine's [output.cpt] is
+    # axisymmetric only.
+    plane = geometry == "plane_strain"
     surfaces_line = (
         'surfaces = ["cone", "sleeve", "shaft", "", ""]\n'
         if outlined
@@ -132,7 +145,22 @@ def case(
     )
     cpt_output = (
         '\n[output.cpt]  # /cpt/q_c, f_s and R_f in history.h5\nbody = "cone"\ncone = "cone"\nsleeve = "sleeve"\n'
-        if outlined
+        if outlined and not plane
+        else ""
+    )
+    moving_mesh = (
+        f'[moving_mesh]\nbody = "cone"\nband = [{f(band_bottom)}, {f(band_top)}]\n'
+        f"stretch = [0.0, {f(SURFACE)}]   # the loaded surface stays put\n"
+        f"travel = {penetration + 0.02:.3g}\n"
+        if moving
+        else ""
+    )
+    symmetry_line = 'r_min = "roller"\n' if plane else ""
+    # The half strip may neither slide off its plane of symmetry nor turn about its centre.
+    held_line = (
+        'velocity_r = { type = "constant", value = 0.0 }\n'
+        'angular_velocity = { type = "constant", value = 0.0 }\n'
+        if plane
         else ""
     )
     dilatancy = sand.pop("dilatancy_angle", 0.0)
@@ -141,7 +169,7 @@ def case(
     return f"""# CPT in a calibration chamber, {n} cells per cone radius. Written by cases/cpt/make_cases.py
 # (its docstring gives the set-up); docs/cpt.md has the runs and what sets q_c.
 title = "CPT, sigma'_v0 = 50 kPa, {n} cells per cone radius"
-geometry = "axisymmetric"
+geometry = "{geometry}"
 
 [grid]
 r = [
@@ -185,21 +213,16 @@ region = {{ polygon = {polygon(rod)} }}
 [bodies.rigid]
 phase = "penetration"
 velocity_y = {{ type = "ramp", value = {-speed}, duration = 0.01 }}
-
+{held_line}
 [[contact]]
 structure = "cone"
 friction = {friction}     # tan 21.8 deg, as the seed's pile
 {surfaces_line}
-[moving_mesh]
-body = "cone"
-band = [{f(band_bottom)}, {f(band_top)}]
-stretch = [0.0, {f(SURFACE)}]   # the loaded surface stays put
-travel = {penetration + 0.02:.3g}
-
+{moving_mesh}
 [boundaries]
 r_max = "roller"
 y_min = "roller"
-
+{symmetry_line}
 # The surcharge: sigma'_v0 = 50 kPa on the surface, beside the rod.
 [[loads]]
 name = "surcharge"
@@ -235,11 +258,11 @@ if __name__ == "__main__":
 
     if len(sys.argv) > 1:  # a variant: make_cases.py OUT.toml N PENETRATION [key=value ...]
         options = dict(arg.split("=") for arg in sys.argv[4:])
-        flags = ("flat", "bbar")
+        flags = ("flat", "bbar", "moving")
         sand = {k[len("sand."):]: float(v) for k, v in options.items() if k.startswith("sand.")}
         options = {
             k: (v == "true") if k in flags else int(v) if k == "particles_per_cell"
-            else v if k == "normals" else float(v)
+            else v if k in ("normals", "geometry") else float(v)
             for k, v in options.items() if not k.startswith("sand.")
         }
         options["sand"] = sand
