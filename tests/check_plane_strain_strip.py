@@ -33,7 +33,9 @@ subprocess.run([mpile, "run", str(case), "--threads", "2", "--out", str(out / "r
 with h5py.File(out / "run/history.h5", "r") as f:
     body = f["bodies/cone"]
     pen = body["penetration"][:]
-    held = {k: float(np.abs(body[k][:]).max()) for k in ("u_r", "v_r", "rotation", "angular_velocity")}
+    held = {
+        k: float(np.abs(body[k][:]).max()) for k in ("u_r", "v_r", "rotation", "angular_velocity")
+    }
     # The soil beside the strip's one face: a push off the plane of symmetry and a moment of many
     # N m per metre at 2 cm (about 12 kN m/m at 15 cm in the documented run).
     push = float(np.abs(body["contact_F_r"][:]).max())
