@@ -35,7 +35,9 @@ def check(name, ok):
     return ok
 
 
-def write_history(path, h, wall, status="complete", offset=0.0, monopile=""):
+def write_history(path, h, wall, status="complete", offset=0.0, monopile="", torn=False):
+    """A history of 101 rows; `torn` gives the tip's series one row more, as a running writer
+    leaves it between extending one series and the next."""
     rows = 101
     with h5py.File(path, "w") as f:
         f.attrs["status"] = status
@@ -46,7 +48,7 @@ def write_history(path, h, wall, status="complete", offset=0.0, monopile=""):
         f["/phase"] = np.r_[np.zeros(1), np.ones(rows - 1)]
         f["/bodies/pile/u_y"] = -np.linspace(0.0, 0.1, rows)
         # A force that does not vary with depth, so the window's mean is the value itself.
-        f["/reactions/pile/tip/F_y"] = np.full(rows, (exact(h) + offset) * 1e3)
+        f["/reactions/pile/tip/F_y"] = np.full(rows + int(torn), (exact(h) + offset) * 1e3)
         # The body's whole axial force: twice the tip's, so its limit is 2 F0 at the same order.
         f["/bodies/pile/contact_F_y"] = np.full(rows, 2.0 * (exact(h) + offset) * 1e3)
         # The inner wall: three times the tip's plus 1, so tip plus inner wall has the limit
@@ -186,6 +188,11 @@ def main():
         read = subprocess.run(tool + ["--at", "0.05", "--running"], capture_output=True, text=True)
         ok &= check("--running reads it where it has passed",
                     read.returncode == 0 and "1.50  12.5 +-" in read.stdout)
+        write_history(os.path.join(directory, "run0", "history.h5"), H[0], 10.0, "running",
+                      torn=True)
+        torn = subprocess.run(tool + ["--at", "0.05", "--running"], capture_output=True, text=True)
+        ok &= check("--running reads a history caught between two series' rows",
+                    torn.returncode == 0 and "1.50  12.5 +-" in torn.stdout)
         ahead = subprocess.run(tool + ["--at", "0.095", "--running"], capture_output=True, text=True)
         ok &= check("--running refuses a depth not passed yet", ahead.returncode != 0
                     and "has not passed" in ahead.stderr)

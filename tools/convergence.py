@@ -126,15 +126,21 @@ def load_run(directory, quantities, depths, window, body, running=False):
                      f"(status '{text(history.attrs.get('status', ''))}')")
         # The case as it ran (its base files merged); older histories hold only case_text.
         case = tomllib.loads(text(history.attrs.get("case_resolved", history.attrs["case_text"])))
-        phase = history["/phase"][:]
-        rows = phase == len(case["phases"]) - 1  # the installation is the last phase
-        penetration = -history[f"/bodies/{body}/u_y"][rows]
+        needed = ["/phase", f"/bodies/{body}/u_y"]
         for quantity in quantities:
-            names, scale, _ = dataset(quantity, body)
-            for name in names:
+            for name in dataset(quantity, body)[0]:
                 if name not in history:
                     sys.exit(f"convergence: {path} has no dataset {name}")
-            series = sum(history[name][rows] for name in names) * scale
+                needed.append(name)
+        # The rows every series has: a running writer extends its series one after another, so
+        # one read between two of them finds some a row longer than others.
+        count = min(len(history[name]) for name in needed)
+        phase = history["/phase"][:count]
+        rows = phase == len(case["phases"]) - 1  # the installation is the last phase
+        penetration = -history[f"/bodies/{body}/u_y"][:count][rows]
+        for quantity in quantities:
+            names, scale, _ = dataset(quantity, body)
+            series = sum(history[name][:count][rows] for name in names) * scale
             for depth in depths:
                 near = np.abs(penetration - depth) <= window
                 if running and status == "running" and penetration.max(initial=0.0) < depth + window:
