@@ -17,13 +17,14 @@ import h5py
 import numpy as np
 
 HERE = pathlib.Path(__file__).resolve().parent
-RADIUS = 0.0357 / 2.0  # m, the half-width: make_cases.py's cone radius
+sys.path.insert(0, str(HERE.parent / "cases" / "cpt"))
+from make_cases import RADIUS  # noqa: E402  (m, the strip's half-width: the cone's radius)
 
 mpile, out = sys.argv[1], pathlib.Path(sys.argv[2])
 out.mkdir(parents=True, exist_ok=True)
 case = out / "strip.toml"
 subprocess.run(
-    [sys.executable, str(HERE.parent / "cases/cpt/make_cases.py"), str(case), "2", "0.02",
+    [sys.executable, str(HERE.parent / "cases" / "cpt" / "make_cases.py"), str(case), "2", "0.02",
      "flat=true", "moving=false", "geometry=plane_strain"],
     check=True,
 )
