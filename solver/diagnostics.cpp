@@ -88,6 +88,12 @@ KineticHotspot kinetic_hotspot(const Scene& scene) {
   return hot;
 }
 
+std::string particle_position(const Particles& particles, std::size_t i) {
+  std::ostringstream s;
+  s << "particle " << i << " at (r, y) = (" << particles.r[i] << ", " << particles.y[i] << ")";
+  return s.str();
+}
+
 std::string describe_kinetic_hotspot(const Scene& scene, double mass_scaling) {
   KineticHotspot hot = kinetic_hotspot(scene);
   for (double& e : hot.body_energy) {

@@ -16,6 +16,9 @@ double elastic_energy(const Scene& scene);
 /// Mass-weighted mean particle velocity of one body (all bodies when body < 0).
 std::array<double, 3> mean_velocity(const Scene& scene, int body = -1);
 
+/// "particle i at (r, y) = (r, y)", how messages name a particle.
+std::string particle_position(const Particles& particles, std::size_t i);
+
 /// Where the kinetic energy is: per body (a rigid body's that of its DOFs), and the particle of a
 /// non-rigid body with the most (the lowest index among equals). A run whose energy balance fails
 /// has its excess here: it names where to look.

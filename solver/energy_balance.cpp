@@ -7,6 +7,16 @@
 
 namespace mpile {
 
+EnergyLedger& operator+=(EnergyLedger& ledger, const EnergyIncrement& increment) {
+  ledger.external_work += increment.external_work;
+  ledger.internal_work += increment.internal_work;
+  ledger.damping += increment.damping;
+  ledger.contact += increment.contact;
+  ledger.transfer += increment.transfer;
+  ledger.radiated += increment.radiated;
+  return ledger;
+}
+
 double total_external_work(const Scene& scene, const EnergyLedger& ledger) {
   double work = ledger.external_work;
   for (const RigidBody& body : scene.rigid_bodies) {

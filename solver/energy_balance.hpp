@@ -26,6 +26,19 @@ struct EnergyLedger {
   double radiated = 0.0;
 };
 
+/// What one pass of a step adds to the ledger (J, per radian in axisymmetric mode). Each pass
+/// returns its own; the step adds them in pass order.
+struct EnergyIncrement {
+  double external_work = 0.0;
+  double internal_work = 0.0;
+  double damping = 0.0;
+  double contact = 0.0;
+  double transfer = 0.0;
+  double radiated = 0.0;
+};
+
+EnergyLedger& operator+=(EnergyLedger& ledger, const EnergyIncrement& increment);
+
 /// The balance at one instant: external work = (kinetic - its reference) + internal work +
 /// damping + contact + transfer + radiated + residual, with internal work = (elastic - its
 /// reference) + plastic.

@@ -11,7 +11,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <iterator>
@@ -19,30 +18,6 @@
 #include <sstream>
 
 namespace mpile {
-
-namespace {
-
-class PassTimer {
-public:
-  explicit PassTimer(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
-  ~PassTimer() {
-    total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-  PassTimer(const PassTimer&) = delete;
-  PassTimer& operator=(const PassTimer&) = delete;
-
-private:
-  double& total_;
-  std::chrono::steady_clock::time_point start_;
-};
-
-std::string position_of(const Particles& p, std::size_t i) {
-  std::ostringstream s;
-  s << "particle " << i << " at (r, y) = (" << p.r[i] << ", " << p.y[i] << ")";
-  return s.str();
-}
-
-} // namespace
 
 ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log)
     : scene_(scene), settings_(settings), log_(log) {
@@ -81,10 +56,10 @@ void ExplicitSolver::prepare() {
   double min_mass = p.mass[0];
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!(p.mass[i] > 0.0) || !(p.volume[i] > 0.0)) {
-      throw std::invalid_argument(position_of(p, i) + " has no mass or volume");
+      throw std::invalid_argument(particle_position(p, i) + " has no mass or volume");
     }
     if (scene_.mode == GeometryMode::axisymmetric && !(p.r[i] > 0.0)) {
-      throw std::invalid_argument(position_of(p, i) +
+      throw std::invalid_argument(particle_position(p, i) +
                                   " lies on or behind the axis (r must be > 0)");
     }
     min_mass = std::min(min_mass, p.mass[i]);
@@ -161,7 +136,7 @@ void ExplicitSolver::locate_all_particles() {
     const int cr = scene_.grid.r_axis().locate(p.r[i]);
     const int cy = scene_.grid.y_axis().locate(p.y[i]);
     if (cr < 0 || cy < 0) {
-      throw std::invalid_argument(position_of(p, i) + " lies outside the grid");
+      throw std::invalid_argument(particle_position(p, i) + " lies outside the grid");
     }
     p.cell_r[i] = cr;
     p.cell_y[i] = cy;
@@ -209,7 +184,8 @@ double ExplicitSolver::move_mesh() {
   if (relocation.first_outside >= 0) {
     std::ostringstream s;
     s << at_step(steps_, time_)
-      << position_of(p, static_cast<std::size_t>(relocation.first_outside)) << " left the grid";
+      << particle_position(p, static_cast<std::size_t>(relocation.first_outside))
+      << " left the grid";
     throw SimulationError(s.str());
   }
   rebin();
@@ -254,7 +230,7 @@ void ExplicitSolver::report_step_limit(double earlier_step) {
   const Material& material = *scene_.materials[p.material[i]];
   std::ostringstream s;
   s << at_step(steps_, time_) << "the stable step fell to " << stable_dt_ << " s, under half of "
-    << earlier_step << " s; it is set by " << position_of(p, i) << " of body '"
+    << earlier_step << " s; it is set by " << particle_position(p, i) << " of body '"
     << scene_.body_names.at(p.body[i]) << "' in a cell of " << limit.cell << " m: wave speed "
     << limit.wave_speed << " m/s at a density of " << limit.density << " kg/m^3 (its material's "
     << material.density() << "), velocity " << limit.speed << " m/s";
@@ -429,29 +405,6 @@ void ExplicitSolver::switch_on_absorbing(const std::vector<std::size_t>& faces) 
   }
 }
 
-void ExplicitSolver::step(double max_dt) {
-  const double dt = std::min(stable_dt_, max_dt);
-  if (!(dt > 0.0) || !std::isfinite(dt)) {
-    std::ostringstream s;
-    s << at_step(steps_, time_) << "the time step is " << dt << " s (not a positive finite number)";
-    throw SimulationError(s.str());
-  }
-  const bool contact = scene_.has_contact();
-  if (scene_.mode == GeometryMode::axisymmetric) {
-    contact ? step_with_contact<GeometryMode::axisymmetric, true>(dt)
-            : step_with_contact<GeometryMode::axisymmetric, false>(dt);
-  } else {
-    contact ? step_with_contact<GeometryMode::plane_strain, true>(dt)
-            : step_with_contact<GeometryMode::plane_strain, false>(dt);
-  }
-}
-
-template <GeometryMode mode, bool contact> void ExplicitSolver::step_with_contact(double dt) {
-  settings_.shape_functions == ShapeFunctions::gimp
-      ? step_in_mode<mode, contact, ShapeFunctions::gimp>(dt)
-      : step_in_mode<mode, contact, ShapeFunctions::linear>(dt);
-}
-
 void ExplicitSolver::particle_to_grid() {
   const auto map = [this]<GeometryMode mode, bool contact>() {
     settings_.shape_functions == ShapeFunctions::gimp
@@ -483,147 +436,6 @@ double landing_step(double remaining, double stable_dt) {
 void ExplicitSolver::advance_to(double end_time) {
   while (time_ < end_time * (1.0 - 1e-15)) {
     step(landing_step(end_time - time_, stable_dt_));
-  }
-}
-
-template <GeometryMode mode, bool contact, ShapeFunctions shape>
-void ExplicitSolver::step_in_mode(double dt) {
-  const passes::StepParameters step{time_, dt, mass_floor_};
-  {
-    PassTimer timer(timings_.particle_to_grid);
-    passes::particle_to_grid<mode, contact, shape>(scene_, bins_, settings_);
-  }
-  {
-    PassTimer timer(timings_.grid_update);
-    passes::apply_nodal_loads(scene_, step);
-    // Absorbing faces' terms from the grid's coordinates this step, for both of their passes.
-    const std::vector<passes::FaceNodeTerms> faces = passes::absorbing_face_terms(scene_);
-    passes::apply_holding_tractions(scene_, faces, step);
-    const passes::GridUpdateResult grid =
-        passes::update_grid_velocities<mode>(scene_, settings_, step);
-    energy_.damping += grid.damping_dissipation;
-    const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, faces, settings_, step);
-    energy_.radiated += absorbed.radiated;
-    energy_.external_work += absorbed.holding;
-    if (grid.node_nonfinite >= 0) {
-      const int node = static_cast<int>(grid.node_nonfinite);
-      std::ostringstream s;
-      s << at_step(steps_ + 1, time_) << "node " << node << " at (r, y) = ("
-        << scene_.grid.node_r(node) << ", " << scene_.grid.node_y(node)
-        << ") has a non-finite velocity: the run went unstable";
-      throw SimulationError(s.str());
-    }
-  }
-  const auto soil_constraints =
-      contact ? passes::ConstraintFields::soil : passes::ConstraintFields::all;
-  if constexpr (contact) {
-    PassTimer timer(timings_.contact);
-    energy_.external_work +=
-        passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_balance,
-                                  passes::ConstraintFields::structures);
-    const auto predicted = passes::predict_rigid_bodies(scene_, settings_, step);
-    energy_.contact += passes::resolve_contact<mode>(scene_, settings_, step,
-                                                     passes::CorrectionPass::after_balance);
-    passes::finish_rigid_bodies(scene_, settings_, step, predicted);
-  }
-  {
-    PassTimer timer(timings_.grid_update);
-    energy_.external_work += passes::apply_constraints(
-        scene_, settings_, step, passes::CorrectionPass::after_balance, soil_constraints);
-    if (!scene_.boundaries.loads.empty()) {
-      energy_.external_work += passes::nodal_load_work(scene_, step);
-    }
-  }
-  {
-    PassTimer timer(timings_.grid_to_particle);
-    const passes::XpicFields* xpic = nullptr;
-    if (settings_.xpic_order > 0) {
-      passes::extrapolate_xpic<mode, contact, shape>(scene_, bins_, settings_.xpic_order, step,
-                                                     xpic_);
-      xpic = &xpic_;
-    }
-    energy_.transfer += settings_.mass_scaling * passes::grid_to_particle<mode, contact, shape>(
-                                                     scene_, bins_, settings_, step, xpic);
-  }
-  if (settings_.musl) {
-    PassTimer timer(timings_.momentum_remap);
-    passes::remap_momentum<mode, contact, shape>(scene_, bins_, step);
-    if constexpr (contact) {
-      passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
-                                passes::ConstraintFields::structures);
-      passes::reset_rigid_fields(scene_, step);
-      passes::resolve_contact<mode>(scene_, settings_, step, passes::CorrectionPass::after_remap);
-    }
-    passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
-                              soil_constraints);
-  }
-  passes::StressPassResult result;
-  {
-    PassTimer timer(timings_.stress_update);
-    result = passes::update_stress_and_positions<mode, contact, shape>(scene_, bins_, settings_,
-                                                                       step, signal_speed_);
-  }
-  if constexpr (contact) {
-    passes::move_rigid_bodies(scene_, step);
-    if (result.rigid_left_grid && result.particle_nonfinite < 0 && result.particle_outside < 0) {
-      drop_rigid_particles_outside();
-      result.block_changed = true; // the bins index the particles: rebuild them
-    }
-  }
-  double moved_crossing_time = 0.0;
-  if (scene_.moving_mesh) {
-    PassTimer timer(timings_.binning);
-    moved_crossing_time = move_mesh();
-  }
-  if (settings_.split_particles && (result.cell_changed || scene_.moving_mesh) &&
-      result.particle_nonfinite < 0 && result.particle_outside < 0) {
-    PassTimer timer(timings_.binning);
-    if (split_oversized()) {
-      // The bins index the particles (move_mesh rebinned before the split).
-      result.block_changed = true;
-      if (scene_.moving_mesh) {
-        rebin();
-      }
-    }
-  }
-  time_ += dt;
-  last_dt_ = dt;
-  ++steps_;
-  if (result.stress_free_inside_rigid >= stress_free_report_at_) {
-    while (stress_free_report_at_ <= result.stress_free_inside_rigid) {
-      stress_free_report_at_ *= 10;
-    }
-    std::ostringstream s;
-    s << at_step(steps_, time_) << result.stress_free_inside_rigid
-      << " soil particle(s) lie inside rigid bodies: they carry no stress there and set no time "
-         "step ([solver] stress_free_inside_rigid)";
-    log_.info(s.str());
-  }
-  energy_.external_work += result.gravity_work;
-  energy_.internal_work += result.internal_work;
-  if (result.particle_nonfinite >= 0) {
-    std::ostringstream s;
-    s << at_step(steps_, time_)
-      << position_of(scene_.particles, static_cast<std::size_t>(result.particle_nonfinite))
-      << " has a non-finite stress or velocity: the run went unstable";
-    throw SimulationError(s.str());
-  }
-  if (result.particle_outside >= 0) {
-    std::ostringstream s;
-    s << at_step(steps_, time_)
-      << position_of(scene_.particles, static_cast<std::size_t>(result.particle_outside))
-      << " left the grid";
-    throw SimulationError(s.str());
-  }
-  if (scene_.moving_mesh) {
-    // move_mesh has relocated and rebinned; the step follows from the moved cells.
-    set_stable_time_step(result.step_crossing_time, moved_crossing_time, dt);
-    return;
-  }
-  set_stable_time_step(result.step_crossing_time, result.min_crossing_time, dt);
-  if (result.block_changed) {
-    PassTimer timer(timings_.binning);
-    rebin();
   }
 }
 

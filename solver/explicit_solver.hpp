@@ -3,6 +3,7 @@
 #include "engine/particle_bins.hpp"
 #include "engine/scene.hpp"
 #include "solver/energy_balance.hpp"
+#include "solver/passes.hpp"
 #include "solver/run_log.hpp"
 #include "solver/solver_settings.hpp"
 #include "solver/xpic.hpp"
@@ -94,8 +95,41 @@ public:
   void switch_on_absorbing(const std::vector<std::size_t>& faces);
 
 private:
+  /// What stops a step: the lowest index of a node or particle gone non-finite, or of a particle
+  /// that left the grid (-1: none).
+  struct StepFailure {
+    std::int64_t node_nonfinite = -1;
+    std::int64_t particle_nonfinite = -1;
+    std::int64_t particle_outside = -1;
+  };
+
+  // The step as its passes (solver/explicit_step.cpp, docs/design.md's pass table).
   template <GeometryMode mode, bool contact, ShapeFunctions shape> void step_in_mode(double dt);
   template <GeometryMode mode, bool contact> void step_with_contact(double dt);
+  template <GeometryMode mode, bool contact, ShapeFunctions shape> void map_particles_to_grid();
+  /// Loads, absorbing faces' holding forces, the momentum balance with damping, the dashpots.
+  template <GeometryMode mode> EnergyIncrement balance_momentum(const passes::StepParameters& step);
+  /// The structures' supports, the rigid bodies' prediction, contact, the bodies' accelerations.
+  template <GeometryMode mode>
+  EnergyIncrement correct_for_contact(const passes::StepParameters& step);
+  template <bool contact> EnergyIncrement enforce_supports(const passes::StepParameters& step);
+  EnergyIncrement work_of_loads(const passes::StepParameters& step);
+  template <GeometryMode mode, bool contact, ShapeFunctions shape>
+  EnergyIncrement update_particle_velocities(const passes::StepParameters& step);
+  /// The MUSL remap and the same corrections on the remapped velocities.
+  template <GeometryMode mode, bool contact, ShapeFunctions shape>
+  void remap_momentum(const passes::StepParameters& step);
+  template <GeometryMode mode, bool contact, ShapeFunctions shape>
+  passes::StressPassResult update_stress(const passes::StepParameters& step);
+  /// Moves the rigid bodies and the mesh and splits grown particles; returns the crossing time in
+  /// the moved cells (with a moving mesh).
+  template <bool contact>
+  double move_bodies_and_mesh(const passes::StepParameters& step, passes::StressPassResult& stress);
+  /// Advances the clock, stops a failed step and sets the next step's length.
+  void finish_step(double dt, const passes::StressPassResult& stress, double moved_crossing_time);
+  /// Throws SimulationError naming what failed at (step, time); returns when nothing did.
+  void stop_if_failed(const StepFailure& failure, long step, double time) const;
+  void report_stress_free_inside_rigid(std::int64_t count);
   /// Particle-to-grid alone (for the equilibrium check), in the scene's mode and shape functions.
   void particle_to_grid();
   void prepare();
