@@ -1,5 +1,6 @@
 #include "app/run_command.hpp"
 #include "app/run_estimate.hpp"
+#include "engine/materials/undrained_soil.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
 #include "io/monitor_points.hpp"
@@ -78,6 +79,41 @@ double process_age() {
   const double started =
       std::strtod(field.c_str(), nullptr) / static_cast<double>(::sysconf(_SC_CLK_TCK));
   return std::max(uptime - started, 0.0);
+}
+
+/// Each saturated material's porosity and water stiffness, and what they make of the skeleton at
+/// the first phase's initial stresses: Skempton's B and the undrained Poisson ratio over its
+/// particles (a reduced K_w shows here as a B below 1).
+void print_pore_water(std::ostream& out, const CaseSpec& spec, const Scene& scene) {
+  const Particles& p = scene.particles;
+  for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+    const auto* soil = dynamic_cast<const UndrainedSoil*>(scene.materials[m].get());
+    if (soil == nullptr) {
+      continue;
+    }
+    const PoreWater& water = spec.materials[m].water;
+    double b_low = 1.0, b_high = 0.0, nu_low = 0.5, nu_high = -1.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.material[i] != m) {
+        continue;
+      }
+      const UndrainedResponse r = soil->response(
+          p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
+      b_low = std::min(b_low, r.skempton_b);
+      b_high = std::max(b_high, r.skempton_b);
+      nu_low = std::min(nu_low, r.poisson_ratio);
+      nu_high = std::max(nu_high, r.poisson_ratio);
+    }
+    out << std::defaultfloat << std::setprecision(4) << "material " << spec.materials[m].name
+        << ": undrained, porosity " << soil->porosity() << ", saturated density " << soil->density()
+        << " kg/m^3, K_w " << water.bulk_modulus << " Pa"
+        << (water.bulk_modulus < PoreWater{}.bulk_modulus ? " (reduced from water's 2.2e9)" : "")
+        << ", K_w / n " << soil->water_stiffness() << " Pa\n";
+    if (b_high >= b_low) {
+      out << "  at the first phase's initial stresses: Skempton B " << b_low << " to " << b_high
+          << ", undrained Poisson ratio " << nu_low << " to " << nu_high << "\n";
+    }
+  }
 }
 
 /// Runs the case for options.pilot_seconds of wall time in a temporary directory (the run's own
@@ -179,6 +215,7 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
 
   RunLog log(&out);
   apply_k0(*scene, spec, spec.phases.front());
+  print_pore_water(out, spec, *scene);
   try {
     ExplicitSolver solver(*scene, phase_settings(spec, spec.phases.front()), log);
     const double dt = solver.stable_time_step();

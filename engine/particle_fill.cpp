@@ -1,5 +1,7 @@
 #include "engine/particle_fill.hpp"
 
+#include "engine/materials/undrained_soil.hpp"
+
 #include <stdexcept>
 
 namespace mpile {
@@ -78,11 +80,22 @@ void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surf
     if (p.body[i] != body) {
       continue;
     }
-    const double vertical = -surcharge - unit_weight * (y_surface - p.y[i]);
-    p.stress[i] = Stress{k0 * vertical, vertical, k0 * vertical, 0.0, 0.0, 0.0};
     const Material& material = *scene.materials[p.material[i]];
-    material.initialise_state(p.stress[i],
-                              p.state.data() + i * static_cast<std::size_t>(p.state_stride));
+    double* state = p.state.data() + i * static_cast<std::size_t>(p.state_stride);
+    const double depth = y_surface - p.y[i];
+    // A saturated soil: its water is hydrostatic from the surface down and carries its own
+    // weight; the skeleton carries the buoyant weight, and K0 acts on the effective stress.
+    const auto* saturated = dynamic_cast<const UndrainedSoil*>(&material);
+    const double water_weight =
+        saturated ? unit_weight * saturated->water_density() / saturated->density() : 0.0;
+    const double pore = -water_weight * depth;
+    const double vertical = -surcharge - (unit_weight - water_weight) * depth;
+    p.stress[i] =
+        Stress{k0 * vertical + pore, vertical + pore, k0 * vertical + pore, 0.0, 0.0, 0.0};
+    if (saturated) {
+      state[saturated->pore_pressure_index()] = pore;
+    }
+    material.initialise_state(p.stress[i], state);
   }
 }
 

@@ -31,7 +31,9 @@ std::size_t count_region_seeds(const GradedAxis& r_axis, const GradedAxis& y_axi
 
 /// Geostatic stress from a horizontal surface carrying a surcharge q: sigma_yy = -(q + rho g
 /// (y_surface - y)) and sigma_rr = sigma_thth = K0 sigma_yy, no shear, for every particle of a
-/// body; then each particle's material sets its state consistently.
+/// body; then each particle's material sets its state consistently. In a saturated (undrained)
+/// material, the pore water is hydrostatic from the surface, p = -rho_w g (y_surface - y), the
+/// skeleton carries the rest (K0 on the effective stress), and sigma = sigma' + p 1.
 void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surface,
                                  double unit_weight, double k0, double surcharge = 0.0);
 

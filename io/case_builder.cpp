@@ -249,7 +249,8 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
   auto scene =
       std::make_unique<Scene>(spec.mode, Grid(GradedAxis(spec.r_zones), GradedAxis(spec.y_zones)));
   for (const MaterialSpec& material : spec.materials) {
-    scene->add_material(create_material(material.type, material.parameters), material.name);
+    scene->add_material(create_material(material.type, material.parameters, material.water),
+                        material.name);
   }
   if (spec.moving_mesh) {
     scene->moving_mesh = moving_mesh_of(*spec.moving_mesh, scene->grid.y_axis());

@@ -157,6 +157,27 @@ std::vector<KeySpec> node_line_keys() {
               "a grid line y = value (the nodes along it), or with r = value a range [from, to]")};
 }
 
+/// A material's own keys: its model, its drainage and its pore water (PoreWater's declaration).
+std::vector<KeySpec> material_keys(const std::vector<std::string>& material_names) {
+  std::vector<KeySpec> keys{
+      string("type", "the material model").needed().one_of(material_names),
+      string("drainage",
+             "how the pore water drains: \"drained\" (no water state: a dry or drained soil, "
+             "`density` its density) or \"undrained\" (saturated, no flow: the water's stiffness "
+             "K_w / n at each material point, PLAXIS's Undrained A; `density` is then the dry "
+             "density, the particles weigh the saturated density)")
+          .or_default(std::string("drained"))
+          .one_of(drainage_names())};
+  const PoreWater defaults;
+  for (const PoreWaterParameter& w : pore_water_parameters()) {
+    KeySpec key =
+        number(w.name, w.unit, w.meaning + "; undrained only").or_default(defaults.*w.member);
+    key.range = w.range;
+    keys.push_back(std::move(key));
+  }
+  return keys;
+}
+
 std::vector<TableSpec> declare() {
   const SolverSettings solver;
   const MonopileParameters pile;
@@ -202,9 +223,9 @@ std::vector<TableSpec> declare() {
   t.push_back({"grid.r", "A zone of the grid along r.", zone_keys(), false});
   t.push_back({"grid.y", "A zone of the grid along y.", zone_keys(), false});
   t.push_back({"materials.*",
-               "A material: its model (`type`) and that model's parameters (below).",
-               {string("type", "the material model").needed().one_of(material_names)},
-               true});
+               "A material: its model (`type`), how its pore water drains, and that model's "
+               "parameters (below).",
+               material_keys(material_names), true});
   t.push_back(
       {"bodies",
        "A body: a region of one material filled with particles.",

@@ -941,6 +941,40 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   table->finish();
 }
 
+/// A material's drainage and its pore water's parameters, which only a saturated (undrained)
+/// material may give.
+void read_pore_water(TomlTable& table, MaterialSpec& material) {
+  std::string drainage = "drained";
+  if (table.has("drainage")) {
+    const TomlValue& value = table.raw("drainage");
+    if (value.is_string() && value.as_string().str == "coupled") {
+      table.fail("drainage", "\"coupled\" (two-phase flow with Darcy drainage) is not built yet: "
+                             "drained or undrained");
+    }
+    drainage = table.string("drainage");
+  }
+  const auto& names = drainage_names();
+  if (std::find(names.begin(), names.end(), drainage) == names.end()) {
+    table.fail("drainage", "'" + drainage + "' is not a drainage type: drained or undrained");
+  }
+  material.water.drainage = drainage_from_name(drainage);
+  for (const PoreWaterParameter& parameter : pore_water_parameters()) {
+    if (!table.has(parameter.name)) {
+      continue;
+    }
+    if (material.water.drainage == Drainage::drained) {
+      table.fail(parameter.name, "a drained material has no pore water: give it with drainage = "
+                                 "\"undrained\", or remove it");
+    }
+    const double x = table.number(parameter.name);
+    if (!parameter.range.contains(x)) {
+      table.fail(parameter.name, parameter.name + " must be " + parameter.range.text() + " " +
+                                     parameter.unit + ", got " + format_bound(x));
+    }
+    material.water.*parameter.member = x;
+  }
+}
+
 } // namespace
 
 MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
@@ -958,6 +992,7 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
   if (type == nullptr) {
     table.fail("type", "unknown material type '" + material.type + "' (known: " + known + ")");
   }
+  read_pore_water(table, material);
   for (const MaterialParameterSpec& parameter : type->parameters) {
     if (table.has(parameter.name)) {
       const double x = table.number(parameter.name);
@@ -975,7 +1010,7 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
   }
   table.finish();
   try {
-    create_material(material.type, material.parameters);
+    create_material(material.type, material.parameters, material.water);
   } catch (const std::invalid_argument& e) {
     // What is left are checks between parameters; the model's message begins with the type and
     // the parameter it refuses ("hardening_soil: eur_ref must exceed ...").
@@ -985,8 +1020,11 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
         message.rfind(prefix, 0) == 0
             ? message.substr(prefix.size(), message.find(' ', prefix.size()) - prefix.size())
             : "";
-    const bool named = std::any_of(type->parameters.begin(), type->parameters.end(),
-                                   [&](const MaterialParameterSpec& p) { return p.name == first; });
+    const bool named =
+        std::any_of(type->parameters.begin(), type->parameters.end(),
+                    [&](const MaterialParameterSpec& p) { return p.name == first; }) ||
+        std::any_of(pore_water_parameters().begin(), pore_water_parameters().end(),
+                    [&](const PoreWaterParameter& p) { return p.name == first; });
     table.fail(named ? first : "type", message);
   }
   return material;

@@ -25,6 +25,7 @@ struct MaterialSpec {
   std::string name;
   std::string type;
   MaterialParameters parameters;
+  PoreWater water; // drained unless the table says otherwise
 };
 
 /// An initial velocity component varying along r or y, added to the body's uniform velocity.

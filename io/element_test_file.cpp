@@ -56,6 +56,7 @@ void read_material(TomlTable& top, ElementTestSpec& spec) {
   const MaterialSpec material = read_material_table(table, "material");
   spec.material_type = material.type;
   spec.parameters = material.parameters;
+  spec.water = material.water;
 }
 
 /// [initial_state]: state variables of the material by name, over its own initial state (for
@@ -65,7 +66,7 @@ void read_initial_state(TomlTable& top, ElementTestSpec& spec) {
   if (!table) {
     return;
   }
-  const auto material = create_material(spec.material_type, spec.parameters);
+  const auto material = create_material(spec.material_type, spec.parameters, spec.water);
   const auto names = material->state_names();
   for (std::size_t k = 0; k < names.size(); ++k) {
     if (table->has(names[k])) {
@@ -96,7 +97,7 @@ void read_initial_stress(TomlTable& top, ElementTestSpec& spec) {
   table.finish();
 
   // The material must accept the initial stress as it is: a zero increment may not move it.
-  const auto material = create_material(spec.material_type, spec.parameters);
+  const auto material = create_material(spec.material_type, spec.parameters, spec.water);
   const Stress initial{
       -spec.lateral_stress, -spec.vertical_stress, -spec.lateral_stress, 0.0, 0.0, 0.0};
   ElementPoint point(*material, initial, spec.initial_state);

@@ -202,7 +202,7 @@ private:
 } // namespace
 
 ElementTestTable run_element_test(const ElementTestSpec& spec) {
-  const auto material = create_material(spec.material_type, spec.parameters);
+  const auto material = create_material(spec.material_type, spec.parameters, spec.water);
   PathRunner runner(spec, *material);
   return runner.run();
 }

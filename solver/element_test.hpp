@@ -32,6 +32,7 @@ struct ElementTestSpec {
   std::string title;
   std::string material_type;
   MaterialParameters parameters;
+  PoreWater water;              // undrained: the path is total stress, the water carries its share
   double vertical_stress = 0.0; // sigma_1 initial (Pa)
   double lateral_stress = 0.0;  // sigma_3 initial (Pa)
   /// State variables set by [initial_state] (index into the material's state, value), applied

@@ -197,7 +197,8 @@ void update_materials(Scene& scene, std::span<const std::int32_t> particles,
 template <GeometryMode mode, bool contact>
 void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, int block,
                     std::span<const std::int32_t> particles, bool mixed,
-                    const std::vector<char>& rigid_material, const RigidInteriors* interiors,
+                    const std::vector<char>& rigid_material,
+                    const std::vector<int>& pore_pressure_slot, const RigidInteriors* interiors,
                     const SolverSettings& settings, const BlockScratch& scratch,
                     std::span<double> signal_speed, BlockResult& out) {
   const double inverse_beta = 1.0 / settings.mass_scaling;
@@ -214,6 +215,11 @@ void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, in
         // Its stress at the start of the step took part in this step's forces; the work of the
         // step is booked from it to zero (the stored energy it had becomes dissipation).
         p.stress[i] = Stress{};
+        // A saturated particle's stress is total: its pore water lets go too.
+        if (const int slot = pore_pressure_slot[p.material[i]]; slot >= 0) {
+          p.state[i * static_cast<std::size_t>(p.state_stride) + static_cast<std::size_t>(slot)] =
+              0.0;
+        }
         stress_free = true;
         ++out.stress_free;
       }
@@ -315,6 +321,12 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
+  std::vector<int> pore_pressure_slot;
+  if constexpr (contact) {
+    for (const auto& material : scene.materials) {
+      pore_pressure_slot.push_back(material->pore_pressure_index());
+    }
+  }
   const std::optional<RigidInteriors> interiors =
       contact ? kept_rigid_interiors(scene, settings) : std::nullopt;
   const RigidInteriors* inside_rigid = interiors ? &*interiors : nullptr;
@@ -339,7 +351,7 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
     corotate(p, particles, settings.jaumann_rate, scratch);
     update_materials(scene, particles, scratch);
     move_particles<mode, contact>(grid, p, bins, block, particles, mixed, rigid_material,
-                                  inside_rigid, settings, scratch, signal_speed,
+                                  pore_pressure_slot, inside_rigid, settings, scratch, signal_speed,
                                   block_results[static_cast<std::size_t>(block)]);
   });
   return reduce(bins, block_results);

@@ -38,6 +38,9 @@ public:
   /// Names of the per-particle state variables; a model without state carries none.
   virtual std::span<const std::string> state_names() const { return {}; }
   std::size_t state_size() const { return state_names().size(); }
+  /// Where the pore pressure is kept in the state of a saturated, undrained material (the
+  /// particle's stress is then total: sigma' + p 1); -1 for a dry or drained one.
+  virtual int pore_pressure_index() const { return -1; }
   /// Sets the state consistent with a given initial stress (for example after a K0 procedure).
   virtual void initialise_state(const Stress& /*stress*/, double* /*state*/) const {}
 

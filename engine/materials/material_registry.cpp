@@ -3,6 +3,7 @@
 #include "engine/materials/hardening_soil.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/materials/mohr_coulomb.hpp"
+#include "engine/materials/undrained_soil.hpp"
 
 #include <stdexcept>
 
@@ -126,7 +127,8 @@ const std::vector<MaterialType>& material_types() {
   return types;
 }
 
-std::unique_ptr<Material> create_material(std::string_view type, MaterialParameters values) {
+std::unique_ptr<Material> create_material(std::string_view type, MaterialParameters values,
+                                          const PoreWater& water) {
   const MaterialType* found = nullptr;
   std::string known;
   for (const MaterialType& t : material_types()) {
@@ -164,7 +166,11 @@ std::unique_ptr<Material> create_material(std::string_view type, MaterialParamet
     }
   }
   try {
-    return found->create(values);
+    std::unique_ptr<Material> skeleton = found->create(values);
+    if (water.drainage == Drainage::drained) {
+      return skeleton;
+    }
+    return std::make_unique<UndrainedSoil>(std::move(skeleton), water);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(found->name + ": " + e.what());
   }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "engine/materials/material.hpp"
+#include "engine/materials/pore_water.hpp"
 #include "engine/parameter_range.hpp"
 
 #include <functional>
@@ -34,8 +35,10 @@ struct MaterialType {
 /// Every registered material type. A new model registers itself in material_registry.cpp.
 const std::vector<MaterialType>& material_types();
 
-/// Builds a material by type name. Unknown types, unknown or missing parameters and invalid values
-/// throw std::invalid_argument naming the type, the parameter and what is wrong.
-std::unique_ptr<Material> create_material(std::string_view type, MaterialParameters values);
+/// Builds a material by type name, with its pore water drained (no water state, the model as it
+/// is) or undrained (UndrainedSoil over the model). Unknown types, unknown or missing parameters
+/// and invalid values throw std::invalid_argument naming the type, the parameter and what is wrong.
+std::unique_ptr<Material> create_material(std::string_view type, MaterialParameters values,
+                                          const PoreWater& water = {});
 
 } // namespace mpile

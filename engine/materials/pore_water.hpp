@@ -1,0 +1,57 @@
+#pragma once
+
+// The pore water of a saturated soil and how it drains (PLAXIS's drainage types). A drained
+// material carries no water state and runs exactly as a dry one; an undrained one adds the water's
+// stiffness K_w / n to the skeleton's volumetric response at each material point (UndrainedSoil).
+
+#include "engine/parameter_range.hpp"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mpile {
+
+enum class Drainage {
+  drained,  // no pore-water state: effective and total stress are one (today's dry sand)
+  undrained // no flow: the excess pore pressure follows the volumetric strain (PLAXIS's Undrained
+            // A)
+};
+
+/// Drainage names as written in a case file, in enum order.
+const std::vector<std::string>& drainage_names();
+/// The Drainage a name stands for; throws std::invalid_argument for an unknown name.
+Drainage drainage_from_name(std::string_view name);
+
+struct PoreWater {
+  Drainage drainage = Drainage::drained;
+  double density = 1000.0;       // rho_w (kg/m^3)
+  double bulk_modulus = 2.2e9;   // K_w (Pa): fresh or sea water at 10 to 20 degrees C
+  double grain_density = 2650.0; // rho_s (kg/m^3): quartz; with the dry density, the porosity
+};
+
+/// A water parameter as the case layer sees it: its key, unit, meaning, default and range, bound
+/// to its member of PoreWater (declared once, in pore_water.cpp).
+struct PoreWaterParameter {
+  std::string name;
+  std::string unit;
+  std::string meaning;
+  double PoreWater::*member;
+  ParameterRange range;
+};
+const std::vector<PoreWaterParameter>& pore_water_parameters();
+
+/// Porosity n = 1 - rho_d / rho_s of a skeleton of dry density rho_d.
+double porosity(double dry_density, const PoreWater& water);
+
+/// What a skeleton of drained bulk modulus K' and shear modulus G becomes with the water undrained
+/// (incompressible grains): K_u = K' + K_w / n, Skempton's B = (K_w / n) / K_u and the undrained
+/// Poisson ratio (3 K_u - 2 G) / (2 (3 K_u + G)).
+struct UndrainedResponse {
+  double bulk_modulus = 0.0;
+  double skempton_b = 0.0;
+  double poisson_ratio = 0.0;
+};
+UndrainedResponse undrained_response(double drained_bulk, double shear, double water_stiffness);
+
+} // namespace mpile

@@ -1,0 +1,60 @@
+#pragma once
+
+// A soil skeleton with its pores full of water that cannot drain in the time of the loading
+// (PLAXIS's "Undrained A"): the skeleton's model works on the effective stress, and the water,
+// of bulk modulus K_w in a porosity n, adds the volumetric stiffness K_w / n, its pressure changing
+// by dp = (K_w / n) d eps_vol at each material point (incompressible grains). The particle's
+// stress is the total stress sigma = sigma' + p 1, with p the pore pressure, tension positive
+// like every stress here (so a compressed pore water has p < 0).
+
+#include "engine/materials/material.hpp"
+#include "engine/materials/pore_water.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mpile {
+
+class UndrainedSoil final : public Material {
+public:
+  /// Throws std::invalid_argument when the skeleton's density is not below the grains' (no pores)
+  /// or is rigid.
+  UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater& water);
+
+  std::string_view type() const override { return skeleton_->type(); }
+  /// The saturated density rho_d + n rho_w.
+  double density() const override { return density_; }
+  std::span<const std::string> state_names() const override { return state_names_; }
+  int pore_pressure_index() const override { return pore_index_; }
+  /// The skeleton's state from the effective stress: the pore pressure must already be in state.
+  void initialise_state(const Stress& stress, double* state) const override;
+  void update_stress(const StressUpdateBatch& batch) const override;
+  double constrained_modulus(const Stress& stress, const double* state) const override;
+  double shear_modulus(const Stress& stress, const double* state) const override;
+  /// The skeleton's plus the water's p^2 / (2 K_w / n).
+  double elastic_energy_density(const Stress& stress, const double* state) const override;
+
+  /// What the water makes of the skeleton's stiffness at this (total) stress and state: the
+  /// undrained bulk modulus, Skempton's B and the undrained Poisson ratio.
+  UndrainedResponse response(const Stress& stress, const double* state) const;
+
+  const Material& skeleton() const { return *skeleton_; }
+  double porosity() const { return porosity_; }
+  /// K_w / n (Pa).
+  double water_stiffness() const { return water_stiffness_; }
+  double water_density() const { return water_density_; }
+
+private:
+  Stress effective(const Stress& stress, const double* state) const;
+
+  std::unique_ptr<Material> skeleton_;
+  double porosity_ = 0.0;
+  double water_stiffness_ = 0.0;
+  double density_ = 0.0;
+  double water_density_ = 0.0;
+  int pore_index_ = 0; // state[pore_index_] is p, state[pore_index_ + 1] its change since the start
+  std::vector<std::string> state_names_;
+};
+
+} // namespace mpile

@@ -1,0 +1,366 @@
+// Saturated soil without drainage (drainage = "undrained", PLAXIS's Undrained A): the pore water
+// adds K_w / n to the skeleton's volumetric response at each material point. Checked against what
+// follows from that alone: the pore pressure's change is (K_w / n) d eps_vol to rounding, the
+// skeleton sees the effective stress exactly as a dry one would, an elastic undrained triaxial
+// gives Skempton's pore pressure B q / 3, a dense Hardening Soil sand holds its mean effective
+// stress until the critical state angle of Rowe's law and dilates past it, the K0 procedure puts
+// the water hydrostatic, and an undrained P-wave runs at sqrt((M + K_w / n) / rho_sat).
+#include "engine/materials/material_registry.hpp"
+#include "engine/materials/undrained_soil.hpp"
+#include "io/case_error.hpp"
+#include "io/element_test_file.hpp"
+#include "tests/case_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace mpile {
+namespace {
+
+PoreWater undrained(double grain_density = 2650.0) {
+  PoreWater water;
+  water.drainage = Drainage::undrained;
+  water.grain_density = grain_density;
+  return water;
+}
+
+struct NamedMaterial {
+  const char* type;
+  MaterialParameters parameters;
+};
+
+std::vector<NamedMaterial> skeletons() {
+  return {
+      {"linear_elastic", {{"young_modulus", 50e6}, {"poisson_ratio", 0.3}, {"density", 1600.0}}},
+      {"mohr_coulomb",
+       {{"young_modulus", 50e6},
+        {"poisson_ratio", 0.3},
+        {"density", 1600.0},
+        {"cohesion", 0.0},
+        {"friction_angle", 35.0},
+        {"dilatancy_angle", 5.0}}},
+      {"hardening_soil",
+       {{"e50_ref", 44e6},
+        {"eoed_ref", 44e6},
+        {"eur_ref", 132e6},
+        {"power", 0.47},
+        {"k0_nc", 0.5},
+        {"friction_angle", 37.5},
+        {"density", 1656.25}}},
+  };
+}
+
+std::size_t state_index(const Material& m, const std::string& name) {
+  const auto names = m.state_names();
+  return static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+}
+
+// The wrapper hands the skeleton the effective stress and the same strain, and the water takes
+// (K_w / n) d eps_vol: against a dry copy of the same model driven by the same increments from
+// the same effective stress, the effective stresses agree to rounding (the total is formed as
+// sigma' + p and taken apart again, 1e-12 of the stress), the pore pressure's increment is
+// (K_w / n) d eps_vol to rounding, and the step's modulus is the skeleton's plus K_w / n.
+TEST(UndrainedSoil, PorePressureFollowsTheVolumetricStrainAsKwOverN) {
+  for (const NamedMaterial& m : skeletons()) {
+    SCOPED_TRACE(m.type);
+    const auto dry = create_material(m.type, m.parameters);
+    const auto wet = create_material(m.type, m.parameters, undrained());
+    const auto* soil = dynamic_cast<const UndrainedSoil*>(wet.get());
+    ASSERT_NE(soil, nullptr);
+    const double n = 1.0 - m.parameters.at("density") / 2650.0;
+    EXPECT_DOUBLE_EQ(soil->porosity(), n);
+    EXPECT_DOUBLE_EQ(soil->water_stiffness(), 2.2e9 / n);
+    EXPECT_DOUBLE_EQ(wet->density(), m.parameters.at("density") + n * 1000.0);
+    ASSERT_EQ(wet->state_size(), dry->state_size() + 2);
+    EXPECT_EQ(wet->pore_pressure_index(), static_cast<int>(dry->state_size()));
+
+    // A K0 state at 10 m depth: hydrostatic water, the skeleton at 100 kPa vertical.
+    const Stress effective0{-50e3, -100e3, -50e3, 0.0, 0.0, 0.0};
+    const double pore0 = -98.1e3;
+    std::vector<double> dry_state(dry->state_size() + 1, 0.0);
+    std::vector<double> wet_state(wet->state_size(), 0.0);
+    dry->initialise_state(effective0, dry_state.data());
+    wet_state[dry->state_size()] = pore0;
+    Stress total = effective0;
+    for (int d = 0; d < 3; ++d) {
+      total[static_cast<std::size_t>(d)] += pore0;
+    }
+    wet->initialise_state(total, wet_state.data());
+    if (std::string(m.type) == "hardening_soil") {
+      // The cap out of reach: the volumetric increments below stay elastic.
+      dry_state[state_index(*dry, "p_p")] = 1e12;
+      wet_state[state_index(*wet, "p_p")] = 1e12;
+    }
+    Stress dry_stress = effective0;
+    double pore = pore0;
+    for (int k = 0; k < 20; ++k) {
+      // Compression with a little shear, small enough to stay elastic in every model.
+      const StrainIncrement de{-2e-6, -5e-6, -2e-6, 1e-6, 0.5e-6, -0.5e-6};
+      const double dry_modulus = update_single_point(*dry, dry_stress, dry_state.data(), de);
+      const double wet_modulus = update_single_point(*wet, total, wet_state.data(), de);
+      pore += soil->water_stiffness() * (de[RR] + de[YY] + de[TT]);
+      EXPECT_NEAR(wet_state[dry->state_size()], pore, 1e-14 * std::abs(pore));
+      EXPECT_NEAR(wet_state[dry->state_size() + 1], pore - pore0, 1e-12 * std::abs(pore));
+      EXPECT_NEAR(wet_modulus, dry_modulus + soil->water_stiffness(), 1e-12 * wet_modulus);
+      for (std::size_t c = 0; c < 6; ++c) {
+        const double sigma = total[c] - (c < 3 ? wet_state[dry->state_size()] : 0.0);
+        EXPECT_NEAR(sigma, dry_stress[c], 1e-12 * 200e3) << "component " << c;
+      }
+    }
+    // Stored energy: the skeleton's at the effective stress plus the water's p^2 / (2 K_w / n).
+    EXPECT_NEAR(wet->elastic_energy_density(total, wet_state.data()),
+                dry->elastic_energy_density(dry_stress, dry_state.data()) +
+                    0.5 * pore * pore / soil->water_stiffness(),
+                1e-12 * std::abs(pore * pore / soil->water_stiffness()));
+  }
+}
+
+ElementTestTable run_text(const std::string& text) {
+  return run_element_test(read_element_test_text(text, "test.toml"));
+}
+
+// Undrained triaxial compression of a linear elastic skeleton: the total mean stress rises by
+// q / 3, and the water takes Skempton's share B of it, B = (K_w / n) / (K' + K_w / n). The element
+// driver's stress control is exact for a linear material up to rounding (element_test_test.cpp:
+// 1e-9 of the stress).
+TEST(UndrainedSoil, ElasticTriaxialGivesSkemptonsPorePressure) {
+  const ElementTestTable t =
+      run_text("[material]\ntype = \"linear_elastic\"\ndrainage = \"undrained\"\n"
+               "young_modulus = 20e6\npoisson_ratio = 0.3\ndensity = 1800.0\n"
+               "water_bulk_modulus = 2e8\n\n"
+               "[initial_stress]\nisotropic = 100e3\n\n"
+               "[path]\ntype = \"triaxial\"\naxial_strain = 0.01\nincrements = 100\n");
+  const double n = 1.0 - 1800.0 / 2650.0;
+  const double bulk = 20e6 / (3.0 * (1.0 - 2.0 * 0.3));
+  const double b = (2e8 / n) / (bulk + 2e8 / n);
+  for (const std::size_t row : {std::size_t{10}, std::size_t{50}, t.rows.size() - 1}) {
+    const double q = t.rows[row][t.column("q")];
+    const double pore = t.rows[row][t.column("pore_pressure")];
+    EXPECT_NEAR(-pore, b * q / 3.0, 1e-9 * q) << "row " << row;
+    EXPECT_NEAR(t.rows[row][t.column("excess_pore_pressure")], pore, 1e-9 * q);
+  }
+}
+
+// The shipped undrained triaxial of a dense Hardening Soil sand (cases/element_tests/
+// hardening_soil_undrained_triaxial.toml). Below the critical state angle of Rowe's law the shear
+// strains carry no volume (psi_m = 0), so the volume is held by the water alone: p' rises only by
+// (1 - B) q / 3, with B at the start's stiffness (the largest K', so a bound). Past phi_cv the sand
+// dilates: p' climbs, the excess pore pressure peaks and falls into suction, and the path never
+// crosses the Mohr-Coulomb line q = M p'.
+TEST(UndrainedSoil, DenseSandHoldsItsMeanEffectiveStressUntilTheCriticalStateAngleThenDilates) {
+  const ElementTestSpec spec =
+      read_element_test_file(std::string(MPILE_SOURCE_DIR) +
+                             "/cases/element_tests/hardening_soil_undrained_triaxial.toml");
+  const ElementTestTable t = run_element_test(spec);
+  const double phi = 37.5 * std::numbers::pi / 180.0;
+  const double psi = 7.5 * std::numbers::pi / 180.0;
+  const double sin_cv = (std::sin(phi) - std::sin(psi)) / (1.0 - std::sin(phi) * std::sin(psi));
+  const double m_cv = 6.0 * sin_cv / (3.0 - sin_cv);
+  const double m_failure = 6.0 * std::sin(phi) / (3.0 - std::sin(phi));
+  const double n = 1.0 - 1656.25 / 2650.0;
+  const double eur = 132e6; // at sigma_3 = p_ref
+  const double bulk = eur / (3.0 * (1.0 - 2.0 * 0.2));
+  const double one_minus_b = bulk / (bulk + 2.2e9 / n);
+  std::size_t peak = 0;
+  double peak_pore = 0.0;
+  bool crossed_cv = false;
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    const double q = t.rows[k][t.column("q")];
+    const double pore = t.rows[k][t.column("pore_pressure")];
+    const double p_eff = t.rows[k][t.column("p")] + pore;
+    if (pore < peak_pore) {
+      peak_pore = pore;
+      peak = k;
+    }
+    EXPECT_LE(q, m_failure * p_eff * (1.0 + 1e-9)) << "row " << k;
+    crossed_cv = crossed_cv || q >= m_cv * p_eff;
+    if (!crossed_cv) {
+      EXPECT_GE(p_eff, 100e3 * (1.0 - 1e-12)) << "row " << k;
+      EXPECT_LE(p_eff - 100e3, one_minus_b * q / 3.0 + 1e-9 * 100e3) << "row " << k;
+    }
+  }
+  ASSERT_TRUE(crossed_cv);
+  const auto eta = [&](std::size_t k) {
+    return t.rows[k][t.column("q")] /
+           (t.rows[k][t.column("p")] + t.rows[k][t.column("pore_pressure")]);
+  };
+  // The pore water is compressed most after the path has turned at phi_cv, and ends in suction.
+  EXPECT_GT(eta(peak), m_cv);
+  EXPECT_LT(peak_pore, -30e3);
+  EXPECT_GT(t.rows.back()[t.column("pore_pressure")], 0.0);
+}
+
+// The K0 procedure on a saturated body: the water hydrostatic from the surface, the skeleton under
+// the buoyant weight, K0 on the effective stress; the total vertical stress is the saturated
+// weight. Held by rollers, the column then stays at rest (the state is in equilibrium).
+TEST(UndrainedSoil, KZeroPutsTheWaterHydrostaticAndTheColumnStaysAtRest) {
+  const std::string text = R"(title = "saturated column"
+geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 0.5, cells = 2 }]
+y = [{ start = 0.0, end = 10.0, cells = 40 }]
+[materials.sand]
+type = "mohr_coulomb"
+drainage = "undrained"
+young_modulus = 50e6
+poisson_ratio = 0.3
+density = 1600.0
+cohesion = 0.0
+friction_angle = 35.0
+[[bodies]]
+name = "column"
+material = "sand"
+region = { r = [0.0, 0.5], y = [0.0, 10.0] }
+[boundaries]
+r_max = "roller"
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+[[phases]]
+name = "rest"
+duration = 0.05
+k0 = [{ body = "column", surface = 10.0, k0 = 0.5 }]
+)";
+  CaseRun run(text);
+  apply_k0(*run.scene, run.spec, run.spec.phases[0]);
+  const Particles& p = run.scene->particles;
+  const double g = 9.81;
+  const double n = 1.0 - 1600.0 / 2650.0;
+  const double rho_sat = 1600.0 + n * 1000.0;
+  const auto& soil = *run.scene->materials[0];
+  const auto slot = static_cast<std::size_t>(soil.pore_pressure_index());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double depth = 10.0 - p.y[i];
+    const double pore = p.state[i * static_cast<std::size_t>(p.state_stride) + slot];
+    EXPECT_NEAR(pore, -1000.0 * g * depth, 1e-9 * 1e5);
+    EXPECT_NEAR(p.stress[i][YY], -rho_sat * g * depth, 1e-9 * 2e5);
+    EXPECT_NEAR(p.stress[i][RR] - pore, 0.5 * (p.stress[i][YY] - pore), 1e-9 * 1e5);
+  }
+  run.solver = std::make_unique<ExplicitSolver>(
+      *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+  run.solver->advance_to(0.05);
+  // Undisturbed, a particle moves only by the grid's rounding (9e-16 m/s measured); a K0 state
+  // off by a thousandth of the weight would move it by about 1e-3 g t = 5e-4 m/s.
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    fastest = std::max(fastest, std::hypot(p.v_r[i], p.v_y[i]));
+  }
+  EXPECT_LT(fastest, 1e-12);
+}
+
+// A velocity step at the base of an undrained column in uniaxial strain: the front (where the
+// particles have half the step's velocity) runs at the undrained P-wave speed
+// c = sqrt((M + K_w / n) / rho_sat), 1 690 m/s here against the dry skeleton's 274. Measured
+// between two instants so that the front's start-up and its smearing over a few cells cancel; 2 %
+// is what a 0.05 m cell and half a cell of front position allow over the 10 m run between them.
+TEST(UndrainedSoil, UndrainedPWaveRunsAtTheSaturatedSpeed) {
+  const std::string text = R"(title = "undrained wave"
+geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 0.1, cells = 2 }]
+y = [{ start = 0.0, end = 30.0, cells = 600 }]
+[materials.sand]
+type = "linear_elastic"
+drainage = "undrained"
+young_modulus = 100e6
+poisson_ratio = 0.25
+density = 1600.0
+[[bodies]]
+name = "column"
+material = "sand"
+region = { r = [0.0, 0.1], y = [0.0, 30.0] }
+[boundaries]
+r_max = "roller"
+[[prescribed]]
+name = "piston"
+nodes = { y = 0.0 }
+velocity_y = 0.01
+[[phases]]
+name = "wave"
+duration = 0.015
+gravity = false
+)";
+  CaseRun run(text);
+  const double n = 1.0 - 1600.0 / 2650.0;
+  const double rho_sat = 1600.0 + n * 1000.0;
+  const double m = 100e6 * 0.75 / (1.25 * 0.5);
+  const double c = std::sqrt((m + 2.2e9 / n) / rho_sat);
+  const auto front = [&]() {
+    // The highest particle moving at half the step's velocity or more.
+    const Particles& p = run.scene->particles;
+    double y = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.v_y[i] >= 0.005) {
+        y = std::max(y, p.y[i]);
+      }
+    }
+    return y;
+  };
+  run.solver->advance_to(0.006);
+  const double y1 = front();
+  run.solver->advance_to(0.012);
+  const double y2 = front();
+  EXPECT_NEAR((y2 - y1) / 0.006, c, 0.02 * c) << "front at " << y1 << " and " << y2 << " m";
+}
+
+struct BadWater {
+  const char* what;
+  std::string line; // replaces "drainage = \"undrained\"\n"
+  const char* expected;
+  const char* line_text;
+};
+
+// Every water key is refused at its line when it makes no sense; the case names what is wrong.
+TEST(UndrainedSoil, BadWaterInputIsRefusedAtItsLine) {
+  const std::string base = R"(title = "bad water"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 2 }]
+y = [{ start = 0.0, end = 1.0, cells = 2 }]
+[materials.sand]
+type = "linear_elastic"
+young_modulus = 1e7
+poisson_ratio = 0.3
+density = 1600.0
+drainage = "undrained"
+[[bodies]]
+name = "soil"
+material = "sand"
+region = { r = [0.0, 1.0], y = [0.0, 1.0] }
+[[phases]]
+name = "one"
+duration = 0.01
+)";
+  const std::vector<BadWater> bad{
+      {"coupled is not built", "drainage = \"coupled\"\n", "not built yet", "drainage ="},
+      {"unknown drainage", "drainage = \"partially\"\n",
+       "must be \"drained\" or \"undrained\"", "drainage ="},
+      {"water for a drained material", "water_bulk_modulus = 1e9\n",
+       "a drained material has no pore water", "water_bulk_modulus"},
+      {"no stiffness", "drainage = \"undrained\"\nwater_bulk_modulus = 0.0\n",
+       "water_bulk_modulus: must be > 0", "water_bulk_modulus"},
+      {"negative water density", "drainage = \"undrained\"\nwater_density = -1000.0\n",
+       "water_density: must be > 0", "water_density"},
+      {"grains lighter than the soil", "drainage = \"undrained\"\ngrain_density = 1500.0\n",
+       "grain_density must exceed the (dry) density", "grain_density"},
+  };
+  for (const BadWater& b : bad) {
+    const std::string text = replaced(base, "drainage = \"undrained\"\n", b.line);
+    std::string message = "no error";
+    try {
+      read_case_text(text, "case.toml");
+    } catch (const CaseError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(b.expected), std::string::npos) << b.what << ": " << message;
+    const auto at = text.find(b.line_text);
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+    EXPECT_NE(message.find("case.toml:" + std::to_string(line) + ":"), std::string::npos)
+        << b.what << ": " << message;
+  }
+}
+
+} // namespace
+} // namespace mpile
