@@ -5,6 +5,7 @@
 // gives Skempton's pore pressure B q / 3, a dense Hardening Soil sand holds its mean effective
 // stress until the critical state angle of Rowe's law and dilates past it, the K0 procedure puts
 // the water hydrostatic, and an undrained P-wave runs at sqrt((M + K_w / n) / rho_sat).
+#include "app/run_command.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "engine/materials/undrained_soil.hpp"
 #include "io/case_error.hpp"
@@ -15,7 +16,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iomanip>
 #include <numbers>
+#include <sstream>
 
 namespace mpile {
 namespace {
@@ -306,6 +310,56 @@ gravity = false
   EXPECT_NEAR((y2 - y1) / 0.006, c, 0.02 * c) << "front at " << y1 << " and " << y2 << " m";
 }
 
+// `mpile check` names each undrained material's porosity and water stiffness, and the Skempton B
+// and undrained Poisson ratio they give the skeleton: with K_w reduced to 20 MPa on a linear
+// skeleton of K' = 16.7 MPa and G = 7.7 MPa (E = 20 MPa, nu = 0.3, n = 0.3962), B = 0.7518 and
+// nu_u = 0.4448 everywhere, printed to four digits.
+TEST(UndrainedSoil, CheckPrintsSkemptonsBAndTheUndrainedPoissonRatio) {
+  const auto directory = fresh_directory("undrained_check");
+  const auto path = directory / "case.toml";
+  std::ofstream(path) << R"(title = "reduced water stiffness"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 4 }]
+y = [{ start = 0.0, end = 2.0, cells = 8 }]
+[materials.sand]
+type = "linear_elastic"
+young_modulus = 20e6
+poisson_ratio = 0.3
+density = 1600.0
+drainage = "undrained"
+water_bulk_modulus = 2e7
+[[bodies]]
+name = "soil"
+material = "sand"
+region = { r = [0.0, 1.0], y = [0.0, 2.0] }
+[boundaries]
+r_max = "roller"
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+[[phases]]
+name = "rest"
+duration = 0.01
+k0 = [{ body = "soil", surface = 2.0, k0 = 0.5 }]
+)";
+  RunOptions options;
+  options.case_path = path.string();
+  std::ostringstream out, err;
+  ASSERT_EQ(check_case(options, out, err), 0) << err.str();
+  const double n = 1.0 - 1600.0 / 2650.0;
+  const UndrainedResponse r = undrained_response(20e6 / (3.0 * 0.4), 20e6 / (2.0 * 1.3), 2e7 / n);
+  std::ostringstream expected;
+  expected << std::setprecision(4) << "Skempton B " << r.skempton_b << " to " << r.skempton_b
+           << ", undrained Poisson ratio " << r.poisson_ratio << " to " << r.poisson_ratio;
+  EXPECT_NE(out.str().find("material sand: undrained, porosity 0.3962"), std::string::npos)
+      << out.str();
+  EXPECT_NE(out.str().find("(reduced from water's 2.2e9)"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find(expected.str()), std::string::npos) << expected.str() << "\n"
+                                                               << out.str();
+  EXPECT_NEAR(r.skempton_b, 0.7518, 5e-5); // by hand: K_u = 67.14 MPa
+  EXPECT_NEAR(r.poisson_ratio, 0.4448, 5e-5);
+}
+
 struct BadWater {
   const char* what;
   std::string line; // replaces "drainage = \"undrained\"\n"
@@ -335,8 +389,8 @@ duration = 0.01
 )";
   const std::vector<BadWater> bad{
       {"coupled is not built", "drainage = \"coupled\"\n", "not built yet", "drainage ="},
-      {"unknown drainage", "drainage = \"partially\"\n",
-       "must be \"drained\" or \"undrained\"", "drainage ="},
+      {"unknown drainage", "drainage = \"partially\"\n", "must be \"drained\" or \"undrained\"",
+       "drainage ="},
       {"water for a drained material", "water_bulk_modulus = 1e9\n",
        "a drained material has no pore water", "water_bulk_modulus"},
       {"no stiffness", "drainage = \"undrained\"\nwater_bulk_modulus = 0.0\n",
