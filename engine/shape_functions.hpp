@@ -24,6 +24,7 @@ constexpr int support_nodes(ShapeFunctions shape) {
 /// Shape function values and gradients at a particle, node by node.
 template <int count> struct NodeWeights {
   static constexpr int size = count;
+  int first_r; // the r index of the first node column (the theta gradient's cells)
   int node[count];
   double N[count];
   double dN_dr[count];
@@ -43,6 +44,7 @@ inline CellWeights bilinear_weights(const Grid& grid, int cr, int cy, double r, 
   const double dnr[2] = {-inv_hr, inv_hr};
   const double dny[2] = {-inv_hy, inv_hy};
   CellWeights w;
+  w.first_r = cr;
   const int n0 = grid.node_index(cr, cy);
   const int nr_count = grid.nodes_r();
   for (int b = 0; b < 2; ++b) {
@@ -125,6 +127,7 @@ inline NodeWeights<9> gimp_weights(const Grid& grid, int cr, int cy, double r, d
   const AxisWeights wr = gimp_axis_weights(grid.r_axis(), cr, r, half_r);
   const AxisWeights wy = gimp_axis_weights(grid.y_axis(), cy, y, half_y);
   NodeWeights<9> w;
+  w.first_r = wr.first;
   const int n0 = grid.node_index(wr.first, wy.first);
   const int nr_count = grid.nodes_r();
   for (int b = 0; b < 3; ++b) {

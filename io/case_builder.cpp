@@ -188,6 +188,10 @@ MovingMesh moving_mesh_of(const MovingMeshSpec& spec, const GradedAxis& y) {
   }
   const double cell = y.cell_size(mesh.band_bottom);
   mesh.travel = spec.travel > 0.0 ? std::ceil(spec.travel / cell - 1e-9) * cell : 0.0;
+  // A travel of whole cells rounds to itself within 1e-9 of a cell, which can come out a hair
+  // below the travel as written (cells of 0.05 m computed as 0.04999999999999982): the band must
+  // still reach that, or a case driving the pile the whole travel is refused as going beyond it.
+  mesh.travel = std::max(mesh.travel, spec.travel);
   return mesh;
 }
 

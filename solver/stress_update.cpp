@@ -3,6 +3,7 @@
 // writes particle stress, state, volume, position and cell. Runs per block without coloring: it
 // writes only to its own particles and to the B-bar sums of its own cells.
 #include "engine/shape_functions.hpp"
+#include "engine/theta_gradient.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 #include "solver/rigid_interiors.hpp"
@@ -105,7 +106,8 @@ void strain_increments(const Grid& grid, const Particles& p,
     }
     const auto w = particle_weights<shape>(grid, p, i);
     double drr = 0.0, dry = 0.0, dyr = 0.0, dyy = 0.0, vr = 0.0;
-    double dwr = 0.0, dwy = 0.0; // gradient of the angular velocity
+    double dwy = 0.0;                        // d(omega)/dy
+    double omega[support_nodes(shape)] = {}; // the nodes' angular velocities, for d(omega)/dr
     for (int n = 0; n < w.size; ++n) {
       const GridNode& node = nodes[static_cast<std::size_t>(w.node[n])];
       drr += w.dN_dr[n] * node.velocity()[0];
@@ -114,16 +116,18 @@ void strain_increments(const Grid& grid, const Particles& p,
       dyy += w.dN_dy[n] * node.velocity()[1];
       if constexpr (has_theta(mode)) {
         vr += w.N[n] * node.velocity()[0];
-        dwr += w.dN_dr[n] * node.velocity()[2];
+        omega[n] = node.velocity()[2];
         dwy += w.dN_dy[n] * node.velocity()[2];
       }
     }
     StrainIncrement& de = scratch.strain[k];
     if constexpr (has_theta(mode)) {
       // v_theta = r omega: gamma_ytheta = r d(omega)/dy and gamma_rtheta = dv_theta/dr -
-      // v_theta/r = r d(omega)/dr, zero for a rigid spin whatever the cell.
+      // v_theta/r = r d(omega)/dr, zero for a rigid spin whatever the cell. d(omega)/dr is
+      // taken in s = 1/r^2 (engine/theta_gradient.hpp): exact for Couette flow, omega = A + B/r^2.
       const double r = p.r[i];
       const double inverse_r = 1.0 / r;
+      const double dwr = radial_slope_in_s(grid.r_axis(), w, omega, r);
       de = {dt * drr, dt * dyy, dt * vr * inverse_r, dt * (dry + dyr), dt * r * dwy, dt * r * dwr};
     } else {
       de = {dt * drr, dt * dyy, 0.0, dt * (dry + dyr), 0.0, 0.0};

@@ -468,3 +468,35 @@ TEST(MovingMesh, LeavesSoilAtRestUndisturbedWithGimp) {
 
 } // namespace
 } // namespace mpile
+
+namespace mpile {
+namespace {
+
+TEST(MovingMesh, ATravelOfWholeBandCellsIsAccepted) {
+  // The band [1.2, 1.6] of 0.05 m cells: its first cell computes as 0.04999999999999982 m (node
+  // 1.2 is 0.8 + 8 h, node 1.25 is 0.8 + 9 h), so three, four or five such cells come out a hair
+  // below the 0.15, 0.2 or 0.25 m written. The travel rounded to whole cells must still cover the
+  // travel as written: the reader carries the band that far to seed the soil below it, and
+  // refused these cases as "beyond its travel".
+  const std::string text = replaced(
+      replaced(block_above_soil,
+               "y = [{ start = 0.0, end = 1.0, cells = 10 }, { start = 1.0, end = 1.4, cells = 8 "
+               "},\n     { start = 1.4, end = 2.5, cells = 11 }]",
+               "y = [{ start = 0.0, end = 0.8, cells = 8 }, { start = 0.8, end = 1.6, cells = 16 "
+               "}, { start = 1.6, end = 2.5, cells = 9 }]"),
+      "band = [1.0, 1.4]", "band = [1.2, 1.6]");
+  for (const std::string travel : {"0.15", "0.2", "0.25"}) {
+    const CaseSpec spec = read_case_text(replaced(text, "travel = 0.2", "travel = " + travel) +
+                                             "[[phases]]\nname = \"drive\"\nduration = 0.1\n",
+                                         "case.toml"); // refused before
+    const GradedAxis y(spec.y_zones);
+    const MovingMesh mesh = moving_mesh_of(*spec.moving_mesh, y);
+    ASSERT_LT(y.cell_size(mesh.band_bottom), 0.05) << "the case no longer shows the rounding";
+    EXPECT_GE(mesh.travel, std::stod(travel)) << travel;
+    EXPECT_NEAR(mesh.travel, std::stod(travel), 1e-12) << travel;
+    EXPECT_NO_THROW(mesh.lines_at(-std::stod(travel))) << travel;
+  }
+}
+
+} // namespace
+} // namespace mpile

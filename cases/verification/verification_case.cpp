@@ -40,6 +40,9 @@ SolverSettings apply_options(SolverSettings settings, const Options& options) {
   if (options.musl) {
     settings.musl = *options.musl;
   }
+  if (options.shape_functions) {
+    settings.shape_functions = *options.shape_functions;
+  }
   settings.block_cells = options.block_cells;
   return settings;
 }

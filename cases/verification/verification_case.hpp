@@ -38,7 +38,8 @@ struct Options {
   std::optional<int> xpic_order;              // default: off (the case's FLIP/PIC blend)
   std::optional<double> poisson_ratio;        // V3 and V5, whose closed forms take any nu
   std::optional<double> courant_number;
-  std::optional<bool> musl; // default: MUSL; false: USL
+  std::optional<bool> musl;                      // default: MUSL; false: USL
+  std::optional<ShapeFunctions> shape_functions; // default: the case file's
   int block_cells = 8;
 };
 

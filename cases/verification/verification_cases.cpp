@@ -11,6 +11,7 @@ const std::vector<Case>& all_cases() {
       {"V4p", "plane-strain patch test", run_plane_strain_patch},
       {"V5", "solid cylinder in uniaxial compression", run_uniaxial_cylinder},
       {"V6", "shaft torsion", run_shaft_torsion},
+      {"V6c", "elastic Couette flow in an annulus", run_elastic_couette},
       {"V7", "block sliding on a rigid incline (plane strain)", run_block_on_incline},
       {"V8", "self-weight column, gravity loading", run_self_weight_column},
       {"V8k0", "self-weight column, K0 state stays put", run_k0_column},

@@ -25,6 +25,7 @@ Report run_radial_patch(const Options& options);          // V4, radial_patch.to
 Report run_plane_strain_patch(const Options& options);    // V4p, plane_strain_patch.toml
 Report run_uniaxial_cylinder(const Options& options);     // V5, uniaxial_cylinder.toml
 Report run_shaft_torsion(const Options& options);         // V6, shaft_torsion.toml
+Report run_elastic_couette(const Options& options);       // V6c, elastic_couette.toml
 Report run_block_on_incline(const Options& options);      // V7, v7_block_on_incline.toml
 Report run_self_weight_column(const Options& options);    // V8, self_weight_column.toml
 Report run_k0_column(const Options& options);             // V8k0, k0_column.toml
