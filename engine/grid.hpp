@@ -94,6 +94,10 @@ public:
   /// Constrained DOFs per node (DofBit mask), set from the boundary conditions. Local damping
   /// skips constrained DOFs so that reactions at moving supports are not polluted by it.
   std::vector<std::uint8_t> constrained;
+  /// The pore water's share of field 0's internal force per node (r, y; N or N/rad): -sum V p
+  /// grad N over its saturated particles, for the effective normal force of contact; kept only in
+  /// a scene with contact and undrained soil, else empty.
+  std::vector<std::array<double, 2>> pore_force;
   /// Fields 1, 2, ...: one per contact structure; empty in a scene without contact.
   std::vector<NodeField> structure_fields;
 

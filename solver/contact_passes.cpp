@@ -268,6 +268,7 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
   const NodeBox& reach = nodes.field.reach;
   const double beta = settings.mass_scaling;
   const double adhesion_impulse = pair.adhesion * step.dt / beta;
+  const std::vector<std::array<double, 2>>& pore_force = nodes.grid.pore_force;
   // The per-node results of the last step were written in pair.written: cleared with these.
   const NodeBox visited = NodeBox::hull(pair.written, reach);
   pair.written = reach;
@@ -297,8 +298,14 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
     // beta (engine/structures/coulomb_slip.hpp). The theta slip has its own inertia (J / r^2, not
     // m). (The normal impulse is a pull only at a bonded node.)
     const double theta_mass = at.count == 3 ? PairNodes<mode>::inertia(s, 2, at) : s.mass;
-    const ContactCorrection correction = contact_correction(
-        relative, n, s.mass, theta_mass, pair.friction, adhesion_impulse * surface->area);
+    // Friction on the effective normal force: the pore water's share of the node's force along
+    // the normal, p A where the water is uniform (physics.md section 9a).
+    const double pore_impulse =
+        pore_force.empty() ? 0.0
+                           : (pore_force[i][0] * n[0] + pore_force[i][1] * n[1]) * step.dt / beta;
+    const ContactCorrection correction =
+        contact_correction(relative, n, s.mass, theta_mass, pair.friction,
+                           adhesion_impulse * surface->area, pore_impulse);
     const std::array<double, 3>& change = correction.change;
     pair.node_dissipation[i] = beta * nodes.correction_work(i, at, s, k, relative, change);
     nodes.apply(i, at, s, k, change, FlipIncrement::record);

@@ -68,6 +68,9 @@ void ExplicitSolver::prepare() {
   mass_floor_ = 1e-9 * min_mass;
   if (scene_.has_contact()) {
     passes::prepare_contact(scene_);
+    const std::vector<int> slots = passes::pore_pressure_slots(scene_);
+    pore_water_at_contact_ =
+        std::any_of(slots.begin(), slots.end(), [](int slot) { return slot >= 0; });
   }
   scene_.boundaries.mark_constrained_dofs(scene_.grid);
   if (scene_.moving_mesh) {

@@ -107,6 +107,9 @@ private:
   template <GeometryMode mode, bool contact, ShapeFunctions shape> void step_in_mode(double dt);
   template <GeometryMode mode, bool contact> void step_with_contact(double dt);
   template <GeometryMode mode, bool contact, ShapeFunctions shape> void map_particles_to_grid();
+  /// Undrained soil beside a structure: the pore water's share of field 0's node forces, for
+  /// the contact's effective normal force.
+  template <GeometryMode mode, ShapeFunctions shape> void map_pore_force();
   /// Loads, absorbing faces' holding forces, the momentum balance with damping, the dashpots.
   template <GeometryMode mode> EnergyIncrement balance_momentum(const passes::StepParameters& step);
   /// The structures' supports, the rigid bodies' prediction, contact, the bodies' accelerations.
@@ -160,6 +163,8 @@ private:
   double time_ = 0.0;
   double stable_dt_ = 0.0;
   double mass_floor_ = 0.0;
+  /// A scene with contact and undrained soil: the contact's friction needs the pore pressure.
+  bool pore_water_at_contact_ = false;
   double min_dt_ = 0.0;
   /// The log says what sets the step when it falls below this: half the step at the start, then
   /// half the step last reported (not in checkpoints: a restart reports from its own step).

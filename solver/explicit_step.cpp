@@ -53,6 +53,9 @@ template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void ExplicitSolver::step_in_mode(double dt) {
   const passes::StepParameters step{time_, dt, mass_floor_};
   map_particles_to_grid<mode, contact, shape>();
+  if constexpr (contact) {
+    map_pore_force<mode, shape>();
+  }
   energy_ += balance_momentum<mode>(step);
   if constexpr (contact) {
     energy_ += correct_for_contact<mode>(step);
@@ -74,6 +77,14 @@ template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void ExplicitSolver::map_particles_to_grid() {
   PassTimer timer(timings_.particle_to_grid);
   passes::particle_to_grid<mode, contact, shape>(scene_, bins_, settings_);
+}
+
+template <GeometryMode mode, ShapeFunctions shape> void ExplicitSolver::map_pore_force() {
+  if (!pore_water_at_contact_) {
+    return;
+  }
+  PassTimer timer(timings_.contact);
+  passes::map_pore_force<mode, shape>(scene_, bins_);
 }
 
 template <GeometryMode mode>

@@ -28,6 +28,14 @@ struct StepParameters {
 template <GeometryMode mode, bool contact = false, ShapeFunctions shape = ShapeFunctions::linear>
 void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettings& settings);
 
+/// Each material's Material::pore_pressure_index (-1 for a dry or drained one), by material.
+std::vector<int> pore_pressure_slots(const Scene& scene);
+
+/// With contact and undrained soil, the pore water's share of field 0's internal force
+/// (Grid::pore_force); otherwise clears it (solver/pore_pressure_to_grid.cpp).
+template <GeometryMode mode, ShapeFunctions shape>
+void map_pore_force(Scene& scene, const ParticleBins& bins);
+
 void apply_nodal_loads(Scene& scene, const StepParameters& step);
 
 struct GridUpdateResult {

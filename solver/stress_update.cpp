@@ -325,12 +325,8 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   const auto fields =
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
-  std::vector<int> pore_pressure_slot;
-  if constexpr (contact) {
-    for (const auto& material : scene.materials) {
-      pore_pressure_slot.push_back(material->pore_pressure_index());
-    }
-  }
+  const std::vector<int> pore_pressure_slot =
+      contact ? pore_pressure_slots(scene) : std::vector<int>{};
   const std::optional<RigidInteriors> interiors =
       contact ? kept_rigid_interiors(scene, settings) : std::nullopt;
   const RigidInteriors* inside_rigid = interiors ? &*interiors : nullptr;

@@ -16,10 +16,29 @@ schema = json.loads(subprocess.run([mpile, "describe", "--json-schema"], check=T
 jsonschema.Draft202012Validator.check_schema(schema)
 validator = jsonschema.Draft202012Validator(schema)
 
+def merged(base, over):
+    """The case as mpile reads it over its base: tables merge key by key, other values replace."""
+    out = dict(base)
+    for key, value in over.items():
+        out[key] = merged(out[key], value) if isinstance(value, dict) and isinstance(
+            out.get(key), dict) else value
+    return out
+
+
+def composed(path):
+    """A case file with its `base` files read under it (the schema describes whole cases)."""
+    case = tomllib.loads(path.read_text())
+    if "base" not in case:
+        return case
+    base = composed(path.parent / case.pop("base"))
+    base.pop("base", None)
+    return merged(base, case)
+
+
 files = [f for f in sorted(cases.rglob("*.toml"))
          if f.parent.name not in ("element_tests", "sweeps")]
 for f in files:
-    errors = list(validator.iter_errors(tomllib.loads(f.read_text())))
+    errors = list(validator.iter_errors(composed(f)))
     if errors:
         sys.exit(f"{f}: {[list(e.path) for e in errors]}: {errors[0].message}")
 

@@ -36,11 +36,13 @@ SlipKept coulomb_slip(double slip_plane, double slip_theta, double mass, double 
 
 ContactCorrection contact_correction(const std::array<double, 3>& relative,
                                      const std::array<double, 2>& n, double mass, double theta_mass,
-                                     double friction, double adhesion_impulse) {
+                                     double friction, double adhesion_impulse,
+                                     double pore_impulse) {
   const double normal_velocity = relative[0] * n[0] + relative[1] * n[1];
   const std::array<double, 3> tangential{relative[0] - normal_velocity * n[0],
                                          relative[1] - normal_velocity * n[1], relative[2]};
-  const double limit = friction * mass * std::abs(normal_velocity) + adhesion_impulse;
+  const double limit =
+      friction * std::max(mass * std::abs(normal_velocity) + pore_impulse, 0.0) + adhesion_impulse;
   ContactCorrection out;
   out.keep = coulomb_slip(std::hypot(tangential[0], tangential[1]), std::abs(tangential[2]), mass,
                           theta_mass, limit);

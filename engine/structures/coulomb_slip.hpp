@@ -27,13 +27,17 @@ SlipKept coulomb_slip(double slip_plane, double slip_theta, double mass, double 
 /// outward unit normal in r-y; the node's soil has mass m (r-y DOFs) and theta_mass (J / r^2).
 /// The approach along n is removed (no interpenetration; the caller decides separation), and the
 /// tangential slip (r-y and theta together) is reduced by Coulomb friction on that normal impulse
-/// plus an adhesive impulse (c_a A dt / beta): mu m |v_n| + adhesion_impulse.
+/// plus an adhesive impulse (c_a A dt / beta): mu max(m |v_n| + pore_impulse, 0) +
+/// adhesion_impulse. The friction acts on the effective normal impulse: pore_impulse is the pore
+/// water's share of it with its sign, p A dt / beta (p tension positive, so compressed water
+/// lessens the friction); 0 for a dry or drained soil.
 struct ContactCorrection {
   std::array<double, 3> change{}; // soil velocity change (r, y, theta)
   SlipKept keep;                  // fractions of the tangential slips left (0: sticks)
 };
 ContactCorrection contact_correction(const std::array<double, 3>& relative,
                                      const std::array<double, 2>& n, double mass, double theta_mass,
-                                     double friction, double adhesion_impulse);
+                                     double friction, double adhesion_impulse,
+                                     double pore_impulse = 0.0);
 
 } // namespace mpile

@@ -1,0 +1,65 @@
+// The pore water's share of field 0's internal force, for the contact's effective normal force
+// (physics.md section 9a). Reads the soil particles' volume, position and pore pressure (their
+// state at Material::pore_pressure_index); writes Grid::pore_force = -sum V p grad N (with the
+// hoop term -sum V p N / r on the r row in axisymmetry) by a colored scatter: the same sum the
+// particle-to-grid pass makes of the total stress, taken of p 1 alone, so that the water's share of
+// a node's normal force is what the grid gives it, not a pressure times an area. Runs only in a
+// scene with contact and undrained soil; otherwise it leaves the field empty.
+#include "engine/shape_functions.hpp"
+#include "solver/particle_fields.hpp"
+#include "solver/passes.hpp"
+
+#include <algorithm>
+
+namespace mpile::passes {
+
+std::vector<int> pore_pressure_slots(const Scene& scene) {
+  std::vector<int> slots;
+  for (const auto& material : scene.materials) {
+    slots.push_back(material->pore_pressure_index());
+  }
+  return slots;
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+void map_pore_force(Scene& scene, const ParticleBins& bins) {
+  Grid& grid = scene.grid;
+  const std::vector<int> slots = pore_pressure_slots(scene);
+  const bool saturated = std::any_of(slots.begin(), slots.end(), [](int s) { return s >= 0; });
+  if (!scene.has_contact() || !saturated) {
+    grid.pore_force.clear();
+    return;
+  }
+  grid.pore_force.assign(grid.nodes.size(), {0.0, 0.0});
+  const Particles& p = scene.particles;
+  const ParticleFields fields(grid, scene);
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const int slot = slots[p.material[i]];
+      if (slot < 0 || !fields.is_soil(p.body[i])) {
+        continue;
+      }
+      const double weighted = p.volume[i] * p.state[i * stride + static_cast<std::size_t>(slot)];
+      const double hoop = has_theta(mode) ? weighted / p.r[i] : 0.0;
+      const auto w = particle_weights<shape>(grid, p, i);
+      for (int k = 0; k < w.size; ++k) {
+        std::array<double, 2>& f = grid.pore_force[static_cast<std::size_t>(w.node[k])];
+        f[0] -= w.dN_dr[k] * weighted + w.N[k] * hoop;
+        f[1] -= w.dN_dy[k] * weighted;
+      }
+    }
+  });
+}
+
+template void
+map_pore_force<GeometryMode::axisymmetric, ShapeFunctions::linear>(Scene&, const ParticleBins&);
+template void map_pore_force<GeometryMode::axisymmetric, ShapeFunctions::gimp>(Scene&,
+                                                                               const ParticleBins&);
+template void
+map_pore_force<GeometryMode::plane_strain, ShapeFunctions::linear>(Scene&, const ParticleBins&);
+template void map_pore_force<GeometryMode::plane_strain, ShapeFunctions::gimp>(Scene&,
+                                                                               const ParticleBins&);
+
+} // namespace mpile::passes
