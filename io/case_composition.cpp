@@ -143,6 +143,12 @@ void apply_override(TomlValue& root, const std::string& assignment) {
   std::string key = assignment.substr(0, equals);
   key.erase(key.find_last_not_of(' ') + 1);
   key.erase(0, key.find_first_not_of(' '));
+  // Bounded as in a case file, before the parts are split out: each makes a table.
+  const auto dots = static_cast<std::size_t>(std::count(key.begin(), key.end(), '.'));
+  if (dots + 1 > max_key_parts) {
+    throw CaseError("--set " + key_excerpt(key) + ": the key has " + std::to_string(dots + 1) +
+                    " parts; a dotted key has at most " + std::to_string(max_key_parts));
+  }
   const std::vector<std::string> parts = split_key(key);
   if (!std::all_of(parts.begin(), parts.end(), is_bare_key)) {
     throw CaseError(origin + ": '" + key +

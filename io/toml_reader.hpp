@@ -90,7 +90,17 @@ private:
 /// A number as a message quotes it (six significant digits).
 std::string format_number(double x);
 
-/// Parses TOML text; syntax errors become CaseError with the parser's own location.
+/// The deepest nesting of arrays and inline tables, and the most parts of a dotted key (a.b.c has
+/// three), that a case may hold: beyond them the parser overflows its stack or takes minutes.
+constexpr int max_toml_depth = 64;
+constexpr std::size_t max_key_parts = 64;
+
+/// The start of an overlong dotted key for a message: its first 40 characters, cut after a part,
+/// then "...".
+std::string key_excerpt(const std::string& key);
+
+/// Parses TOML text; syntax errors become CaseError with the parser's own location, and text past
+/// the bounds above (or with lines over 16 384 characters) is refused before the parser sees it.
 TomlValue parse_toml(const std::string& text, const std::string& file);
 
 } // namespace mpile

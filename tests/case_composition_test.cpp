@@ -1,4 +1,5 @@
 // Case composition: a base file under the case, --set values on top, and what a restart may change.
+#include "app/run_command.hpp"
 #include "io/case_composition.hpp"
 #include "io/case_spec.hpp"
 #include "tests/case_run.hpp"
@@ -7,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace mpile {
@@ -205,6 +207,32 @@ TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
                            0),
             0u)
       << unquoted;
+}
+
+TEST(CaseComposition, ASetKeyOfMoreThanSixtyFourPartsIsRefused) {
+  // 12 000 parts made 12 000 nested tables, and the program crashed (SIGSEGV) writing them out.
+  const Files f = write_files("set_long_key");
+  std::string key = "a";
+  for (int k = 1; k < 12000; ++k) {
+    key += ".a";
+  }
+  EXPECT_EQ(error_of(f.case_file.string(), {key + "=1"}),
+            "--set " + key.substr(0, 39) +
+                "...: the key has 12000 parts; a dotted key has at "
+                "most 64");
+  RunOptions options;
+  options.case_path = f.case_file.string();
+  options.overrides = {key + "=1"};
+  options.output_directory = (f.directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_EQ(err.str().find('\n'), err.str().size() - 1) << err.str(); // one line
+  // 64 parts reach the reader, which names the unknown key.
+  std::string fits = "a";
+  for (int k = 1; k < 64; ++k) {
+    fits += ".a";
+  }
+  EXPECT_NE(error_of(f.case_file.string(), {fits + "=1"}).find("unknown key"), std::string::npos);
 }
 
 TEST(CaseComposition, DifferingKeysNameTheChangedValuesAndPhases) {
