@@ -164,6 +164,12 @@ void apply_override(TomlValue& root, const std::string& assignment) {
     throw CaseError(origin + ": the value is not TOML (text needs quotes: " + key +
                     "=\"text\"):\n" + e.what());
   }
+  if (parsed.as_table().size() != 1) {
+    // Text after a line break parses as further keys of its own, which would be dropped.
+    throw CaseError("--set " + key +
+                    ": the value must be one TOML value; it goes on after a line break (give each "
+                    "assignment its own --set)");
+  }
   TomlValue* node = &root;
   std::string path;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {

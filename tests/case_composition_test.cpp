@@ -201,6 +201,14 @@ TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
   EXPECT_EQ(error_of(path, {"base=\"other.toml\""}),
             "--set base=\"other.toml\": base is the file a case builds on; name it in the case "
             "file");
+  // Text after a line break was parsed as keys of its own and dropped; a value over several
+  // lines is still one value.
+  EXPECT_EQ(error_of(path, {"phases.0.duration=2.0\nphases = 3"}),
+            "--set phases.0.duration: the value must be one TOML value; it goes on after a line "
+            "break (give each assignment its own --set)");
+  EXPECT_EQ(error_of(path, {"phases.0.duration=2.0\n[solver]\ngravity = [0.0, 0.0]"}),
+            error_of(path, {"phases.0.duration=2.0\nphases = 3"}));
+  EXPECT_EQ(error_of(path, {"solver.gravity=[0.0,\n-9.81] # a comment\n"}), "accepted");
   const std::string unquoted = error_of(path, {"title=a column"});
   EXPECT_EQ(unquoted.rfind("--set title=a column: the value is not TOML (text needs quotes: "
                            "title=\"text\"):",
