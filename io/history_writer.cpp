@@ -5,21 +5,12 @@
 #include "io/reserve_space.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
 namespace mpile {
-
-std::string dataset_name(const std::string& name) {
-  std::string out;
-  for (const char c : name) {
-    out += std::isalnum(static_cast<unsigned char>(c)) != 0 ? c : '_';
-  }
-  return out;
-}
 
 namespace {
 

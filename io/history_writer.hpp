@@ -1,6 +1,7 @@
 #pragma once
 
 #include "io/case_spec.hpp"
+#include "io/dataset_name.hpp"
 #include "io/hdf5_file.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -86,8 +87,5 @@ private:
   std::chrono::steady_clock::time_point wall_start_;
   double wall_offset_ = 0.0;
 };
-
-/// A dataset-safe name: letters, digits and underscores.
-std::string dataset_name(const std::string& name);
 
 } // namespace mpile

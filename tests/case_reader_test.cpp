@@ -791,6 +791,49 @@ TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
   expect_rejected(table);
 }
 
+TEST(CaseReader, NamesThatBecomeOneHistoryGroupAreRefusedWhereTheLaterIsWritten) {
+  // "top cap" and "top_cap" both became /boundaries/top_cap in history.h5, their rows interleaved.
+  const std::string two_motions =
+      edited("[[prescribed]]\nname = \"top\"",
+             "[[prescribed]]\nname = \"top cap\"\nnodes = { y = 0.5, r = [0.0, 0.25] }\n"
+             "velocity_y = -0.01\n\n[[prescribed]]\nname = \"top_cap\"");
+  const std::string first = std::to_string(line_of(two_motions, "name = \"top cap\""));
+  std::string bodies = edited_text(contact_case, "name = \"soil\"", "name = \"pile-\"");
+  bodies = edited_text(bodies, "name = \"pile\"", "name = \"pile_\"");
+  bodies = edited_text(bodies, "structure = \"pile\"", "structure = \"pile_\"");
+  const std::string surfaces = std::to_string(line_of(contact_case, "surfaces = {"));
+  expect_rejected({
+      {"two motions, one group", two_motions,
+       "prescribed[1].name: 'top_cap' and 'top cap' (case.toml:" + first +
+           ") are both written to /boundaries/top_cap in the history: give this one another name",
+       "name = \"top_cap\""},
+      {"a motion named like a constrained face", edited("name = \"top\"", "name = \"y min\""),
+       "prescribed[0].name: 'y min' and 'y_min' (the condition of that face in [boundaries]) are "
+       "both written to /boundaries/y_min",
+       "name = \"y min\""},
+      {"a motion named like the axis", edited("name = \"top\"", "name = \"axis\""),
+       "prescribed[0].name: 'axis' and 'axis' (the axis, held by the grid starting on it) are "
+       "both written to /boundaries/axis",
+       "name = \"axis\""},
+      {"two bodies, one group", bodies,
+       "bodies[1].name: 'pile_' and 'pile-' (case.toml:" +
+           std::to_string(line_of(bodies, "name = \"pile-\"")) +
+           ") are both written to /bodies/pile_ in the history",
+       "name = \"pile_\""},
+      {"two surfaces, one group",
+       contact_edited("left = \"inner_shaft\"", "left = \"outer shaft\""),
+       "contact[0].surfaces: 'outer shaft' and 'outer_shaft' (case.toml:" + surfaces +
+           ") are both written to /reactions/pile/outer_shaft in the history",
+       "surfaces = {"},
+      {"a monitor's name is its group as written",
+       valid_case + "[[output.monitor]]\nname = \"top cap\"\nposition = [0.1, 0.1]\n",
+       "output.monitor[0].name: use letters, digits and underscores", "name = \"top cap\""},
+  });
+  // Edges given one name are one surface.
+  EXPECT_NO_THROW(read_case_text(contact_edited("left = \"inner_shaft\"", "left = \"outer_shaft\""),
+                                 "case.toml"));
+}
+
 TEST(CaseReader, OverlappingBodiesAreRefusedWhereTheLaterIsWritten) {
   // A second body whose region covers part of the first would seed particles twice there.
   const std::string text =
