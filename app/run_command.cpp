@@ -310,8 +310,10 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         if (runner.run(set_up_phase, stop_due) == PhaseRunner::Outcome::interrupted) {
           const double t = solver->time();
           reporter.finish();
-          runner.snapshot_now();
+          // The checkpoint lists the snapshots an uninterrupted run has by now; the one taken at
+          // the interruption is this run's alone (a restart writes its number again).
           save_state();
+          runner.snapshot_now();
           history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
                         residual_summary());
           std::ostringstream line;

@@ -300,6 +300,13 @@ void SnapshotWriter::restore(std::vector<std::pair<double, std::string>> entries
     }
     write_collection("grid.pvd", grids_);
   }
+  // The snapshot the interrupted run took as it stopped is listed by no index now; this run writes
+  // its number again.
+  std::error_code ignored;
+  std::filesystem::remove(directory_ + "/" + numbered_name("particles_", particles_.size(), ".vtu"),
+                          ignored);
+  std::filesystem::remove(directory_ + "/" + numbered_name("grid_", particles_.size(), ".vtr"),
+                          ignored);
 }
 
 void SnapshotWriter::write_collection(
