@@ -103,6 +103,10 @@ TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::s
   if (!base_key->second.is_string()) {
     throw CaseError(where + "expected the path of a base case file (a string)");
   }
+  if (base_key->second.as_string().str.find('\0') != std::string::npos) {
+    // The system reads a path only up to a NUL: "x.toml\u0000junk" read x.toml.
+    throw CaseError(where + "a path cannot hold a NUL character (\\u0000)");
+  }
   // Relative to the file that names it, so a case and its base move together.
   std::filesystem::path base_path = static_cast<std::string>(base_key->second.as_string());
   if (base_path.is_relative()) {

@@ -932,7 +932,7 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     return;
   }
   OutputSpec& out = spec.output;
-  out.directory = table->string_or("directory", "");
+  out.directory = table->path_or("directory", "");
   if (table->has("snapshot_interval")) {
     out.snapshot_interval = table->number("snapshot_interval");
   }

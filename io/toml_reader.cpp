@@ -300,7 +300,9 @@ void TomlTable::type_error(const std::string& key, const std::string& expected) 
 void TomlTable::missing(const std::string& key, const std::string& what) const {
   constexpr std::size_t max_edits = 2;
   for (const auto& [present, v] : table_->as_table()) {
-    if (read_.count(present) == 0 && edit_distance(present, key) <= max_edits) {
+    // A key the table declares is no typo, however close ([grid] y is not a misspelt r).
+    const bool known = spec_ != nullptr && spec_->key(present) != nullptr;
+    if (!known && read_.count(present) == 0 && edit_distance(present, key) <= max_edits) {
       fail(present, "unknown key; did you mean '" + key + "'?");
     }
   }
@@ -385,6 +387,18 @@ std::string TomlTable::string(const std::string& key) {
 std::string TomlTable::string_or(const std::string& key, const std::string& fallback) {
   refuse_second_default(key);
   return has(key) ? string(key) : fallback;
+}
+
+std::string TomlTable::path(const std::string& key) {
+  std::string x = string(key);
+  if (x.find('\0') != std::string::npos) {
+    fail(key, "a path cannot hold a NUL character (\\u0000)");
+  }
+  return x;
+}
+
+std::string TomlTable::path_or(const std::string& key, const std::string& fallback) {
+  return has(key) ? path(key) : string_or(key, fallback);
 }
 
 bool TomlTable::boolean(const std::string& key) {

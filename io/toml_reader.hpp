@@ -37,6 +37,10 @@ public:
   long integer_or(const std::string& key, long fallback);
   std::string string(const std::string& key);
   std::string string_or(const std::string& key, const std::string& fallback);
+  /// A file or directory name: a string without a NUL character (the system reads a path only up
+  /// to it: "x.toml\u0000junk" named x.toml).
+  std::string path(const std::string& key);
+  std::string path_or(const std::string& key, const std::string& fallback);
   bool boolean(const std::string& key);
   bool boolean_or(const std::string& key, bool fallback);
   std::vector<double> numbers(const std::string& key, std::size_t expected_size = 0);
@@ -52,9 +56,9 @@ public:
 
   /// "file:line: key: message" for a key of this table (the table's line when the key is absent).
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
-  /// A required key is absent: when the table holds an unread key spelled within two edits of it,
-  /// that key is the error (a typo reported as the key it was meant to be would point at the wrong
-  /// line); otherwise "missing (required)", followed by `what` when given.
+  /// A required key is absent: when the table holds an unread key it does not declare, spelled
+  /// within two edits of it, that key is the error (a typo reported as the key it was meant to be
+  /// would point at the wrong line); otherwise "missing (required)", followed by `what` when given.
   [[noreturn]] void missing(const std::string& key, const std::string& what = "") const;
   std::string key_path(const std::string& key) const;
   int line_of(const std::string& key) const;

@@ -155,6 +155,11 @@ TEST(CaseComposition, BadBasesAreRefusedWithTheLineThatNamesThem) {
   f = write_files("base_type", base_text, replaced(case_text, "\"shared/base.toml\"", "3"));
   EXPECT_EQ(error_of(f.case_file.string()),
             f.case_file.string() + ":1: base: expected the path of a base case file (a string)");
+  // The system reads a path up to a NUL: "shared/base.toml\u0000junk" read shared/base.toml.
+  f = write_files("base_nul", base_text,
+                  replaced(case_text, "\"shared/base.toml\"", "\"shared/base.toml\\u0000junk\""));
+  EXPECT_EQ(error_of(f.case_file.string()),
+            f.case_file.string() + ":1: base: a path cannot hold a NUL character (\\u0000)");
 }
 
 TEST(CaseComposition, SetReplacesOneValueAnywhereAndIsRecorded) {

@@ -108,6 +108,12 @@ std::vector<BadInput> bad_inputs() {
               "cells = 8 }]\n",
               ""),
        "grid: missing (required)", ""},
+      // y is one edit from r, but a key of [grid]: the missing r is the error.
+      {"grid without r", edited("r = [{ start = 0.0, end = 1.0, cells = 8 }]\n", ""),
+       "grid.r: missing (required): at least one zone", "[grid]"},
+      {"a NUL in the output directory",
+       edited("snapshot_interval = 0.05", "snapshot_interval = 0.05\ndirectory = \"out\\u0000x\""),
+       "output.directory: a path cannot hold a NUL character (\\u0000)", "directory = "},
       {"zero cells", edited("end = 1.0, cells = 8 }]\ny", "end = 1.0, cells = 0 }]\ny"),
        "grid.r[0].cells: must lie between 1 and 100000, got 0", "r = [{"},
       {"cells as a string", edited("end = 1.0, cells = 8 }]\ny", "end = 1.0, cells = \"8\" }]\ny"),

@@ -2,63 +2,18 @@
 // (ulimit -f, with SIGXFSZ ignored, so a write past it fails with EFBIG as on a full disk).
 #include "io/hdf5_file.hpp"
 #include "tests/case_run.hpp"
+#include "tests/run_program.hpp"
 
 #include <gtest/gtest.h>
 
-#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
 
-#include <fcntl.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 namespace mpile {
 namespace {
-
-struct Finished {
-  bool exited = false;
-  int status = -1; // the exit status, or the signal that ended it
-  std::string err;
-};
-
-/// Runs the mpile program with `arguments`, each file it writes limited to `file_bytes` (0: no
-/// limit), its standard error kept.
-Finished run_mpile(const std::vector<std::string>& arguments, rlim_t file_bytes,
-                   const std::filesystem::path& err_file) {
-  std::vector<std::string> words{MPILE_BINARY};
-  words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& word : words) {
-    argv.push_back(word.data());
-  }
-  argv.push_back(nullptr);
-  const pid_t child = fork();
-  if (child == 0) {
-    if (file_bytes > 0) {
-      const rlimit limit{file_bytes, file_bytes};
-      setrlimit(RLIMIT_FSIZE, &limit);
-      std::signal(SIGXFSZ, SIG_IGN); // kept across exec: writes past the limit fail instead
-    }
-    const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(err, STDERR_FILENO);
-    dup2(null, STDOUT_FILENO);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(child, &status, 0);
-  Finished finished;
-  finished.exited = WIFEXITED(status);
-  finished.status = finished.exited ? WEXITSTATUS(status) : WTERMSIG(status);
-  finished.err = read_text(err_file);
-  return finished;
-}
 
 TEST(RunCommand, AFullDiskStopsTheRunNamingTheFileAndLeavesWhatItWroteReadable) {
   // The single point for 100 s with a row every step (6 300 rows): the history's series take a
