@@ -9,6 +9,7 @@
 #include "io/monitor_points.hpp"
 #include "io/output_directory.hpp"
 #include "io/plausibility.hpp"
+#include "io/reserve_space.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/phase_runner.hpp"
@@ -223,6 +224,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       history_file =
           std::make_unique<HistoryWriter>(directory + "/history.h5", spec, *scene, options.threads,
                                           restarting ? progress.history_rows : 0);
+    } catch (const NoRoomForOutput&) {
+      throw; // a full disk, not a checkpoint that does not fit its history
     } catch (const std::runtime_error& e) {
       if (!restarting) {
         throw;

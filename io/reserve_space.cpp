@@ -23,7 +23,7 @@ void reserve_space(const std::string& path, std::uintmax_t bytes) {
   }
   ::close(descriptor);
   if (error != 0) {
-    throw std::runtime_error("cannot write " + path + ": " + std::strerror(error));
+    throw NoRoomForOutput("cannot write " + path + ": " + std::strerror(error));
   }
 }
 

@@ -69,6 +69,17 @@ TEST(RunCommand, AFullDiskStopsTheRunNamingTheFileAndLeavesWhatItWroteReadable) 
     EXPECT_NE(entry.path().extension(), ".tmp") << entry.path();
   }
 
+  // A restart with no more room is refused as a run that cannot write (status 1), not as a
+  // checkpoint that does not fit its history (status 2).
+  const Finished cramped = run_mpile({"run", path.string(), "--out", out.string(), "--threads", "1",
+                                      "--restart", (out / "checkpoint.h5").string()},
+                                     1200 * 1024, directory / "err_cramped.txt");
+  ASSERT_TRUE(cramped.exited) << cramped.err;
+  EXPECT_EQ(cramped.status, 1) << cramped.err;
+  EXPECT_NE(cramped.err.find("cannot write " + history_path + ": File too large"),
+            std::string::npos)
+      << cramped.err;
+
   // With room again, the run continues from its checkpoint to the end.
   const Finished resumed = run_mpile({"run", path.string(), "--out", out.string(), "--threads", "1",
                                       "--restart", (out / "checkpoint.h5").string()},
