@@ -4,6 +4,8 @@
 #include "io/case_error.hpp"
 #include "io/element_test_file.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -33,18 +35,27 @@ int element_test_command(const ElementTestOptions& options, std::ostream& out, s
     err << "mpile: " << e.what() << '\n';
     return exit_failure;
   }
-  try {
-    if (csv.has_parent_path()) {
-      std::filesystem::create_directories(csv.parent_path());
+  // Each failure with the system's reason: a directory, a path that cannot be written, a parent
+  // that is a regular file.
+  std::error_code error;
+  if (csv.has_parent_path()) {
+    std::filesystem::create_directories(csv.parent_path(), error);
+    if (error) {
+      err << "mpile: cannot write " << csv.string() << ": cannot make its directory "
+          << csv.parent_path().string() << ": " << error.message() << '\n';
+      return exit_failure;
     }
-    std::ofstream file(csv);
+  }
+  errno = 0;
+  std::ofstream file(csv);
+  if (file) {
     write_csv(table, file);
     file.close();
-    if (!file) {
-      throw std::runtime_error("cannot write " + csv.string());
-    }
-  } catch (const std::exception& e) {
-    err << "mpile: " << e.what() << '\n';
+  }
+  if (!file) {
+    const int reason = errno;
+    err << "mpile: cannot write " << csv.string() << ": "
+        << (reason != 0 ? std::strerror(reason) : "the write failed") << '\n';
     return exit_failure;
   }
   const std::vector<double>& last = table.rows.back();

@@ -10,8 +10,27 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
+
+namespace {
+
+// CLI::PositiveNumber lets nan through (no comparison with it is true), and a pilot of nan seconds
+// then ran nothing without a word; it names the largest double when it refuses inf.
+const CLI::Validator finite_positive_seconds(
+    [](std::string& text) -> std::string {
+      char* end = nullptr;
+      const double x = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || !std::isfinite(x) || !(x > 0.0)) {
+        return "expected a finite number of seconds above 0, got " + text;
+      }
+      return "";
+    },
+    "SECONDS");
+
+} // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mpile: axisymmetric explicit MPM with a rotational DOF, for monopile installation"};
@@ -45,7 +64,7 @@ int main(int argc, char** argv) {
       ->add_option("--pilot", run_options.pilot_seconds,
                    "run the case for this many seconds of wall time (in a temporary directory) "
                    "and estimate its run time from how far it got")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_seconds);
 
   mpile::SweepOptions sweep_options;
   auto* sweep = app.add_subcommand(

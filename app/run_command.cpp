@@ -9,6 +9,7 @@
 #include "io/monitor_points.hpp"
 #include "io/output_directory.hpp"
 #include "io/plausibility.hpp"
+#include "io/reserve_space.hpp"
 #include "io/vtk_writer.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/phase_runner.hpp"
@@ -223,6 +224,8 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       history_file =
           std::make_unique<HistoryWriter>(directory + "/history.h5", spec, *scene, options.threads,
                                           restarting ? progress.history_rows : 0);
+    } catch (const NoRoomForOutput&) {
+      throw; // a full disk, not a checkpoint that does not fit its history
     } catch (const std::runtime_error& e) {
       if (!restarting) {
         throw;
@@ -284,58 +287,85 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
              (options.stop_after_seconds > 0.0 &&
               seconds_since(wall_start) >= options.stop_after_seconds);
     };
-    try {
-      if (runner.run(set_up_phase, stop_due) == PhaseRunner::Outcome::interrupted) {
-        const double t = solver->time();
-        reporter.finish();
-        runner.snapshot_now();
-        save_state();
-        history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
-                      residual_summary());
-        std::ostringstream line;
-        line << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint "
-             << checkpoint_path << " (continue with --restart " << checkpoint_path << ")";
-        err << line.str() << '\n';
-        to_log_file(line.str());
-        return exit_interrupted;
-      }
-    } catch (const SimulationError& e) {
+    // An output that cannot be written (a full disk, a file-size limit) stops the run: what was
+    // written before stays readable, and the message names the file.
+    const auto cannot_write = [&](const std::runtime_error& e) {
       reporter.finish();
-      save_state();
-      history.close(seconds_since(wall_start), std::string("failed: ") + e.what(),
-                    residual_summary());
-      const std::string line =
-          std::string("mpile: ") + e.what() + " (outputs so far are in " + directory + ")";
-      err << line << '\n';
-      to_log_file(line);
+      std::ostringstream line;
+      line << "mpile: " << e.what() << "; the run stopped at t = " << format_time(solver->time())
+           << " s (outputs so far are in " << directory;
+      if (std::filesystem::exists(checkpoint_path)) {
+        line << "; once there is room, continue with --restart " << checkpoint_path;
+      }
+      line << ")";
+      try {
+        history.close(seconds_since(wall_start), std::string("failed: ") + e.what(),
+                      residual_summary());
+      } catch (const std::runtime_error&) {
+        // The history itself could not be written: it keeps its rows so far.
+      }
+      err << line.str() << '\n';
+      to_log_file(line.str());
       return exit_failure;
+    };
+    try {
+      try {
+        if (runner.run(set_up_phase, stop_due) == PhaseRunner::Outcome::interrupted) {
+          const double t = solver->time();
+          reporter.finish();
+          // The checkpoint lists the snapshots an uninterrupted run has by now; the one taken at
+          // the interruption is this run's alone (a restart writes its number again).
+          save_state();
+          runner.snapshot_now();
+          history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
+                        residual_summary());
+          std::ostringstream line;
+          line << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint "
+               << checkpoint_path << " (continue with --restart " << checkpoint_path << ")";
+          err << line.str() << '\n';
+          to_log_file(line.str());
+          return exit_interrupted;
+        }
+      } catch (const SimulationError& e) {
+        reporter.finish();
+        save_state();
+        history.close(seconds_since(wall_start), std::string("failed: ") + e.what(),
+                      residual_summary());
+        const std::string line =
+            std::string("mpile: ") + e.what() + " (outputs so far are in " + directory + ")";
+        err << line << '\n';
+        to_log_file(line);
+        return exit_failure;
+      }
+      const double t = solver->time();
+      runner.snapshot_now();
+      save_state();
+      const double wall = seconds_since(wall_start);
+      // A run that completes with energy unaccounted for says so where it is read first: the
+      // history's status and the last line of the log.
+      const double warning = solver->settings().energy_residual_warning;
+      const double final_residual = runner.residual_summary().final;
+      const bool doubtful = progress.peak_residual > warning || final_residual > warning;
+      std::ostringstream residual;
+      residual << std::setprecision(3) << "energy residual " << 100.0 * final_residual
+               << " % at the end, peak " << 100.0 * progress.peak_residual
+               << " % at t = " << format_time(progress.peak_residual_time) << " s";
+      if (doubtful) {
+        residual << " (energy_residual_warning " << 100.0 * warning << " %)";
+      }
+      history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
+                    residual_summary());
+      std::ostringstream done;
+      done << "mpile: " << spec.title
+           << (doubtful ? " done, but its energy balance is doubtful" : " done")
+           << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
+           << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
+           << "; outputs in " << directory;
+      out << done.str() << "\n";
+      to_log_file(done.str());
+    } catch (const std::runtime_error& e) {
+      return cannot_write(e);
     }
-    const double t = solver->time();
-    runner.snapshot_now();
-    save_state();
-    const double wall = seconds_since(wall_start);
-    // A run that completes with energy unaccounted for says so where it is read first: the
-    // history's status and the last line of the log.
-    const double warning = solver->settings().energy_residual_warning;
-    const double final_residual = runner.residual_summary().final;
-    const bool doubtful = progress.peak_residual > warning || final_residual > warning;
-    std::ostringstream residual;
-    residual << std::setprecision(3) << "energy residual " << 100.0 * final_residual
-             << " % at the end, peak " << 100.0 * progress.peak_residual
-             << " % at t = " << format_time(progress.peak_residual_time) << " s";
-    if (doubtful) {
-      residual << " (energy_residual_warning " << 100.0 * warning << " %)";
-    }
-    history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
-                  residual_summary());
-    std::ostringstream done;
-    done << "mpile: " << spec.title
-         << (doubtful ? " done, but its energy balance is doubtful" : " done")
-         << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
-         << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
-         << "; outputs in " << directory;
-    out << done.str() << "\n";
-    to_log_file(done.str());
   } catch (const std::runtime_error& e) {
     err << "mpile: " << e.what() << '\n';
     return exit_failure;

@@ -103,6 +103,10 @@ TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::s
   if (!base_key->second.is_string()) {
     throw CaseError(where + "expected the path of a base case file (a string)");
   }
+  if (base_key->second.as_string().str.find('\0') != std::string::npos) {
+    // The system reads a path only up to a NUL: "x.toml\u0000junk" read x.toml.
+    throw CaseError(where + "a path cannot hold a NUL character (\\u0000)");
+  }
   // Relative to the file that names it, so a case and its base move together.
   std::filesystem::path base_path = static_cast<std::string>(base_key->second.as_string());
   if (base_path.is_relative()) {
@@ -143,6 +147,12 @@ void apply_override(TomlValue& root, const std::string& assignment) {
   std::string key = assignment.substr(0, equals);
   key.erase(key.find_last_not_of(' ') + 1);
   key.erase(0, key.find_first_not_of(' '));
+  // Bounded as in a case file, before the parts are split out: each makes a table.
+  const auto dots = static_cast<std::size_t>(std::count(key.begin(), key.end(), '.'));
+  if (dots + 1 > max_key_parts) {
+    throw CaseError("--set " + key_excerpt(key) + ": the key has " + std::to_string(dots + 1) +
+                    " parts; a dotted key has at most " + std::to_string(max_key_parts));
+  }
   const std::vector<std::string> parts = split_key(key);
   if (!std::all_of(parts.begin(), parts.end(), is_bare_key)) {
     throw CaseError(origin + ": '" + key +
@@ -157,6 +167,12 @@ void apply_override(TomlValue& root, const std::string& assignment) {
   } catch (const CaseError& e) {
     throw CaseError(origin + ": the value is not TOML (text needs quotes: " + key +
                     "=\"text\"):\n" + e.what());
+  }
+  if (parsed.as_table().size() != 1) {
+    // Text after a line break parses as further keys of its own, which would be dropped.
+    throw CaseError("--set " + key +
+                    ": the value must be one TOML value; it goes on after a line break (give each "
+                    "assignment its own --set)");
   }
   TomlValue* node = &root;
   std::string path;

@@ -6,6 +6,7 @@
 #include "io/case_builder.hpp"
 #include "io/case_composition.hpp"
 #include "io/case_spec.hpp"
+#include "io/dataset_name.hpp"
 #include "io/monopile_reader.hpp"
 #include "io/region_reader.hpp"
 #include "io/toml_reader.hpp"
@@ -233,17 +234,27 @@ void read_materials(TomlTable& top, CaseSpec& spec) {
   }
 }
 
+/// Where a key's value was written, as a message quotes it ("case.toml:12").
+std::string location(const TomlTable& table, const std::string& key) {
+  return table.file_of(key) + ":" + std::to_string(table.line_of(key));
+}
+
 /// Reads the bodies; returns the [bodies.rigid] tables (by body index), read once the phases are
 /// known, and keeps each body's table in `tables` for the checks that need the moving mesh.
 std::vector<std::pair<std::size_t, TomlTable>>
 read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTable>& tables) {
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
   std::set<std::string> names;
+  // A structure's history is /bodies/<name> and /reactions/<name>: names are compared as written.
+  GroupNames groups("/bodies");
   for (TomlTable& table : top.tables("bodies")) {
     BodySpec body;
     body.name = table.string("name");
     if (!names.insert(body.name).second) {
       table.fail("name", "a body named '" + body.name + "' already exists");
+    }
+    if (const auto clash = groups.clash(body.name, location(table, "name"))) {
+      table.fail("name", *clash);
     }
     body.material = table.string("material");
     const bool known = std::any_of(spec.materials.begin(), spec.materials.end(),
@@ -392,6 +403,17 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
       }
       contact.surfaces = {table.string_or("surface", "interface")};
     }
+    // Edges given one name are one surface; two names must not become one group.
+    const std::string key = table.has("surfaces") ? "surfaces" : "surface";
+    GroupNames groups("/reactions/" + dataset_name(contact.structure));
+    std::set<std::string> seen{""};
+    for (const std::string& surface : contact.surfaces) {
+      if (seen.insert(surface).second) {
+        if (const auto clash = groups.clash(surface, location(table, key))) {
+          table.fail(key, *clash);
+        }
+      }
+    }
     table.finish();
     spec.contacts.push_back(std::move(contact));
   }
@@ -478,9 +500,23 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     }
     return name;
   };
+  // A prescribed motion's reactions go to /boundaries/<name>, beside the constrained faces'.
+  GroupNames boundaries("/boundaries");
+  const char* faces[] = {"r_min", "r_max", "y_min", "y_max"};
+  for (std::size_t f = 0; f < 4; ++f) {
+    if (spec.faces[f] != FaceCondition::free) {
+      boundaries.clash(faces[f], "the condition of that face in [boundaries]");
+    }
+  }
+  if (spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0) {
+    boundaries.clash("axis", "the axis, held by the grid starting on it");
+  }
   for (TomlTable& table : top.tables("prescribed")) {
     MotionSpec motion;
     motion.name = unique_name(table);
+    if (const auto clash = boundaries.clash(motion.name, location(table, "name"))) {
+      table.fail("name", *clash);
+    }
     motion.nodes = read_node_line(table, axes);
     const char* keys[] = {"velocity_r", "velocity_y", "velocity_theta"};
     for (std::size_t d = 0; d < 3; ++d) {
@@ -896,7 +932,7 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     return;
   }
   OutputSpec& out = spec.output;
-  out.directory = table->string_or("directory", "");
+  out.directory = table->path_or("directory", "");
   if (table->has("snapshot_interval")) {
     out.snapshot_interval = table->number("snapshot_interval");
   }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
 
 namespace mpile {
 
@@ -52,7 +53,7 @@ template <class P> auto double_fields(P& p) {
 void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene& scene,
                       const SolverState& solver, const RunProgress& progress) {
   const std::string temporary = path + ".tmp";
-  {
+  try {
     Hdf5File file(temporary, Hdf5File::Mode::create);
     file.set_attribute("/", "format", format_version);
     file.set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
@@ -141,6 +142,12 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     }
     file.write("/run/snapshot_times", snapshot_times, "s");
     file.set_attribute("/run/snapshot_times", "files", snapshot_files);
+    // A checkpoint the disk could not hold must not replace the one before it.
+    file.close();
+  } catch (const std::runtime_error& e) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error("cannot write " + path + ": " + e.what());
   }
   replace_file(temporary, path);
 }

@@ -9,6 +9,9 @@ namespace mpile {
 
 namespace {
 
+// Rows per chunk of an extendible series.
+constexpr hsize_t chunk_rows = 4096;
+
 [[noreturn]] void fail(const std::string& what) {
   throw std::runtime_error("HDF5: " + what);
 }
@@ -20,9 +23,14 @@ hid_t check(hid_t id, const std::string& what) {
   return id;
 }
 
-// The library's own error printing is replaced by exceptions with the object's path.
+// The library's own error printing is replaced by exceptions with the object's path. Files are
+// closed where they are used, with their failures reported; the library does not close at exit
+// what it could not close then (HDF5 1.10 crashed closing a file whose last write had failed).
 struct SilenceHdf5Errors {
-  SilenceHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+  SilenceHdf5Errors() {
+    H5dont_atexit();
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
 };
 const SilenceHdf5Errors silence;
 
@@ -50,6 +58,11 @@ Hdf5Handle& Hdf5Handle::operator=(Hdf5Handle&& other) noexcept {
   return *this;
 }
 
+bool Hdf5Handle::close() {
+  const hid_t id = std::exchange(id_, -1);
+  return id < 0 || close_ == nullptr || close_(id) >= 0;
+}
+
 Hdf5Handle::~Hdf5Handle() {
   if (id_ >= 0 && close_ != nullptr) {
     close_(id_);
@@ -69,6 +82,14 @@ Hdf5File::Hdf5File(const std::string& path, Mode mode) : path_(path) {
     fail("cannot " + std::string(mode == Mode::create ? "create " : "open ") + path);
   }
   file_ = Hdf5Handle(id, H5Fclose);
+}
+
+void Hdf5File::close() {
+  if (!file_.close()) {
+    fail("cannot finish writing " + path_ +
+         " (no space left on its file system, or a file-size "
+         "limit)");
+  }
 }
 
 bool Hdf5File::exists(const std::string& object) const {
@@ -272,7 +293,7 @@ Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, const std::st
                        Stored stored)
     : dataset_(dataset) {
   file.parent_group(dataset);
-  const hsize_t initial = 0, unlimited = H5S_UNLIMITED, chunk = 4096;
+  const hsize_t initial = 0, unlimited = H5S_UNLIMITED, chunk = chunk_rows;
   Hdf5Handle space(H5Screate_simple(1, &initial, &unlimited), H5Sclose);
   Hdf5Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   H5Pset_chunk(properties.get(), 1, &chunk);
@@ -303,6 +324,13 @@ Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, std::size_t r
   }
 }
 
+std::size_t Hdf5Series::growth_bound() const {
+  const auto chunks = [](hsize_t rows) { return (rows + chunk_rows - 1) / chunk_rows; };
+  const hsize_t new_chunks = chunks(written_ + buffer_.size()) - chunks(written_);
+  // A chunk index node is about 2 KiB; a split makes a node and at most a new root.
+  return static_cast<std::size_t>(new_chunks * (chunk_rows * sizeof(double) + 8192));
+}
+
 void Hdf5Series::flush(Hdf5File& file) {
   if (buffer_.empty()) {
     return;
@@ -320,6 +348,10 @@ void Hdf5Series::flush(Hdf5File& file) {
   Hdf5Handle memory_space(H5Screate_simple(1, &count, nullptr), H5Sclose);
   if (H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
                buffer_.data()) < 0) {
+    fail("cannot append to " + dataset_ + " in " + file.path());
+  }
+  // The chunk is written when the dataset closes: a failure there is a failure to append.
+  if (!set.close()) {
     fail("cannot append to " + dataset_ + " in " + file.path());
   }
   written_ = total;

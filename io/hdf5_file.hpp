@@ -19,7 +19,7 @@ namespace mpile {
 class Hdf5Handle {
 public:
   Hdf5Handle() = default;
-  Hdf5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  Hdf5Handle(hid_t id, herr_t (*closer)(hid_t)) : id_(id), close_(closer) {}
   Hdf5Handle(Hdf5Handle&& other) noexcept;
   Hdf5Handle& operator=(Hdf5Handle&& other) noexcept;
   Hdf5Handle(const Hdf5Handle&) = delete;
@@ -27,6 +27,8 @@ public:
   ~Hdf5Handle();
   hid_t get() const { return id_; }
   bool valid() const { return id_ >= 0; }
+  /// Closes now; false when the library could not (a write it had deferred failed).
+  bool close();
 
 private:
   hid_t id_ = -1;
@@ -40,6 +42,9 @@ public:
 
   const std::string& path() const { return path_; }
   hid_t id() const { return file_.get(); }
+  /// Closes the file, writing what the library still holds; throws when that fails (a full disk
+  /// or a file-size limit shows here: the destructor cannot report it).
+  void close();
   bool exists(const std::string& object) const;
 
   /// Whole arrays (row-major, dims as given; one dimension when dims is empty).
@@ -89,6 +94,9 @@ public:
   void append(double value) { buffer_.push_back(value); }
   /// Appends the buffered values to the dataset in `file` (open for writing).
   void flush(Hdf5File& file);
+  /// At most the bytes the file grows by when the buffered values are flushed: the chunks they
+  /// begin, and room for the chunk index to split.
+  std::size_t growth_bound() const;
   std::size_t size() const { return written_ + buffer_.size(); }
   const std::string& dataset() const { return dataset_; }
 

@@ -2,9 +2,9 @@
 
 #include "io/case_composition.hpp"
 #include "io/monitor_points.hpp"
+#include "io/reserve_space.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -12,15 +12,11 @@
 
 namespace mpile {
 
-std::string dataset_name(const std::string& name) {
-  std::string out;
-  for (const char c : name) {
-    out += std::isalnum(static_cast<unsigned char>(c)) != 0 ? c : '_';
-  }
-  return out;
-}
-
 namespace {
+
+// Room for what a write adds besides the series' chunks: groups, attributes, the file's own
+// metadata.
+constexpr std::size_t metadata_margin = 64 * 1024;
 
 struct Units {
   std::string energy, force, moment;
@@ -39,7 +35,11 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
                              int threads, std::size_t rows)
     : path_(path), rows_(rows), reopened_(rows > 0), last_flush_(std::chrono::steady_clock::now()),
       wall_start_(last_flush_) {
-  Hdf5File file(path, reopened_ ? Hdf5File::Mode::append : Hdf5File::Mode::create);
+  if (!reopened_) {
+    Hdf5File(path, Hdf5File::Mode::create).close();
+  }
+  // The series' headers and the case's text (twice: as written and resolved), with room to spare.
+  Hdf5File file = open(16 * metadata_margin + 2 * (spec.text.size() + spec.resolved.size()));
   if (!reopened_) {
     file.set_attribute("/", "case_file", spec.file);
     file.set_attribute("/", "title", spec.title);
@@ -151,6 +151,12 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
     series(file, base + "/driving_F_y", u.force);
     series(file, base + "/driving_torque", u.moment);
   }
+  file.close();
+}
+
+Hdf5File HistoryWriter::open(std::size_t growth) const {
+  reserve_space(path_, growth + metadata_margin);
+  return Hdf5File(path_, Hdf5File::Mode::append);
 }
 
 void HistoryWriter::add_unit_resistances(Hdf5File& file, const CaseSpec& spec, const Scene& scene) {
@@ -351,18 +357,20 @@ void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase,
 
 void HistoryWriter::phase_started(std::size_t index, const std::string& name, double start) {
   const std::string group = "/phases/" + std::to_string(index);
-  Hdf5File file = open();
+  Hdf5File file = open(name.size());
   file.parent_group(group + "/name");
   file.set_attribute(group, "name", name);
   file.set_attribute(group, "start", start);
+  file.close();
 }
 
 void HistoryWriter::phase_ended(std::size_t index, double end, const std::string& why) {
   const std::string group = "/phases/" + std::to_string(index);
-  Hdf5File file = open();
+  Hdf5File file = open(why.size());
   file.parent_group(group + "/name");
   file.set_attribute(group, "end", end);
   file.set_attribute(group, "ended", why);
+  file.close();
 }
 
 void HistoryWriter::flush_if_due() {
@@ -371,17 +379,26 @@ void HistoryWriter::flush_if_due() {
   }
 }
 
+std::size_t HistoryWriter::growth_bound() const {
+  std::size_t bytes = 0;
+  for (const auto& [name, series] : series_) {
+    bytes += series.growth_bound();
+  }
+  return bytes;
+}
+
 void HistoryWriter::flush() {
-  Hdf5File file = open();
+  Hdf5File file = open(growth_bound());
   for (const std::string& name : order_) {
     series_.at(name).flush(file);
   }
+  file.close();
   last_flush_ = std::chrono::steady_clock::now();
 }
 
 void HistoryWriter::close(double wall_seconds, const std::string& status,
                           const ResidualSummary& residual) {
-  Hdf5File file = open();
+  Hdf5File file = open(growth_bound() + status.size());
   for (const std::string& name : order_) {
     series_.at(name).flush(file);
   }
@@ -392,6 +409,7 @@ void HistoryWriter::close(double wall_seconds, const std::string& status,
   file.set_attribute("/", "energy_residual_final", residual.final);
   file.set_attribute("/", "energy_residual_peak", residual.peak);
   file.set_attribute("/", "energy_residual_peak_time", residual.peak_time);
+  file.close();
 }
 
 } // namespace mpile

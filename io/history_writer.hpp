@@ -1,6 +1,7 @@
 #pragma once
 
 #include "io/case_spec.hpp"
+#include "io/dataset_name.hpp"
 #include "io/hdf5_file.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -50,9 +51,13 @@ private:
   /// /monitors/<name>/...: the followed particle's id is an attribute, so a restart follows the
   /// same one; a monitor added on a restart starts with NaN rows.
   void add_monitors(Hdf5File& file, const CaseSpec& spec, const Scene& scene);
+  /// At most the bytes the file grows by when the buffered rows are written.
+  std::size_t growth_bound() const;
   Hdf5Series& series(Hdf5File& file, const std::string& name, const std::string& unit,
                      Hdf5Series::Stored stored = Hdf5Series::Stored::real);
-  Hdf5File open() const { return Hdf5File(path_, Hdf5File::Mode::append); }
+  /// Opens the file with room for `growth` more bytes reserved on the disk (io/reserve_space.hpp),
+  /// so that a full disk stops the run before the file is touched, not half way through a row.
+  Hdf5File open(std::size_t growth) const;
 
   /// A surface's vertical force over one of its areas (Pa): a unit resistance.
   struct UnitResistance {
@@ -82,8 +87,5 @@ private:
   std::chrono::steady_clock::time_point wall_start_;
   double wall_offset_ = 0.0;
 };
-
-/// A dataset-safe name: letters, digits and underscores.
-std::string dataset_name(const std::string& name);
 
 } // namespace mpile

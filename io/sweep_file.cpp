@@ -139,7 +139,7 @@ SweepSpec read_sweep_file(const std::string& path) {
   SweepSpec sweep;
   sweep.file = path;
   sweep.title = top.string_or("title", std::filesystem::path(path).stem().string());
-  sweep.case_path = top.string("case");
+  sweep.case_path = top.path("case");
   if (sweep.case_path.empty()) {
     top.fail("case", "the case file every variant runs, relative to this file");
   }

@@ -59,30 +59,46 @@ double as_number(const TomlValue& v) {
 namespace {
 
 /// The TOML parser recurses once per level of nested arrays and inline tables (a few thousand
-/// levels overflow the stack) and takes time quadratic in a line's length (a 435 kB line took
-/// 11 s): both are bounded here, before parsing, with the line that breaks the bound.
+/// levels overflow the stack), takes time quadratic in a line's length (a 435 kB line took 11 s)
+/// and cubic in the parts of a dotted key (4 000 parts took 35 s and 600 MB): all three are bounded
+/// here, in one pass before parsing, with the line that breaks the bound.
 void check_toml_bounds(const std::string& text, const std::string& file) {
-  constexpr int max_depth = 64;
   constexpr std::size_t max_line = 16384;
   enum class In { code, comment, basic, literal, multiline_basic, multiline_literal };
   In in = In::code;
-  int depth = 0;
+  // The open arrays and inline tables ('[' or '{'; a table header's brackets too), innermost last.
+  std::string open;
+  // A key is read at the start of a line outside any array, in a table header, and at the start
+  // of an inline table or after its commas; it ends at '=' (or the header's ']').
+  bool in_key = true;
+  bool line_start = true; // nothing but blanks on this line so far
+  std::size_t key_start = 0;
+  std::size_t key_parts = 1;
   int line = 1;
-  std::size_t line_start = 0;
+  std::size_t line_start_at = 0;
   auto refuse = [&](const std::string& why) {
     throw CaseError(file + ":" + std::to_string(line) + ": " + why);
+  };
+  auto begin_key = [&](std::size_t at) {
+    in_key = true;
+    key_start = at;
+    key_parts = 1;
   };
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '\n') {
-      if (i - line_start > max_line) {
-        refuse("the line is " + std::to_string(i - line_start) + " characters long (at most " +
+      if (i - line_start_at > max_line) {
+        refuse("the line is " + std::to_string(i - line_start_at) + " characters long (at most " +
                std::to_string(max_line) + "): break long arrays over several lines");
       }
       ++line;
-      line_start = i + 1;
+      line_start_at = i + 1;
       if (in == In::comment || in == In::basic || in == In::literal) {
         in = In::code; // a single-line string cannot span lines; the parser reports it
+      }
+      if (in == In::code && open.empty()) {
+        begin_key(i + 1);
+        line_start = true;
       }
       continue;
     }
@@ -116,24 +132,52 @@ void check_toml_bounds(const std::string& text, const std::string& file) {
         in = triple ? In::multiline_literal : In::literal;
         i += triple ? 2 : 0;
       } else if (c == '[' || c == '{') {
-        if (++depth > max_depth) {
-          refuse("arrays and inline tables are nested more than " + std::to_string(max_depth) +
+        const bool header = c == '[' && in_key && (line_start || open == "[");
+        open += c;
+        if (static_cast<int>(open.size()) > max_toml_depth) {
+          refuse("arrays and inline tables are nested more than " + std::to_string(max_toml_depth) +
                  " deep");
         }
-      } else if ((c == ']' || c == '}') && depth > 0) {
-        --depth;
+        if (c == '{') {
+          begin_key(i + 1);
+        } else if (header) {
+          begin_key(i + 1);
+        } else {
+          in_key = false;
+        }
+      } else if (c == ']' || c == '}') {
+        if (!open.empty()) {
+          open.pop_back();
+        }
+        in_key = false;
+      } else if (c == '=') {
+        in_key = false;
+      } else if (c == ',' && !open.empty() && open.back() == '{') {
+        begin_key(i + 1);
+      } else if (c == '.' && in_key && ++key_parts > max_key_parts) {
+        refuse(key_excerpt(text.substr(key_start, 80)) + ": a dotted key has more than " +
+               std::to_string(max_key_parts) + " parts");
       }
       break;
     }
+    if (c != ' ' && c != '\t') {
+      line_start = false;
+    }
   }
-  if (text.size() - line_start > max_line) {
-    refuse("the line is " + std::to_string(text.size() - line_start) +
+  if (text.size() - line_start_at > max_line) {
+    refuse("the line is " + std::to_string(text.size() - line_start_at) +
            " characters long (at most " + std::to_string(max_line) +
            "): break long arrays over several lines");
   }
 }
 
 } // namespace
+
+std::string key_excerpt(const std::string& key) {
+  std::string start = key.substr(std::min(key.size(), key.find_first_not_of(" \t")), 40);
+  start.erase(start.find_last_not_of(". \t") + 1);
+  return start + "...";
+}
 
 std::string format_number(double x) {
   std::ostringstream s;
@@ -256,7 +300,9 @@ void TomlTable::type_error(const std::string& key, const std::string& expected) 
 void TomlTable::missing(const std::string& key, const std::string& what) const {
   constexpr std::size_t max_edits = 2;
   for (const auto& [present, v] : table_->as_table()) {
-    if (read_.count(present) == 0 && edit_distance(present, key) <= max_edits) {
+    // A key the table declares is no typo, however close ([grid] y is not a misspelt r).
+    const bool known = spec_ != nullptr && spec_->key(present) != nullptr;
+    if (!known && read_.count(present) == 0 && edit_distance(present, key) <= max_edits) {
       fail(present, "unknown key; did you mean '" + key + "'?");
     }
   }
@@ -341,6 +387,18 @@ std::string TomlTable::string(const std::string& key) {
 std::string TomlTable::string_or(const std::string& key, const std::string& fallback) {
   refuse_second_default(key);
   return has(key) ? string(key) : fallback;
+}
+
+std::string TomlTable::path(const std::string& key) {
+  std::string x = string(key);
+  if (x.find('\0') != std::string::npos) {
+    fail(key, "a path cannot hold a NUL character (\\u0000)");
+  }
+  return x;
+}
+
+std::string TomlTable::path_or(const std::string& key, const std::string& fallback) {
+  return has(key) ? path(key) : string_or(key, fallback);
 }
 
 bool TomlTable::boolean(const std::string& key) {

@@ -37,6 +37,10 @@ public:
   long integer_or(const std::string& key, long fallback);
   std::string string(const std::string& key);
   std::string string_or(const std::string& key, const std::string& fallback);
+  /// A file or directory name: a string without a NUL character (the system reads a path only up
+  /// to it: "x.toml\u0000junk" named x.toml).
+  std::string path(const std::string& key);
+  std::string path_or(const std::string& key, const std::string& fallback);
   bool boolean(const std::string& key);
   bool boolean_or(const std::string& key, bool fallback);
   std::vector<double> numbers(const std::string& key, std::size_t expected_size = 0);
@@ -52,9 +56,9 @@ public:
 
   /// "file:line: key: message" for a key of this table (the table's line when the key is absent).
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
-  /// A required key is absent: when the table holds an unread key spelled within two edits of it,
-  /// that key is the error (a typo reported as the key it was meant to be would point at the wrong
-  /// line); otherwise "missing (required)", followed by `what` when given.
+  /// A required key is absent: when the table holds an unread key it does not declare, spelled
+  /// within two edits of it, that key is the error (a typo reported as the key it was meant to be
+  /// would point at the wrong line); otherwise "missing (required)", followed by `what` when given.
   [[noreturn]] void missing(const std::string& key, const std::string& what = "") const;
   std::string key_path(const std::string& key) const;
   int line_of(const std::string& key) const;
@@ -90,7 +94,17 @@ private:
 /// A number as a message quotes it (six significant digits).
 std::string format_number(double x);
 
-/// Parses TOML text; syntax errors become CaseError with the parser's own location.
+/// The deepest nesting of arrays and inline tables, and the most parts of a dotted key (a.b.c has
+/// three), that a case may hold: beyond them the parser overflows its stack or takes minutes.
+constexpr int max_toml_depth = 64;
+constexpr std::size_t max_key_parts = 64;
+
+/// The start of an overlong dotted key for a message: its first 40 characters, cut after a part,
+/// then "...".
+std::string key_excerpt(const std::string& key);
+
+/// Parses TOML text; syntax errors become CaseError with the parser's own location, and text past
+/// the bounds above (or with lines over 16 384 characters) is refused before the parser sees it.
 TomlValue parse_toml(const std::string& text, const std::string& file);
 
 } // namespace mpile

@@ -16,8 +16,10 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -52,8 +54,14 @@ template <class Writer, class Data> void write_xml(Data& data, const std::string
   writer->EncodeAppendedDataOff(); // raw binary
   writer->SetCompressorTypeToZLib();
   writer->SetInputData(data);
+  errno = 0;
   if (writer->Write() != 1) {
-    throw std::runtime_error("cannot write " + path);
+    const int reason = errno;
+    // A snapshot cut short by a full disk is not left for ParaView to stumble on.
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+    throw std::runtime_error("cannot write " + path + ": " +
+                             (reason != 0 ? std::strerror(reason) : "the write failed"));
   }
 }
 
@@ -292,6 +300,13 @@ void SnapshotWriter::restore(std::vector<std::pair<double, std::string>> entries
     }
     write_collection("grid.pvd", grids_);
   }
+  // The snapshot the interrupted run took as it stopped is listed by no index now; this run writes
+  // its number again.
+  std::error_code ignored;
+  std::filesystem::remove(directory_ + "/" + numbered_name("particles_", particles_.size(), ".vtu"),
+                          ignored);
+  std::filesystem::remove(directory_ + "/" + numbered_name("grid_", particles_.size(), ".vtr"),
+                          ignored);
 }
 
 void SnapshotWriter::write_collection(
@@ -311,8 +326,14 @@ void SnapshotWriter::write_collection(
           << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
     }
     out << "  </Collection>\n</VTKFile>\n";
+    errno = 0;
+    out.close();
     if (!out) {
-      throw std::runtime_error("cannot write " + temporary);
+      const int reason = errno;
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw std::runtime_error("cannot write " + temporary + ": " +
+                               (reason != 0 ? std::strerror(reason) : "the write failed"));
     }
   }
   replace_file(temporary, path);

@@ -291,7 +291,13 @@ PhaseRunner::Outcome PhaseRunner::run(const PhaseSetUp& set_up, const StopReques
   while (progress_.phase < phases_.size()) {
     const RunPhase& phase = phases_[progress_.phase];
     const double phase_end = progress_.phase_starts[progress_.phase] + phase.duration;
-    log_.info("phase " + phase.name + " from t = " + format_time(solver_.time()) + " s");
+    const double start = progress_.phase_starts[progress_.phase];
+    // A restarted run goes on with a phase that began earlier; a log read alone must not make it
+    // look begun at the restart.
+    log_.info("phase " + phase.name +
+              (solver_.time() > start ? " resumed at t = " + format_time(solver_.time()) +
+                                            " s (it began at t = " + format_time(start) + " s)"
+                                      : " from t = " + format_time(solver_.time()) + " s"));
     for (RunObserver* observer : observers_) {
       observer->phase_started(progress_.phase, phase, progress_.phase_starts[progress_.phase]);
     }

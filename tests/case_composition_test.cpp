@@ -1,4 +1,5 @@
 // Case composition: a base file under the case, --set values on top, and what a restart may change.
+#include "app/run_command.hpp"
 #include "io/case_composition.hpp"
 #include "io/case_spec.hpp"
 #include "tests/case_run.hpp"
@@ -7,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace mpile {
@@ -153,6 +155,11 @@ TEST(CaseComposition, BadBasesAreRefusedWithTheLineThatNamesThem) {
   f = write_files("base_type", base_text, replaced(case_text, "\"shared/base.toml\"", "3"));
   EXPECT_EQ(error_of(f.case_file.string()),
             f.case_file.string() + ":1: base: expected the path of a base case file (a string)");
+  // The system reads a path up to a NUL: "shared/base.toml\u0000junk" read shared/base.toml.
+  f = write_files("base_nul", base_text,
+                  replaced(case_text, "\"shared/base.toml\"", "\"shared/base.toml\\u0000junk\""));
+  EXPECT_EQ(error_of(f.case_file.string()),
+            f.case_file.string() + ":1: base: a path cannot hold a NUL character (\\u0000)");
 }
 
 TEST(CaseComposition, SetReplacesOneValueAnywhereAndIsRecorded) {
@@ -199,12 +206,46 @@ TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
   EXPECT_EQ(error_of(path, {"base=\"other.toml\""}),
             "--set base=\"other.toml\": base is the file a case builds on; name it in the case "
             "file");
+  // Text after a line break was parsed as keys of its own and dropped; a value over several
+  // lines is still one value.
+  EXPECT_EQ(error_of(path, {"phases.0.duration=2.0\nphases = 3"}),
+            "--set phases.0.duration: the value must be one TOML value; it goes on after a line "
+            "break (give each assignment its own --set)");
+  EXPECT_EQ(error_of(path, {"phases.0.duration=2.0\n[solver]\ngravity = [0.0, 0.0]"}),
+            error_of(path, {"phases.0.duration=2.0\nphases = 3"}));
+  EXPECT_EQ(error_of(path, {"solver.gravity=[0.0,\n-9.81] # a comment\n"}), "accepted");
   const std::string unquoted = error_of(path, {"title=a column"});
   EXPECT_EQ(unquoted.rfind("--set title=a column: the value is not TOML (text needs quotes: "
                            "title=\"text\"):",
                            0),
             0u)
       << unquoted;
+}
+
+TEST(CaseComposition, ASetKeyOfMoreThanSixtyFourPartsIsRefused) {
+  // 12 000 parts made 12 000 nested tables, and the program crashed (SIGSEGV) writing them out.
+  const Files f = write_files("set_long_key");
+  std::string key = "a";
+  for (int k = 1; k < 12000; ++k) {
+    key += ".a";
+  }
+  EXPECT_EQ(error_of(f.case_file.string(), {key + "=1"}),
+            "--set " + key.substr(0, 39) +
+                "...: the key has 12000 parts; a dotted key has at "
+                "most 64");
+  RunOptions options;
+  options.case_path = f.case_file.string();
+  options.overrides = {key + "=1"};
+  options.output_directory = (f.directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_EQ(err.str().find('\n'), err.str().size() - 1) << err.str(); // one line
+  // 64 parts reach the reader, which names the unknown key.
+  std::string fits = "a";
+  for (int k = 1; k < 64; ++k) {
+    fits += ".a";
+  }
+  EXPECT_NE(error_of(f.case_file.string(), {fits + "=1"}).find("unknown key"), std::string::npos);
 }
 
 TEST(CaseComposition, DifferingKeysNameTheChangedValuesAndPhases) {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -106,6 +108,12 @@ std::vector<BadInput> bad_inputs() {
               "cells = 8 }]\n",
               ""),
        "grid: missing (required)", ""},
+      // y is one edit from r, but a key of [grid]: the missing r is the error.
+      {"grid without r", edited("r = [{ start = 0.0, end = 1.0, cells = 8 }]\n", ""),
+       "grid.r: missing (required): at least one zone", "[grid]"},
+      {"a NUL in the output directory",
+       edited("snapshot_interval = 0.05", "snapshot_interval = 0.05\ndirectory = \"out\\u0000x\""),
+       "output.directory: a path cannot hold a NUL character (\\u0000)", "directory = "},
       {"zero cells", edited("end = 1.0, cells = 8 }]\ny", "end = 1.0, cells = 0 }]\ny"),
        "grid.r[0].cells: must lie between 1 and 100000, got 0", "r = [{"},
       {"cells as a string", edited("end = 1.0, cells = 8 }]\ny", "end = 1.0, cells = \"8\" }]\ny"),
@@ -789,6 +797,49 @@ TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
   expect_rejected(table);
 }
 
+TEST(CaseReader, NamesThatBecomeOneHistoryGroupAreRefusedWhereTheLaterIsWritten) {
+  // "top cap" and "top_cap" both became /boundaries/top_cap in history.h5, their rows interleaved.
+  const std::string two_motions =
+      edited("[[prescribed]]\nname = \"top\"",
+             "[[prescribed]]\nname = \"top cap\"\nnodes = { y = 0.5, r = [0.0, 0.25] }\n"
+             "velocity_y = -0.01\n\n[[prescribed]]\nname = \"top_cap\"");
+  const std::string first = std::to_string(line_of(two_motions, "name = \"top cap\""));
+  std::string bodies = edited_text(contact_case, "name = \"soil\"", "name = \"pile-\"");
+  bodies = edited_text(bodies, "name = \"pile\"", "name = \"pile_\"");
+  bodies = edited_text(bodies, "structure = \"pile\"", "structure = \"pile_\"");
+  const std::string surfaces = std::to_string(line_of(contact_case, "surfaces = {"));
+  expect_rejected({
+      {"two motions, one group", two_motions,
+       "prescribed[1].name: 'top_cap' and 'top cap' (case.toml:" + first +
+           ") are both written to /boundaries/top_cap in the history: give this one another name",
+       "name = \"top_cap\""},
+      {"a motion named like a constrained face", edited("name = \"top\"", "name = \"y min\""),
+       "prescribed[0].name: 'y min' and 'y_min' (the condition of that face in [boundaries]) are "
+       "both written to /boundaries/y_min",
+       "name = \"y min\""},
+      {"a motion named like the axis", edited("name = \"top\"", "name = \"axis\""),
+       "prescribed[0].name: 'axis' and 'axis' (the axis, held by the grid starting on it) are "
+       "both written to /boundaries/axis",
+       "name = \"axis\""},
+      {"two bodies, one group", bodies,
+       "bodies[1].name: 'pile_' and 'pile-' (case.toml:" +
+           std::to_string(line_of(bodies, "name = \"pile-\"")) +
+           ") are both written to /bodies/pile_ in the history",
+       "name = \"pile_\""},
+      {"two surfaces, one group",
+       contact_edited("left = \"inner_shaft\"", "left = \"outer shaft\""),
+       "contact[0].surfaces: 'outer shaft' and 'outer_shaft' (case.toml:" + surfaces +
+           ") are both written to /reactions/pile/outer_shaft in the history",
+       "surfaces = {"},
+      {"a monitor's name is its group as written",
+       valid_case + "[[output.monitor]]\nname = \"top cap\"\nposition = [0.1, 0.1]\n",
+       "output.monitor[0].name: use letters, digits and underscores", "name = \"top cap\""},
+  });
+  // Edges given one name are one surface.
+  EXPECT_NO_THROW(read_case_text(contact_edited("left = \"inner_shaft\"", "left = \"outer_shaft\""),
+                                 "case.toml"));
+}
+
 TEST(CaseReader, OverlappingBodiesAreRefusedWhereTheLaterIsWritten) {
   // A second body whose region covers part of the first would seed particles twice there.
   const std::string text =
@@ -917,6 +968,49 @@ TEST(CaseReader, DeepNestingAndOverlongLinesAreRefusedBeforeTheParserSeesThem) {
   EXPECT_NE(message(long_line).find("(at most 16384): break long arrays over several lines"),
             std::string::npos);
   EXPECT_EQ(message(valid_case + lines), "accepted");
+}
+
+TEST(CaseReader, LongDottedKeysAreRefusedBeforeTheParserSeesThem) {
+  // The parser's time grows like the cube of a dotted key's parts: 4 000 took 35 s and 600 MB.
+  // A key of more than 64 parts (as deep as arrays may nest) is refused at its line, at once.
+  auto message = [](const std::string& text) {
+    try {
+      read_case_text(text, "case.toml");
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  auto dotted = [](int parts) {
+    std::string key = "a";
+    for (int k = 1; k < parts; ++k) {
+      key += ".a";
+    }
+    return key;
+  };
+  const auto line = std::to_string(std::count(valid_case.begin(), valid_case.end(), '\n') + 1);
+  const std::string refused = "case.toml:" + line + ": a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a.a" +
+                              "...: a dotted key has more than 64 parts";
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(message(valid_case + dotted(4000) + " = 1\n"), refused);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+  // In a table header, an inline table (after a comma too), with blanks around the dots.
+  EXPECT_EQ(message(valid_case + "[" + dotted(65) + "]\n"), refused);
+  EXPECT_EQ(message(valid_case + "x = { b = 1, " + dotted(65) + " = 2 }\n"),
+            "case.toml:" + line + ": " + dotted(20) + "...: a dotted key has more than 64 parts");
+  EXPECT_NE(message(valid_case + replaced(dotted(65), ".", " . ") + " = 1\n")
+                .find("a dotted key has more than 64 parts"),
+            std::string::npos);
+  // 64 parts reach the reader (an unknown key); dots in values, strings and comments do not count.
+  EXPECT_EQ(message(valid_case + dotted(64) + " = 1\n").find("dotted"), std::string::npos);
+  std::string values = "snapshot_times = [";
+  for (int k = 1; k < 200; ++k) {
+    values += "0." + std::to_string(k) + ", ";
+  }
+  values += "0.9] # " + dotted(100) + "\n";
+  EXPECT_EQ(message(valid_case + values), "accepted");
+  EXPECT_EQ(message(valid_case + "\"" + dotted(100) + "\" = 1\n").find("dotted"),
+            std::string::npos);
 }
 
 TEST(CaseReader, RunExitsWithStatusTwoAndOneLineReasonOnBadInput) {

@@ -15,6 +15,8 @@
 #include <numbers>
 #include <sstream>
 
+#include <unistd.h>
+
 namespace mpile {
 namespace {
 
@@ -170,6 +172,39 @@ TEST(ElementTest, MohrCoulombTriaxialCsvReachesTheFailureDeviator) {
   EXPECT_NE(out.str().find("500 increments"), std::string::npos) << out.str();
   std::cout << "Mohr-Coulomb triaxial: q at 5 % = " << values[5] << " Pa, closed form " << q_failure
             << " Pa, relative difference " << std::abs(values[5] / q_failure - 1.0) << '\n';
+}
+
+TEST(ElementTest, AnOutputThatCannotBeWrittenIsNamedWithTheSystemsReason) {
+  // Each gave "cannot write <path>" and no reason, or the library's "filesystem error".
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_element_test_out";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory / "a_directory.csv");
+  std::ofstream(directory / "a_file") << "x";
+  const auto input = directory / "triaxial.toml";
+  std::ofstream(input) << mohr_coulomb_triaxial;
+  const auto message = [&](const std::filesystem::path& csv) {
+    ElementTestOptions options;
+    options.file = input.string();
+    options.csv = csv.string();
+    std::ostringstream out, err;
+    EXPECT_EQ(element_test_command(options, out, err), exit_failure) << csv;
+    return err.str();
+  };
+  EXPECT_EQ(message(directory / "a_directory.csv"), "mpile: cannot write " +
+                                                        (directory / "a_directory.csv").string() +
+                                                        ": Is a directory\n");
+  EXPECT_EQ(message(directory / "a_file" / "x.csv"),
+            "mpile: cannot write " + (directory / "a_file" / "x.csv").string() +
+                ": cannot make its directory " + (directory / "a_file").string() +
+                ": Not a directory\n");
+  if (geteuid() != 0) { // the superuser writes anywhere
+    std::filesystem::create_directories(directory / "read_only");
+    std::filesystem::permissions(directory / "read_only", std::filesystem::perms::owner_read |
+                                                              std::filesystem::perms::owner_exec);
+    EXPECT_EQ(message(directory / "read_only" / "x.csv"),
+              "mpile: cannot write " + (directory / "read_only" / "x.csv").string() +
+                  ": Permission denied\n");
+  }
 }
 
 TEST(ElementTest, UnloadReloadReversesAtTheGivenDeviators) {

@@ -494,6 +494,18 @@ TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
   }
   // The peak energy residual is carried by the checkpoint, so the status is the same too.
   EXPECT_EQ(hb.string_attribute("/", "status"), ha.string_attribute("/", "status"));
+  // The same snapshots: the one taken at the interruption is the interrupted run's alone (it was
+  // listed on, one more than the whole run's).
+  EXPECT_EQ(read_text(directory / "split" / "particles.pvd"),
+            read_text(directory / "whole" / "particles.pvd"));
+  // The restarted run's log says its phase resumed (it read as if the phase began there).
+  const std::string log = read_text(directory / "split" / "run.log");
+  const std::string restart_log = log.substr(log.rfind("continuing"));
+  const auto resumed = restart_log.find("phase shake resumed at t = ");
+  ASSERT_NE(resumed, std::string::npos) << restart_log;
+  EXPECT_EQ(restart_log.find(" s (it began at t = 0.241316 s)\n"),
+            restart_log.find('\n', resumed) - 31)
+      << restart_log;
   EXPECT_EQ(hb.string_attribute("/", "status").rfind("complete", 0), 0u);
 
   // The final checkpoint of a complete run has nothing left to continue.

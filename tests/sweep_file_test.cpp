@@ -63,6 +63,8 @@ struct BadSweep {
 TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
   const std::vector<BadSweep> bad = {
       {"no case", "case = \"point.toml\"\n", "", ":1: case: missing (required)"},
+      {"a NUL in the case's path", "case = \"point.toml\"", "case = \"point.toml\\u0000x\"",
+       ":2: case: a path cannot hold a NUL character (\\u0000)"},
       {"an unknown key", "title = \"point\"", "title = \"point\"\ncores = 2",
        ":2: cores: unknown key"},
       {"set not a list", "set = [\"phases.0.duration=0.5\"]", "set = \"x=1\"",
