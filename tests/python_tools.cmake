@@ -156,3 +156,27 @@ add_test(NAME EstimateTable.PrintsTheEstimateTheRunAndTheirRatio
 set_tests_properties(EstimateTable.PrintsTheEstimateTheRunAndTheirRatio PROPERTIES
   LABELS study
   PASS_REGULAR_EXPRESSION "\n\\| `verification/single_point` \\| 5 \\| [0-9.e-]+ \\| [0-9.e-]+ \\| (0\\.[5-9][0-9]|1\\.[0-9][0-9]) \\|\n")
+
+# tools/results_tables.py (docs/results.md's quick-case tables from the runs' histories) on a
+# synthetic run whose forces are known, and its check of a page's commit on a small git history.
+add_test(NAME ResultsTables.WritesTheSyntheticRunsNumbersAndFindsStaleTables
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/results_tables_test.py)
+set_tests_properties(ResultsTables.WritesTheSyntheticRunsNumbersAndFindsStaleTables PROPERTIES
+                     PASS_REGULAR_EXPRESSION "\nall ok\n")
+
+# Every tools/ script, cases/ file and mpile subcommand that README.md and docs/tutorial.md show
+# exists.
+add_test(NAME Docs.CommandsNameFilesAndSubcommandsThatExist
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/doc_commands_test.py $<TARGET_FILE:mpile>)
+set_tests_properties(Docs.CommandsNameFilesAndSubcommandsThatExist PROPERTIES
+                     PASS_REGULAR_EXPRESSION "\nall ok\n")
+
+# docs/tutorial.md's commands in order, the installations stopped at 0.02 m (tests/tutorial_run.py):
+# about a minute on two cores. A study: whole runs, which the sanitizer builds need not repeat.
+if(XVFB_RUN)
+  add_test(NAME Docs.TutorialRunsCutShort
+           COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/tutorial_run.py $<TARGET_FILE:mpile>
+                   ${CMAKE_CURRENT_BINARY_DIR}/tutorial)
+  set_tests_properties(Docs.TutorialRunsCutShort PROPERTIES LABELS study TIMEOUT 600
+                       RESOURCE_LOCK xvfb PASS_REGULAR_EXPRESSION "\ntutorial ok: ")
+endif()

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libtbb-dev libhdf5-dev libvtk9-dev
   libgtest-dev libgmock-dev
-  libcli11-dev libfmt-dev libtoml11-dev
+  libcli11-dev libtoml11-dev
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
   python3-pandas python3-xarray python3-h5netcdf python3-pytest python3-venv python3-setuptools python3-pip
   python3-jsonschema
