@@ -925,17 +925,20 @@ TEST(CaseReader, AnImplausibleRunBesideARigidBodyNamesTheCasesOwnMaterial) {
   EXPECT_NE(err.str().find("check materials.block"), std::string::npos) << err.str();
 }
 
+/// The reader's message for a case text, or "accepted".
+std::string reader_verdict(const std::string& text) {
+  try {
+    read_case_text(text, "case.toml");
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
 TEST(CaseReader, DeepNestingAndOverlongLinesAreRefusedBeforeTheParserSeesThem) {
   // 200 000 nested arrays or 20 000 nested inline tables overflowed the parser's stack (SIGSEGV);
   // a 435 kB line took 11 s (the parser is quadratic in a line's length).
-  auto message = [](const std::string& text) {
-    try {
-      read_case_text(text, "case.toml");
-    } catch (const CaseError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  const auto message = reader_verdict;
   const std::string arrays = "x = " + std::string(200000, '[') + std::string(200000, ']') + "\n";
   EXPECT_EQ(message(arrays + valid_case),
             "case.toml:1: arrays and inline tables are nested more than 64 deep");
@@ -973,14 +976,7 @@ TEST(CaseReader, DeepNestingAndOverlongLinesAreRefusedBeforeTheParserSeesThem) {
 TEST(CaseReader, LongDottedKeysAreRefusedBeforeTheParserSeesThem) {
   // The parser's time grows like the cube of a dotted key's parts: 4 000 took 35 s and 600 MB.
   // A key of more than 64 parts (as deep as arrays may nest) is refused at its line, at once.
-  auto message = [](const std::string& text) {
-    try {
-      read_case_text(text, "case.toml");
-    } catch (const CaseError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
+  const auto message = reader_verdict;
   auto dotted = [](int parts) {
     std::string key = "a";
     for (int k = 1; k < parts; ++k) {
