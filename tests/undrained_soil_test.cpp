@@ -10,6 +10,7 @@
 #include "engine/materials/undrained_soil.hpp"
 #include "io/case_error.hpp"
 #include "io/element_test_file.hpp"
+#include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
@@ -378,6 +379,27 @@ TEST(UndrainedSoil, ShaftFrictionActsOnTheEffectiveNormalStress) {
   const double extrapolated =
       2.0 * fine->surface_force("base", 2) - coarse->surface_force("base", 2);
   EXPECT_NEAR(extrapolated, -base, 0.02 * base);
+}
+
+// The pore pressure follows its particles and the contact's pore-water force is a colored
+// scatter: the spun pile in saturated soil (undrained material, its pore water at the contact) is
+// bitwise the same on one, two and three threads, its state (pore pressures) included.
+TEST(UndrainedSoil, ResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
+  std::vector<Particles> runs;
+  std::vector<std::array<double, 3>> forces;
+  for (const int threads : {1, 2, 3}) {
+    with_threads(threads, [&] {
+      const auto run = spun_pile_in_saturated_soil(20);
+      runs.push_back(run->scene->particles);
+      forces.push_back({run->surface_force("external_shaft", 2),
+                        run->surface_force("internal_shaft", 2), run->surface_force("base", 2)});
+    });
+  }
+  for (std::size_t k = 1; k < runs.size(); ++k) {
+    expect_particles_identical(runs[0], runs[k]);
+    EXPECT_TRUE(bitwise_equal(runs[0].state, runs[k].state));
+    EXPECT_EQ(std::memcmp(forces[0].data(), forces[k].data(), sizeof(forces[0])), 0);
+  }
 }
 
 struct BadWater {
