@@ -315,6 +315,7 @@ def render(args):
                     y=1.0 - 0.5 * TITLE_PIXELS / height, va="center", fontsize=13)
 
     picture = Picture(figure, axes, colour_bar, height, left, bottom, pixels_per_metre, r0, y0)
+    picture.columns, picture.rows = columns, rows
     if soil.any():
         half = 0.5 * sides[soil]
         picture.soil_box = (max(r0, float(np.min(xy[soil, 0] - half))), min(r1, float(np.max(xy[soil, 0] + half))),
@@ -346,7 +347,8 @@ def main(argv=None):
     image = np.round(image * 255).astype(np.uint8) if image.dtype != np.uint8 else image
     for r, y in args.check_pixel:
         row, column = picture.pixel(r, y)
-        if not (0 <= row < image.shape[0] and 0 <= column < image.shape[1]):
+        left, top = picture.left, picture.height - picture.bottom - picture.rows
+        if not (left <= column < left + picture.columns and top <= row < top + picture.rows):
             print(f"pixel at ({r:g}, {y:g}): outside the view")
             continue
         rgb = image[row, column]
