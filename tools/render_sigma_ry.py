@@ -7,8 +7,9 @@ ParaView's "Cool to Warm" diverging map, symmetric about zero, in kPa, with a co
   tools/render_sigma_ry.py out/jacked/particles.pvd --out sigma_ry.png --time 2.0 --pile-body 3
   tools/render_sigma_ry.py out/jacked/particles_000004.vtu --out zoom.png --window 0 10 20 35 --range -50 50
 
-A particle's domain is a square of its area: volume / r in an axisymmetric run (volume is per
-radian), volume in plane strain (per metre). The geometry is read from the run's history.h5 beside
+A particle's domain is a rectangle of its area, volume / r in an axisymmetric run (volume is per
+radian) or volume in plane strain (per metre), shaped like its spacing to its neighbours along r and
+along y (a graded mesh's cells are elongated; a thin pile wall is one particle across). The geometry is read from the run's history.h5 beside
 the snapshot, else told by --geometry, else guessed from the particles' spacing; a snapshot without
 volumes gives every particle the median spacing of its neighbours. Larger particles are painted
 first, so that the fine band's detail stays on top.
@@ -54,7 +55,7 @@ BACKGROUND = (1.0, 1.0, 1.0)
 COOL, MIDDLE, WARM = (0.231373, 0.298039, 0.752941), (0.865, 0.865, 0.865), (0.705882, 0.0156863, 0.14902)
 # A pixel belongs to a particle's domain when its centre is within half the domain's side (plus this
 # slack, which closes the seams a deformed, no longer exactly tiling set of domains leaves).
-DOMAIN_SLACK = 1.1
+DOMAIN_SLACK = 1.05
 
 
 def snapshot(path, time):
@@ -98,7 +99,7 @@ def run_geometry(snapshot_path):
 
 
 def domain_sides(xy, arrays, geometry):
-    """Side (m) of each particle's square domain, and the geometry it was worked out for."""
+    """Square root (m) of each particle's domain area, and the geometry it was worked out for."""
     spacing = particle_spacing(xy)
     if "volume" not in arrays:
         return np.full(len(xy), spacing), "no volume array: one neighbour spacing"
@@ -114,15 +115,50 @@ def domain_sides(xy, arrays, geometry):
     return np.sqrt(np.maximum(area, 0.0)), geometry
 
 
-def paint(raster, kind, xy, sides, values, label, r0, y0, pixel):
-    """Paint each particle's domain (value and kind) into the rasters (row 0 at y0, column 0 at r0,
-    `pixel` m square); largest domains first, so smaller ones stay on top."""
+def spacings_along_axes(xy, chunk=512):
+    """Each particle's distance to its nearest neighbour along r (|dr| > |dy|) and along y (|dy| >
+    |dr|), inf where it has none; brute force in chunks (the particles of one picture)."""
+    n = len(xy)
+    along_r, along_y = np.full(n, np.inf), np.full(n, np.inf)
+    for start in range(0, n, chunk):
+        d_r = np.abs(xy[start:start + chunk, None, 0] - xy[None, :, 0])
+        d_y = np.abs(xy[start:start + chunk, None, 1] - xy[None, :, 1])
+        along_r[start:start + chunk] = np.where(d_r > d_y, d_r, np.inf).min(axis=1)
+        along_y[start:start + chunk] = np.where(d_y > d_r, d_y, np.inf).min(axis=1)
+    return along_r, along_y
+
+
+def domain_halves(xy, sides):
+    """Half sizes (along r, along y) of rectangles of the domains' areas (sides**2) shaped like the
+    particles' spacings along r and y, so that a graded mesh's elongated cells are tiled too."""
+    if len(xy) < 2:
+        return 0.5 * sides, 0.5 * sides
+    along_r, along_y = spacings_along_axes(xy)
+    area = sides**2
+    both = np.isfinite(along_r) & np.isfinite(along_y)
+    aspect = np.ones(len(xy))
+    aspect[both] = np.clip(along_r[both] / along_y[both], 1.0 / 16.0, 16.0)
+    side_r, side_y = np.sqrt(area * aspect), np.sqrt(area / aspect)
+    # One row or column of particles (a thin wall): the spacing it has sets that side, the area the other.
+    only_y = ~np.isfinite(along_r) & np.isfinite(along_y)
+    side_y[only_y] = along_y[only_y]
+    side_r[only_y] = area[only_y] / along_y[only_y]
+    only_r = np.isfinite(along_r) & ~np.isfinite(along_y)
+    side_r[only_r] = along_r[only_r]
+    side_y[only_r] = area[only_r] / along_r[only_r]
+    return 0.5 * side_r, 0.5 * side_y
+
+
+def paint(raster, kind, xy, halves, values, label, r0, y0, pixel):
+    """Paint each particle's domain (value and kind; `halves` its half sizes along r and y) into the
+    rasters (row 0 at y0, column 0 at r0, `pixel` m square); largest domains first, so smaller ones
+    stay on top."""
     rows, columns = raster.shape
-    half = 0.5 * DOMAIN_SLACK * sides
-    c0 = np.clip(np.ceil((xy[:, 0] - half - r0) / pixel - 0.5), 0, columns).astype(int)
-    c1 = np.clip(np.floor((xy[:, 0] + half - r0) / pixel - 0.5) + 1, 0, columns).astype(int)
-    w0 = np.clip(np.ceil((xy[:, 1] - half - y0) / pixel - 0.5), 0, rows).astype(int)
-    w1 = np.clip(np.floor((xy[:, 1] + half - y0) / pixel - 0.5) + 1, 0, rows).astype(int)
+    half_r, half_y = DOMAIN_SLACK * halves[0], DOMAIN_SLACK * halves[1]
+    c0 = np.clip(np.ceil((xy[:, 0] - half_r - r0) / pixel - 0.5), 0, columns).astype(int)
+    c1 = np.clip(np.floor((xy[:, 0] + half_r - r0) / pixel - 0.5) + 1, 0, columns).astype(int)
+    w0 = np.clip(np.ceil((xy[:, 1] - half_y - y0) / pixel - 0.5), 0, rows).astype(int)
+    w1 = np.clip(np.floor((xy[:, 1] + half_y - y0) / pixel - 0.5) + 1, 0, rows).astype(int)
     # A domain narrower than a pixel still colours the pixel its centre is in.
     centre_c = np.floor((xy[:, 0] - r0) / pixel).astype(int)
     centre_w = np.floor((xy[:, 1] - y0) / pixel).astype(int)
@@ -130,7 +166,7 @@ def paint(raster, kind, xy, sides, values, label, r0, y0, pixel):
     w0, w1 = np.minimum(w0, centre_w), np.maximum(w1, centre_w + 1)
     c0, c1 = np.clip(c0, 0, columns), np.clip(c1, 0, columns)
     w0, w1 = np.clip(w0, 0, rows), np.clip(w1, 0, rows)
-    for i in np.argsort(-sides, kind="stable"):
+    for i in np.argsort(-(half_r * half_y), kind="stable"):
         if c1[i] > c0[i] and w1[i] > w0[i]:
             raster[w0[i]:w1[i], c0[i]:c1[i]] = values[i]
             kind[w0[i]:w1[i], c0[i]:c1[i]] = label
@@ -264,6 +300,10 @@ def render(args):
     columns = max(1, int(round((r1 - r0) * pixels_per_metre)))
     rows = max(1, int(round((y1 - y0) * pixels_per_metre)))
     pixel = 1.0 / pixels_per_metre
+    if not args.size:
+        # A tall window capped at 2000 pixels high: the image narrows to the field, the bar beside it.
+        width = LEFT_PIXELS + columns + BAR_PIXELS
+        plot_width = columns
     left = LEFT_PIXELS + (plot_width - columns) // 2
     bottom = BOTTOM_PIXELS + (plot_height - rows) // 2
 
@@ -272,15 +312,18 @@ def render(args):
             & (xy[:, 1] - sides <= y1))
     soil = coloured & near
     if soil.any():
-        what = geometry if geometry.startswith("no volume") else f"squares of the particles' areas, {geometry}"
+        what = geometry if geometry.startswith("no volume") else f"rectangles of the particles' areas, {geometry}"
         print(f"domains: {what}, "
               f"sides {np.min(sides[soil]):.4g} to {np.max(sides[soil]):.4g} m")
     raster = np.full((rows, columns), np.nan)
     kind = np.zeros((rows, columns), dtype=np.int8)  # 0 empty, 1 soil, 2 pile
-    paint(raster, kind, xy[soil], sides[soil], values[soil], 1, r0, y0, pixel)
+    halves = np.zeros((2, len(xy)))
+    halves[:, soil] = domain_halves(xy[soil], sides[soil])
+    paint(raster, kind, xy[soil], halves[:, soil], values[soil], 1, r0, y0, pixel)
     drawn_pile = pile & near
     if drawn_pile.any():
-        paint(raster, kind, xy[drawn_pile], sides[drawn_pile], np.zeros(np.count_nonzero(drawn_pile)), 2,
+        halves[:, drawn_pile] = domain_halves(xy[drawn_pile], sides[drawn_pile])
+        paint(raster, kind, xy[drawn_pile], halves[:, drawn_pile], np.zeros(np.count_nonzero(drawn_pile)), 2,
               r0, y0, pixel)
 
     cmap, norm = diverging_map(low, high)
@@ -300,14 +343,14 @@ def render(args):
         # The pile's outline (the edge of its particles' domains) and its tip's depth.
         axes.contour(np.arange(columns) * pixel + r0 + 0.5 * pixel, np.arange(rows) * pixel + y0 + 0.5 * pixel,
                      (kind == 2).astype(float), levels=[0.5], colors="black", linewidths=0.8)
-        tip = float(np.min(xy[drawn_pile, 1] - 0.5 * sides[drawn_pile]))
+        tip = float(np.min(xy[drawn_pile, 1] - halves[1, drawn_pile]))
         if y0 <= tip <= y1:
             axes.axhline(tip, color="black", linestyle="--", linewidth=0.8)
             axes.annotate(f"pile tip, y = {tip:.3f} m", (r1, tip), xytext=(-4, 4), textcoords="offset points",
                           ha="right", va="bottom", fontsize=10)
         print(f"pile tip at y = {tip:.6g} m")
     mappable = plt.cm.ScalarMappable(norm=norm, cmap=cmap)
-    bar_axes = figure.add_axes(((width - BAR_PIXELS + 25) / width, bottom / height, 22 / width, rows / height))
+    bar_axes = figure.add_axes(((left + columns + 25) / width, bottom / height, 22 / width, rows / height))
     colour_bar = figure.colorbar(mappable, cax=bar_axes)
     colour_bar.set_label(f"{args.array} [kPa]")
     when_text = f" at t = {time:g} s" if time is not None else f" in {os.path.basename(path)}"
@@ -317,9 +360,9 @@ def render(args):
     picture = Picture(figure, axes, colour_bar, height, left, bottom, pixels_per_metre, r0, y0)
     picture.columns, picture.rows = columns, rows
     if soil.any():
-        half = 0.5 * sides[soil]
-        picture.soil_box = (max(r0, float(np.min(xy[soil, 0] - half))), min(r1, float(np.max(xy[soil, 0] + half))),
-                            max(y0, float(np.min(xy[soil, 1] - half))), min(y1, float(np.max(xy[soil, 1] + half))))
+        half_r, half_y = halves[0, soil], halves[1, soil]
+        picture.soil_box = (max(r0, float(np.min(xy[soil, 0] - half_r))), min(r1, float(np.max(xy[soil, 0] + half_r))),
+                            max(y0, float(np.min(xy[soil, 1] - half_y))), min(y1, float(np.max(xy[soil, 1] + half_y))))
     return picture
 
 
