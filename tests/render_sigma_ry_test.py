@@ -5,7 +5,8 @@
 
 The snapshot (written here, axisymmetric: volume = area * r per radian, no history.h5 beside it, so
 the tool must tell the geometry from the particles) has a fine band (0.025 m particles) on
-0 < r < 0.5 m, coarse particles (0.1 m) on 0.5 < r < 2 m, both on 0 < y < 2 m, and a thin rigid pile
+0 < r < 0.5 m, coarse particles (0.1 m) on 0.5 < r < 1.2 m and elongated ones (0.1 by 0.05 m) on
+1.2 < r < 2 m, all on 0 < y < 2 m, and a thin rigid pile
 wall (body 1, 0.01 m particles) on 0.30 < r < 0.32 m from y = 1.2 m up, with sigma_ry = 20 kPa/m *
 (r - y) in the soil and 1e9 Pa in the pile. Checked:
 
@@ -32,15 +33,17 @@ from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 TOOL = Path(__file__).resolve().parent.parent / "tools" / "render_sigma_ry.py"
 
 
-def lattice(r0, r1, y0, y1, spacing):
+def lattice(r0, r1, y0, y1, spacing, spacing_y=None):
+    """Particles on a lattice and the square roots of their areas."""
+    spacing_y = spacing_y or spacing
     r = np.arange(r0 + 0.5 * spacing, r1, spacing)
-    y = np.arange(y0 + 0.5 * spacing, y1, spacing)
+    y = np.arange(y0 + 0.5 * spacing_y, y1, spacing_y)
     rr, yy = np.meshgrid(r, y)
-    return rr.ravel(), yy.ravel(), np.full(rr.size, spacing)
+    return rr.ravel(), yy.ravel(), np.full(rr.size, np.sqrt(spacing * spacing_y))
 
 
 def write_snapshot(path):
-    parts = [lattice(0.0, 0.5, 0.0, 2.0, 0.025), lattice(0.5, 2.0, 0.0, 2.0, 0.1)]
+    parts = [lattice(0.0, 0.5, 0.0, 2.0, 0.025), lattice(0.5, 1.2, 0.0, 2.0, 0.1), lattice(1.2, 2.0, 0.0, 2.0, 0.1, 0.05)]
     r, y, side = (np.concatenate(a) for a in zip(*parts))
     in_wall = (r > 0.3) & (r < 0.32) & (y > 1.2)
     r, y, side = r[~in_wall], y[~in_wall], side[~in_wall]
