@@ -48,8 +48,9 @@ set_tests_properties(RenderSigmaRy.TimeWindowAndExcludedBody PROPERTIES FIXTURES
   PASS_REGULAR_EXPRESSION
   "sigma_ry in window: -2\\.4 to 4\\.9 kPa \\(1050 particles\\)\n[^\n]*\n[^\n]*\npixel at \\(0\\.95, 0\\.95\\): red [^\n]*\npixel at \\(0\\.5, 0\\.8\\): white \\(RGB 255 255 255\\)\n[^\n]*/sigma_ry_top\\.png\n")
 # A graded snapshot (0.025 m particles beside 0.1 m and 0.1 by 0.05 m ones, a thin pile wall;
-# volumes per radian): the soil's bounding box covered (> 99 % of its pixels coloured; one-spacing points covered 34 %), the
-# axes labelled in m, the colour bar in kPa and symmetric, the pile grey and its tip marked.
+# volumes per radian): the soil's bounding box covered (> 99 % of its pixels coloured; points one
+# spacing wide, as drawn before, covered 34 %), the axes labelled in m, the colour bar in kPa and
+# symmetric, the pile grey and its tip marked.
 add_test(NAME RenderSigmaRy.GradedSoilCoveredWithLabelledAxes
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/render_sigma_ry_test.py
                  ${CMAKE_CURRENT_BINARY_DIR}/render_sigma_ry)
