@@ -12,8 +12,9 @@ cmake --build --preset release -j "$(nproc)" --target mpile
 out=out/gdp_quick
 build/release/bin/mpile run cases/monopile/gdp_quick.toml --out "$out" "$@"
 /usr/bin/python3 tools/plot_monopile.py "$out" --out "$out/figures" --table 0.05,0.1
-# Body 3 is the pile (bodies in the order [monopile] builds them); it is drawn grey.
-xvfb-run -a /usr/bin/python3 tools/render_sigma_ry.py "$out/particles.pvd" --last \
+# Body 3 is the pile (bodies in the order [monopile] builds them); it is drawn grey, outlined,
+# with its tip's depth marked.
+/usr/bin/python3 tools/render_sigma_ry.py "$out/particles.pvd" --last \
   --out "$out/figures/sigma_ry.png" --window 0 1.5 5.5 10.5 --pile-body 3 \
   --title "GDP quick: sigma_ry at the last snapshot"
 cat <<MESSAGE
