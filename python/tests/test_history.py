@@ -143,3 +143,16 @@ def test_real_run(real_run):
     with h5py.File(real_run / "history.h5", "r") as raw:
         for name in ("energy/kinetic", "bodies/incline/u_y", "reactions/incline/slope/F_r"):
             np.testing.assert_array_equal(ds[name].values, raw[name][:])
+
+
+def test_xarray_alone_reads_a_group_on_the_shared_time(real_run):
+    # The root of history.h5 holds time, step, dt, phase and wall_time; each group's series are
+    # read with group=... (docs/case-format.md says so), on the one dimension time, equal to what
+    # mpile.open_history gathers from every group.
+    xarray = pytest.importorskip("xarray")
+    with xarray.open_dataset(real_run / "history.h5", engine="h5netcdf") as root:
+        assert set(root.variables) == {"time", "step", "dt", "phase", "wall_time"}
+    with xarray.open_dataset(real_run / "history.h5", engine="h5netcdf", group="energy") as energy:
+        assert energy["kinetic"].dims == ("time",)
+        kinetic = energy["kinetic"].values
+    np.testing.assert_array_equal(kinetic, mpile.open_history(real_run)["energy/kinetic"].values)
