@@ -21,7 +21,7 @@ constexpr double stiffest = 1.2e12;      // Pa: diamond
 constexpr double largest_friction = 1.2; // mu: rough steel on dense sand stays below tan 45 deg
 constexpr double smallest_p_ref = 1e3;   // Pa: p_ref is 100 kPa by convention (Schanz et al. 1999)
 constexpr double smallest_torque = 1e3;  // N m/rad: GDP piles take hundreds of kN m/rad
-constexpr double largest_gravity = 3000.0; // m/s^2: 300 g, beyond geotechnical centrifuges
+constexpr double largest_gravity = 6000.0; // m/s^2: 600 g, beyond geotechnical centrifuges
 constexpr double smallest_gravity = 1.0;   // m/s^2: below the Moon's 1.62
 
 /// The moduli among a material's parameters (Pa).
@@ -182,7 +182,7 @@ void warn_implausible_gravity(const TomlTable& table, const std::array<double, 2
   if (magnitude > largest_gravity) {
     add(warnings, CaseWarning::Kind::units, table, "gravity",
         "|g| = " + format_number(magnitude) +
-            " m/s^2 is more than 300 g, beyond any geotechnical centrifuge: did you mean " +
+            " m/s^2 is more than 600 g, beyond any geotechnical centrifuge: did you mean " +
             format_number(magnitude / 1e3) + " (mm/s^2 given)?");
   } else if (magnitude > 0.0 && magnitude < smallest_gravity) {
     add(warnings, CaseWarning::Kind::units, table, "gravity",
