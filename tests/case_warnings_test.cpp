@@ -64,6 +64,19 @@ TEST(CaseWarnings, AFrictionCoefficientGivenAsAnAngle) {
                      "did you mean tan(21.8 deg) = 0.40?");
 }
 
+TEST(CaseWarnings, AContactFrictionGivenAsAnAngle) {
+  const CaseSpec spec =
+      read_case_file((source / "cases/verification/v7_block_on_incline.toml").string(),
+                     {"contact.0.friction=21.8"});
+  ASSERT_EQ(spec.warnings.size(), 1u);
+  EXPECT_NE(
+      spec.warnings[0].text.find("friction = 21.8 is a coefficient mu = tan(delta), above any "
+                                 "soil on steel or soil (0 to 1.2): did you mean tan(21.8 "
+                                 "deg) = 0.40?"),
+      std::string::npos)
+      << spec.warnings[0].text;
+}
+
 TEST(CaseWarnings, ADensityInGramsPerCubicCentimetre) {
   expect_one_warning(gdp_edited("density = 1656.25", "density = 1.65625"),
                      "case.toml:21: materials.sand.density: ",
