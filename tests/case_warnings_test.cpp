@@ -112,9 +112,11 @@ TEST(CaseWarnings, AModulusInKilopascals) {
 }
 
 TEST(CaseWarnings, AFrictionAngleInRadians) {
+  // On a Mohr-Coulomb pile material (Hardening Soil refuses the sand's k0_nc with phi in radians).
   expect_one_warning(
-      gdp_edited("friction_angle = 37.5", "friction_angle = 0.6545"),
-      "case.toml:19: materials.sand.friction_angle: ", "did you mean 0.6545 rad = 37.5 degrees?");
+      gdp_edited("type = \"linear_elastic\"",
+                 "type = \"mohr_coulomb\"\ncohesion = 0.0\nfriction_angle = 0.6545"),
+      "case.toml:26: materials.steel.friction_angle: ", "did you mean 0.6545 rad = 37.5 degrees?");
 }
 
 TEST(CaseWarnings, AScaledMaterialIsNotJudged) {
