@@ -3,6 +3,7 @@
 #include "engine/materials/undrained_soil.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
+#include "io/case_warnings.hpp"
 #include "io/monitor_points.hpp"
 #include "io/plausibility.hpp"
 #include "solver/explicit_solver.hpp"
@@ -181,6 +182,10 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
     }
   } catch (const std::exception&) {
     return refuse_case(err, options.case_path);
+  }
+  print_case_warnings(err, spec.warnings, options.strict);
+  if (options.strict && refused_when_strict(spec.warnings)) {
+    return exit_bad_input;
   }
   out << spec.file << ": " << spec.title << " ("
       << (spec.mode == GeometryMode::axisymmetric ? "axisymmetric" : "plane strain") << ")\n";

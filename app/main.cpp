@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
   run->add_option("--stop-after", run_options.stop_after_steps,
                   "stop after N steps as if interrupted, writing a checkpoint")
       ->check(CLI::PositiveNumber);
+  const char* strict_help = "refuse the case (exit status 2) on any plausibility warning of units "
+                            "(a torque in kN m, a density in g/cm^3, ...) instead of printing it";
+  run->add_flag("--strict", run_options.strict, strict_help);
 
   auto* check = app.add_subcommand("check", "validate a case and estimate its cost");
   check->add_option("case", run_options.case_path, "the case file (TOML)")->required();
@@ -65,6 +68,7 @@ int main(int argc, char** argv) {
                    "run the case for this many seconds of wall time (in a temporary directory) "
                    "and estimate its run time from how far it got")
       ->check(finite_positive_seconds);
+  check->add_flag("--strict", run_options.strict, strict_help);
 
   mpile::SweepOptions sweep_options;
   auto* sweep = app.add_subcommand(

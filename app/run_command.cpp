@@ -4,6 +4,7 @@
 #include "app/run_observers.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
+#include "io/case_warnings.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history_writer.hpp"
 #include "io/monitor_points.hpp"
@@ -124,6 +125,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   } catch (const std::exception&) {
     return refuse_case(err, options.case_path);
   }
+  // Before anything is written: with --strict a likely slip of units refuses the run.
+  print_case_warnings(err, spec.warnings, options.strict);
+  if (options.strict && refused_when_strict(spec.warnings)) {
+    return exit_bad_input;
+  }
 
   RunLog log(&out);
   RunProgress progress = restarting ? restored.progress : RunProgress{};
@@ -211,6 +217,9 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
                 (restarting ? "continuing " + spec.file + " from " + options.restart
                             : "running " + spec.file) +
                 " on " + std::to_string(options.threads) + " threads");
+    // The warnings printed as the run began, beside its outputs where they are read.
+    print_case_warnings(log_file, spec.warnings, false);
+    log_file.flush();
   }
 
   const OutputSpec& output = spec.output;

@@ -6,6 +6,7 @@
 #include "io/case_builder.hpp"
 #include "io/case_composition.hpp"
 #include "io/case_spec.hpp"
+#include "io/case_warnings.hpp"
 #include "io/dataset_name.hpp"
 #include "io/monopile_reader.hpp"
 #include "io/region_reader.hpp"
@@ -228,6 +229,7 @@ FaceCondition read_face(TomlTable& table, const std::string& key) {
 void read_materials(TomlTable& top, CaseSpec& spec) {
   for (auto& [name, table] : top.named_tables("materials")) {
     spec.materials.push_back(read_material_table(table, name));
+    warn_implausible_material(table, spec.materials.back(), spec.warnings);
   }
   if (spec.materials.empty()) {
     top.missing("materials", "at least one [materials.<name>] table");
@@ -327,7 +329,8 @@ std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
 
 /// The drive keys of a rigid body's table or a phase's `drive`: per DOF (RigidDof order) a velocity
 /// or a force function, or neither (free).
-std::array<std::optional<RigidDrive>, 3> read_drives(TomlTable& table, const CaseSpec& spec) {
+std::array<std::optional<RigidDrive>, 3> read_drives(TomlTable& table, const CaseSpec& spec,
+                                                     std::vector<CaseWarning>& warnings) {
   const bool plane = spec.mode == GeometryMode::plane_strain;
   const char* velocity_keys[] = {"velocity_r", "velocity_y", "angular_velocity"};
   const char* force_keys[] = {"force_r", "force_y", "torque"};
@@ -348,6 +351,9 @@ std::array<std::optional<RigidDrive>, 3> read_drives(TomlTable& table, const Cas
       drive.kind = velocity ? RigidDrive::Kind::velocity : RigidDrive::Kind::force;
       drive.function = read_time_function(table, velocity ? velocity_keys[d] : force_keys[d]);
       drives[d] = drive;
+      if (d == RIGID_ROTATION && force) {
+        warn_implausible_torque(table, force_keys[d], plane ? "N m/m" : "N m/rad", warnings);
+      }
     }
   }
   return drives;
@@ -355,7 +361,8 @@ std::array<std::optional<RigidDrive>, 3> read_drives(TomlTable& table, const Cas
 
 /// Reads a rigid body's drives (and mass and inertia unless a [monopile] table has derived them
 /// from the whole pile already).
-void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec) {
+void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec,
+                     std::vector<CaseWarning>& warnings) {
   RigidSpec rigid = body.rigid.value_or(RigidSpec{});
   const bool derived = body.rigid.has_value();
   const bool plane = spec.mode == GeometryMode::plane_strain;
@@ -372,7 +379,7 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec) {
   if (table.has(inertia_key)) {
     rigid.inertia = table.number(inertia_key);
   }
-  rigid.drive = read_drives(table, spec);
+  rigid.drive = read_drives(table, spec, warnings);
   rigid.phase = read_phase_reference(table, spec);
   table.finish();
   body.rigid = rigid;
@@ -393,6 +400,7 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
       }
     }
     contact.friction = table.number("friction");
+    warn_implausible_friction(table, "friction", contact.friction, spec.warnings);
     contact.adhesion = table.number("adhesion");
     contact.outline = table.string("normals") == "outline";
     if (contact.outline) {
@@ -601,6 +609,7 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   if (table->has("gravity")) {
     const auto g = table->numbers("gravity", 2);
     s.gravity = {g[0], g[1]};
+    warn_implausible_gravity(*table, {g[0], g[1]}, spec.warnings);
   }
   s.block_cells = static_cast<int>(table->integer("block_cells"));
   if (table->has("shape_functions")) {
@@ -750,7 +759,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     if (std::optional<TomlTable> drive = table.optional_table("drive")) {
       PhaseDrive d;
       d.body = read_rigid_body_name(*drive, spec, declared_rigid, "");
-      d.drive = read_drives(*drive, spec);
+      d.drive = read_drives(*drive, spec, spec.warnings);
       drive->finish();
       phase.drive = d;
     }
@@ -1185,7 +1194,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     check_absorbing_phase(*absorbing_table, spec);
   }
   for (auto& [index, table] : rigid_tables) {
-    read_rigid_body(table, spec.bodies[index], spec);
+    read_rigid_body(table, spec.bodies[index], spec, spec.warnings);
   }
   read_contacts(top, spec);
   read_motions_and_loads(top, spec, axes);

@@ -163,6 +163,16 @@ struct MovingMeshSpec {
   std::optional<std::array<double, 2>> stretch;
 };
 
+/// A value that reads but is likely a mistake (io/case_warnings.hpp): "file:line: key: message".
+struct CaseWarning {
+  enum class Kind {
+    units,     // outside what any soil, steel or installation uses: most likely the wrong unit
+    resolution // a mesh that resolves less than the results need: a note, never an error
+  };
+  Kind kind = Kind::units;
+  std::string text;
+};
+
 struct CaseSpec {
   std::string file;
   std::string text;     // the case file's own text
@@ -193,6 +203,8 @@ struct CaseSpec {
   SolverSettings solver;
   std::vector<PhaseSpec> phases;
   OutputSpec output;
+  /// What the reader found implausible but readable, in the order read.
+  std::vector<CaseWarning> warnings;
 
   double end_time() const; // sum of the phase durations (the longest the run can take)
 };

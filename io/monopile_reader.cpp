@@ -3,6 +3,7 @@
 #include "io/monopile_reader.hpp"
 
 #include "io/absorbing_reader.hpp"
+#include "io/case_warnings.hpp"
 
 #include "cases/monopile/monopile_geometry.hpp"
 
@@ -53,12 +54,14 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
     *key.value = table.number(key.name);
   }
   p.wall_cells = static_cast<int>(table.integer("wall_cells"));
+  note_one_cell_wall(table, p.wall_cells, spec.warnings);
   const MaterialSpec& soil = material_named(table, spec, "soil_material");
   const MaterialSpec& pile_material = material_named(table, spec, "pile_material");
   const long per_direction = table.integer("particles_per_cell");
   ContactSpec contact;
   contact.structure = "pile";
   contact.friction = table.number("friction");
+  warn_implausible_friction(table, "friction", contact.friction, spec.warnings);
   contact.adhesion = table.number("adhesion");
   // The pile head is above the ground: its top edge is not a contact surface.
   contact.surfaces = {"tip", "external_shaft", "", "internal_shaft"};

@@ -1,0 +1,232 @@
+// Plausibility warnings: the bounds are generous (a factor of ten or more beyond the softest,
+// lightest or weakest of their kind), so that a warning means a unit, not an unusual soil.
+#include "io/case_warnings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <numbers>
+#include <ostream>
+#include <sstream>
+
+namespace mpile {
+
+namespace {
+
+// The bounds, each with where it comes from (docs/case-format.md, "Plausibility warnings").
+constexpr double lightest = 100.0;       // kg/m^3: dry soils are 1 000 and more, peat about 1 000
+constexpr double heaviest = 22600.0;     // kg/m^3: osmium, the densest element
+constexpr double softest = 1e5;          // Pa: a tenth of a very soft clay's 1 MPa
+constexpr double stiffest = 1.2e12;      // Pa: diamond
+constexpr double largest_friction = 1.2; // mu: rough steel on dense sand stays below tan 45 deg
+constexpr double smallest_p_ref = 1e3;   // Pa: p_ref is 100 kPa by convention (Schanz et al. 1999)
+constexpr double smallest_torque = 1e3;  // N m/rad: GDP piles take hundreds of kN m/rad
+constexpr double largest_gravity = 6000.0; // m/s^2: 600 g, beyond geotechnical centrifuges
+constexpr double smallest_gravity = 1.0;   // m/s^2: below the Moon's 1.62
+
+/// The moduli among a material's parameters (Pa).
+constexpr const char* modulus_keys[] = {"young_modulus", "e50_ref", "eoed_ref", "eur_ref"};
+
+void add(std::vector<CaseWarning>& warnings, CaseWarning::Kind kind, const TomlTable& table,
+         const std::string& key, const std::string& message) {
+  warnings.push_back({kind, table.file_of(key) + ":" + std::to_string(table.line_of(key)) + ": " +
+                                table.key_path(key) + ": " + message});
+}
+
+std::string fixed(double x, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << x;
+  return s.str();
+}
+
+void warn_density(const TomlTable& table, double density, std::vector<CaseWarning>& warnings) {
+  std::string message = "density = " + format_number(density) + " kg/m^3";
+  if (density < lightest) {
+    message += " is lighter than any soil or steel (1 000 to 2 600 for soils, 7 850 for steel)";
+    const bool grams = density * 1e3 >= 1e3 && density * 1e3 <= heaviest;
+    const bool unit_weight = density >= 10.0 && density <= 30.0;
+    if (grams) {
+      message += ": did you mean " + format_number(density * 1e3) + " (g/cm^3 given)";
+    }
+    if (unit_weight) {
+      message += std::string(grams ? ", or " : ": did you mean ") +
+                 format_number(std::round(density * 1e3 / 9.81)) +
+                 " (a unit weight in kN/m^3 given)";
+    }
+    message += grams || unit_weight ? "?" : "";
+  } else if (density > heaviest) {
+    message += " is heavier than osmium (22 600), the densest element";
+    if (density / 1e3 >= 1e3) {
+      message += ": did you mean " + format_number(density / 1e3) + " (g/m^3 given)?";
+    }
+  } else {
+    return;
+  }
+  add(warnings, CaseWarning::Kind::units, table, "density", message);
+}
+
+void warn_modulus(const TomlTable& table, const std::string& key, double modulus,
+                  std::vector<CaseWarning>& warnings) {
+  std::string message = key + " = " + format_number(modulus) + " Pa";
+  if (modulus < softest) {
+    // kPa when that reaches a soil's stiffness, else MPa.
+    const bool kilo = modulus * 1e3 >= 1e6;
+    message += " is below any soil's (very soft clay about 1 MPa, dense sand up to 2 GPa): did "
+               "you mean " +
+               format_number(modulus) + (kilo ? " kPa = " : " MPa = ") +
+               format_number(modulus * (kilo ? 1e3 : 1e6)) + "?";
+  } else if (modulus > stiffest) {
+    message += " is stiffer than diamond (1.2e12 Pa); steel is 2.1e11";
+  } else {
+    return;
+  }
+  add(warnings, CaseWarning::Kind::units, table, key, message);
+}
+
+bool scaled(const MaterialSpec& material) {
+  const auto& p = material.parameters;
+  const auto density = p.find("density");
+  if (density == p.end() || density->second >= lightest) {
+    return false;
+  }
+  return std::all_of(std::begin(modulus_keys), std::end(modulus_keys), [&](const char* key) {
+    const auto found = p.find(key);
+    return found == p.end() || found->second < 1e3;
+  });
+}
+
+/// The largest magnitude a drive's value reaches as written, or 0 when it gives none.
+double largest_value(const TomlValue& value) {
+  const auto number = [](const TomlValue& v) {
+    return v.is_integer() ? static_cast<double>(v.as_integer())
+                          : (v.is_floating() ? v.as_floating() : 0.0);
+  };
+  if (!value.is_table()) {
+    return std::abs(number(value));
+  }
+  const auto& table = value.as_table();
+  double largest = 0.0;
+  for (const char* key : {"value", "amplitude"}) {
+    if (const auto found = table.find(key); found != table.end()) {
+      largest = std::max(largest, std::abs(number(found->second)));
+    }
+  }
+  if (const auto points = table.find("points");
+      points != table.end() && points->second.is_array()) {
+    for (const TomlValue& point : points->second.as_array()) {
+      if (point.is_array() && point.as_array().size() == 2) {
+        largest = std::max(largest, std::abs(number(point.as_array()[1])));
+      }
+    }
+  }
+  return largest;
+}
+
+} // namespace
+
+void warn_implausible_material(const TomlTable& table, const MaterialSpec& material,
+                               std::vector<CaseWarning>& warnings) {
+  if (scaled(material)) {
+    return;
+  }
+  const auto& p = material.parameters;
+  if (const auto density = p.find("density"); density != p.end()) {
+    warn_density(table, density->second, warnings);
+  }
+  for (const char* key : modulus_keys) {
+    if (const auto modulus = p.find(key); modulus != p.end()) {
+      warn_modulus(table, key, modulus->second, warnings);
+    }
+  }
+  // An angle in radians: soils' friction angles lie between about 15 and 50 degrees.
+  if (const auto phi = p.find("friction_angle");
+      phi != p.end() && phi->second > 0.0 && phi->second <= std::numbers::pi / 2.0) {
+    add(warnings, CaseWarning::Kind::units, table, "friction_angle",
+        "friction_angle = " + format_number(phi->second) +
+            " degrees is below any soil's (15 to 50 degrees): did you mean " +
+            format_number(phi->second) +
+            " rad = " + fixed(phi->second * 180.0 / std::numbers::pi, 1) + " degrees?");
+  }
+  if (const auto p_ref = p.find("p_ref"); p_ref != p.end() && p_ref->second < smallest_p_ref) {
+    add(warnings, CaseWarning::Kind::units, table, "p_ref",
+        "p_ref = " + format_number(p_ref->second) +
+            " Pa is far below the 100 kPa taken by convention (Schanz et al. 1999): did you mean " +
+            format_number(p_ref->second) + " kPa = " + format_number(p_ref->second * 1e3) + "?");
+  }
+}
+
+void warn_implausible_friction(const TomlTable& table, const std::string& key, double friction,
+                               std::vector<CaseWarning>& warnings) {
+  if (friction <= largest_friction) {
+    return;
+  }
+  std::string message =
+      key + " = " + format_number(friction) +
+      " is a coefficient mu = tan(delta), above any soil on steel or soil (0 to " +
+      fixed(largest_friction, 1) + ")";
+  if (friction < 90.0) {
+    message += ": did you mean tan(" + format_number(friction) +
+               " deg) = " + fixed(std::tan(friction * std::numbers::pi / 180.0), 2) + "?";
+  }
+  add(warnings, CaseWarning::Kind::units, table, key, message);
+}
+
+void warn_implausible_gravity(const TomlTable& table, const std::array<double, 2>& gravity,
+                              std::vector<CaseWarning>& warnings) {
+  const double magnitude = std::hypot(gravity[0], gravity[1]);
+  if (gravity[1] > 0.0) {
+    add(warnings, CaseWarning::Kind::units, table, "gravity",
+        "gravity points up (g_y = " + format_number(gravity[1]) + " > 0; y is up): did you mean [" +
+            format_number(gravity[0]) + ", " + format_number(-gravity[1]) + "]?");
+  }
+  if (magnitude > largest_gravity) {
+    add(warnings, CaseWarning::Kind::units, table, "gravity",
+        "|g| = " + format_number(magnitude) +
+            " m/s^2 is more than 600 g, beyond any geotechnical centrifuge: did you mean " +
+            format_number(magnitude / 1e3) + " (mm/s^2 given)?");
+  } else if (magnitude > 0.0 && magnitude < smallest_gravity) {
+    add(warnings, CaseWarning::Kind::units, table, "gravity",
+        "|g| = " + format_number(magnitude) +
+            " m/s^2 is below the Moon's 1.62: did you mean 9.81 (g given as a multiple of "
+            "9.81 m/s^2)?");
+  }
+}
+
+void warn_implausible_torque(TomlTable& table, const std::string& key, const std::string& unit,
+                             std::vector<CaseWarning>& warnings) {
+  const double torque = largest_value(table.raw(key));
+  if (torque <= 0.0 || torque >= smallest_torque) {
+    return;
+  }
+  add(warnings, CaseWarning::Kind::units, table, key,
+      "torque amplitude " + format_number(torque) + " " + unit + " is below 1 k" + unit +
+          ", less than turns any pile in soil (the seed's GDP drives 414.5 and 829 k" + unit +
+          "): did you mean " + format_number(torque) + " k" + unit + " = " +
+          format_number(torque * 1e3) + "?");
+}
+
+void note_one_cell_wall(const TomlTable& table, int wall_cells,
+                        std::vector<CaseWarning>& warnings) {
+  if (wall_cells != 1) {
+    return;
+  }
+  add(warnings, CaseWarning::Kind::resolution, table, "wall_cells",
+      "the wall is one cell wide: tip and shaft forces depend on where the grid lines fall "
+      "(docs/results.md: at 0.1 m the quick jacked tip carries 15.1 kN/rad against 19.0 +- 1.2 "
+      "converged with 3 to 4 cells across the wall); set wall_cells = 3 or more for forces");
+}
+
+bool refused_when_strict(const std::vector<CaseWarning>& warnings) {
+  return std::any_of(warnings.begin(), warnings.end(),
+                     [](const CaseWarning& w) { return w.kind == CaseWarning::Kind::units; });
+}
+
+void print_case_warnings(std::ostream& out, const std::vector<CaseWarning>& warnings, bool strict) {
+  for (const CaseWarning& w : warnings) {
+    const bool units = w.kind == CaseWarning::Kind::units;
+    out << "mpile: " << (units ? (strict ? "error (--strict): " : "warning: ") : "note: ") << w.text
+        << '\n';
+  }
+}
+
+} // namespace mpile

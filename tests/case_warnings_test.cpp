@@ -1,0 +1,230 @@
+// Values that read but are most likely in the wrong unit must be named before the run, with the
+// file, line and key and the likely mistake; --strict refuses them; no shipped case has one.
+#include "app/run_command.hpp"
+#include "io/case_spec.hpp"
+#include "tests/case_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace mpile {
+namespace {
+
+/// The GDP quick case as one file (tests/data/), with the first `from` replaced by `to`.
+std::string gdp_edited(const std::string& from, const std::string& to) {
+  std::string text = read_text(source / "tests/data/gdp_quick_flat.toml");
+  const auto at = text.find(from);
+  if (at == std::string::npos) {
+    throw std::logic_error("test edit does not apply: " + from);
+  }
+  return text.replace(at, from.size(), to);
+}
+
+/// The warnings of units the reader finds in a case text, one per line.
+std::string units_warnings(const std::string& text) {
+  std::string found;
+  for (const CaseWarning& w : read_case_text(text, "case.toml").warnings) {
+    if (w.kind == CaseWarning::Kind::units) {
+      found += w.text + "\n";
+    }
+  }
+  return found;
+}
+
+void expect_one_warning(const std::string& text, const std::string& where,
+                        const std::string& says) {
+  const std::string found = units_warnings(text);
+  EXPECT_EQ(found.rfind(where, 0), 0u) << found;
+  EXPECT_NE(found.find(says), std::string::npos) << found;
+  EXPECT_EQ(std::count(found.begin(), found.end(), '\n'), 1) << found;
+}
+
+TEST(CaseWarnings, TheGdpCaseAsShippedHasNone) {
+  EXPECT_EQ(units_warnings(gdp_edited("", "")), "");
+}
+
+TEST(CaseWarnings, ATorqueInKilonewtonMetres) {
+  expect_one_warning(gdp_edited("amplitude = 414500.0", "amplitude = 414.5"),
+                     "case.toml:49: monopile.drive.torque: ",
+                     "torque amplitude 414.5 N m/rad is below 1 kN m/rad");
+  expect_one_warning(gdp_edited("amplitude = 414500.0", "amplitude = 414.5"), "case.toml",
+                     "did you mean 414.5 kN m/rad = 414500?");
+}
+
+TEST(CaseWarnings, AFrictionCoefficientGivenAsAnAngle) {
+  expect_one_warning(
+      gdp_edited("friction = 0.4", "friction = 21.8"),
+      "case.toml:38: monopile.friction: ", "friction = 21.8 is a coefficient mu = tan(delta)");
+  expect_one_warning(gdp_edited("friction = 0.4", "friction = 21.8"), "case.toml",
+                     "did you mean tan(21.8 deg) = 0.40?");
+}
+
+TEST(CaseWarnings, AContactFrictionGivenAsAnAngle) {
+  const CaseSpec spec =
+      read_case_file((source / "cases/verification/v7_block_on_incline.toml").string(),
+                     {"contact.0.friction=21.8"});
+  ASSERT_EQ(spec.warnings.size(), 1u);
+  EXPECT_NE(
+      spec.warnings[0].text.find("friction = 21.8 is a coefficient mu = tan(delta), above any "
+                                 "soil on steel or soil (0 to 1.2): did you mean tan(21.8 "
+                                 "deg) = 0.40?"),
+      std::string::npos)
+      << spec.warnings[0].text;
+}
+
+TEST(CaseWarnings, ADensityInGramsPerCubicCentimetre) {
+  expect_one_warning(gdp_edited("density = 1656.25", "density = 1.65625"),
+                     "case.toml:21: materials.sand.density: ",
+                     "density = 1.65625 kg/m^3 is lighter than any soil or steel");
+  expect_one_warning(gdp_edited("density = 1656.25", "density = 1.65625"), "case.toml",
+                     "did you mean 1656.25 (g/cm^3 given)?");
+  // A unit weight in kN/m^3 is named as well.
+  expect_one_warning(gdp_edited("density = 1656.25", "density = 16.25"), "case.toml",
+                     "or 1656 (a unit weight in kN/m^3 given)?");
+}
+
+TEST(CaseWarnings, AReferencePressureInKilopascals) {
+  expect_one_warning(gdp_edited("p_ref = 100e3", "p_ref = 100"),
+                     "case.toml:18: materials.sand.p_ref: ",
+                     "p_ref = 100 Pa is far below the 100 kPa taken by convention (Schanz et al. "
+                     "1999): did you mean 100 kPa = 100000?");
+}
+
+TEST(CaseWarnings, GravityPointingUp) {
+  expect_one_warning(gdp_edited("gravity = [0.0, -9.81]", "gravity = [0.0, 9.81]"),
+                     "case.toml:53: solver.gravity: ",
+                     "gravity points up (g_y = 9.81 > 0; y is up): did you mean [0, -9.81]?");
+  expect_one_warning(gdp_edited("gravity = [0.0, -9.81]", "gravity = [0.0, -9810.0]"),
+                     "case.toml:53: solver.gravity: ", "did you mean 9.81 (mm/s^2 given)?");
+}
+
+TEST(CaseWarnings, AModulusInKilopascals) {
+  expect_one_warning(gdp_edited("young_modulus = 220e9", "young_modulus = 2e3"),
+                     "case.toml:25: materials.steel.young_modulus: ",
+                     "young_modulus = 2000 Pa is below any soil's");
+  expect_one_warning(gdp_edited("young_modulus = 220e9", "young_modulus = 2e3"), "case.toml",
+                     "did you mean 2000 kPa = 2e+06?");
+}
+
+TEST(CaseWarnings, AFrictionAngleInRadians) {
+  // On a Mohr-Coulomb pile material (Hardening Soil refuses the sand's k0_nc with phi in radians).
+  expect_one_warning(
+      gdp_edited("type = \"linear_elastic\"",
+                 "type = \"mohr_coulomb\"\ncohesion = 0.0\nfriction_angle = 0.6545"),
+      "case.toml:26: materials.steel.friction_angle: ", "did you mean 0.6545 rad = 37.5 degrees?");
+}
+
+TEST(CaseWarnings, AScaledMaterialIsNotJudged) {
+  // The verification cases' bar: E = 100 Pa and rho = 1 kg/m^3, units of its own.
+  const CaseSpec spec = read_case_file((source / "cases/verification/single_point.toml").string());
+  EXPECT_TRUE(spec.warnings.empty());
+}
+
+/// A case file written for the command tests: the GDP case with its sand's density in g/cm^3.
+std::filesystem::path density_in_grams(const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path() / name;
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const auto path = directory / "case.toml";
+  std::ofstream(path) << gdp_edited("density = 1656.25", "density = 1.65625");
+  return path;
+}
+
+TEST(CaseWarnings, CheckPrintsThemAndStrictRefusesWithStatusTwo) {
+  const auto path = density_in_grams("mpile_warnings_check");
+  RunOptions options;
+  options.case_path = path.string();
+  std::ostringstream out, err;
+  ASSERT_EQ(check_case(options, out, err), exit_success) << err.str();
+  EXPECT_NE(err.str().find("mpile: warning: " + path.string() + ":21: materials.sand.density: "),
+            std::string::npos)
+      << err.str();
+  options.strict = true;
+  std::ostringstream strict_out, strict_err;
+  EXPECT_EQ(check_case(options, strict_out, strict_err), exit_bad_input);
+  EXPECT_NE(strict_err.str().find("mpile: error (--strict): " + path.string() + ":21:"),
+            std::string::npos)
+      << strict_err.str();
+}
+
+TEST(CaseWarnings, StrictRefusesARunBeforeAnythingIsWritten) {
+  const auto path = density_in_grams("mpile_warnings_run");
+  RunOptions options;
+  options.case_path = path.string();
+  options.output_directory = (path.parent_path() / "out").string();
+  options.strict = true;
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("materials.sand.density"), std::string::npos) << err.str();
+  EXPECT_FALSE(std::filesystem::exists(path.parent_path() / "out"));
+}
+
+TEST(CaseWarnings, ARunWritesThemToItsLog) {
+  const auto path = density_in_grams("mpile_warnings_log");
+  RunOptions options;
+  options.case_path = path.string();
+  options.output_directory = (path.parent_path() / "out").string();
+  options.stop_after_steps = 1;
+  std::ostringstream out, err;
+  ASSERT_EQ(run_case(options, out, err), exit_interrupted) << err.str();
+  EXPECT_NE(err.str().find("mpile: warning: " + path.string() + ":21: materials.sand.density"),
+            std::string::npos)
+      << err.str();
+  const std::string log = read_text(path.parent_path() / "out" / "run.log");
+  EXPECT_NE(log.find("mpile: warning: " + path.string() + ":21: materials.sand.density"),
+            std::string::npos)
+      << log;
+}
+
+// The deliberately extreme cases of cases/stability/ are left out: they push values to the edge
+// on purpose.
+TEST(CaseWarnings, NoShippedCaseHasOne) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(source / "cases")) {
+    const std::string folder = entry.path().parent_path().filename().string();
+    if (entry.path().extension() != ".toml" || folder == "element_tests" || folder == "sweeps" ||
+        folder == "base" || folder == "stability") {
+      continue;
+    }
+    ++files;
+    const CaseSpec spec = read_case_file(entry.path().string());
+    for (const CaseWarning& w : spec.warnings) {
+      EXPECT_NE(w.kind, CaseWarning::Kind::units) << w.text;
+    }
+  }
+  EXPECT_GE(files, 20);
+}
+
+TEST(CaseWarnings, AOneCellWallIsANoteThatStrictLetsPass) {
+  for (const char* name : {"jacked_quick", "gdp_quick", "impact_paper", "gdp829_paper"}) {
+    const CaseSpec spec =
+        read_case_file((source / "cases/monopile" / (std::string(name) + ".toml")).string());
+    ASSERT_EQ(spec.warnings.size(), 1u) << name;
+    EXPECT_EQ(spec.warnings[0].kind, CaseWarning::Kind::resolution);
+    EXPECT_NE(spec.warnings[0].text.find("monopile.wall_cells: the wall is one cell wide: tip and "
+                                         "shaft forces depend on where the grid lines fall"),
+              std::string::npos)
+        << spec.warnings[0].text;
+  }
+  // As the resolution study sets it (cases/sweeps/jacked_resolution.toml).
+  const CaseSpec resolved = read_case_file((source / "cases/monopile/jacked_quick.toml").string(),
+                                           {"monopile.band_below=0.5", "monopile.band_above=0.5",
+                                            "monopile.travel=0.4", "monopile.wall_cells=3"});
+  EXPECT_TRUE(resolved.warnings.empty());
+
+  RunOptions options;
+  options.case_path = (source / "cases/monopile/jacked_quick.toml").string();
+  options.strict = true;
+  std::ostringstream out, err;
+  EXPECT_EQ(check_case(options, out, err), exit_success) << err.str();
+  EXPECT_NE(err.str().find("mpile: note: "), std::string::npos) << err.str();
+  EXPECT_EQ(err.str().find("--strict"), std::string::npos) << err.str();
+}
+
+} // namespace
+} // namespace mpile
