@@ -27,10 +27,9 @@ import sys
 
 import h5py
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonCore import VTK_INT, vtkPoints
-from vtkmodules.vtkCommonDataModel import VTK_VERTEX, vtkCellArray, vtkUnstructuredGrid
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from point_snapshot import write_point_snapshot  # noqa: E402
 
 FORCES_KN = {"tip": (2.0, 50.0, -4.0), "external_shaft": (-20.0, 8.0, -6.0),
              "internal_shaft": (10.0, 4.0, -3.0)}
@@ -85,24 +84,8 @@ def write_snapshot(path, scale):
     r, y = (a.ravel() for a in np.meshgrid(centres, centres))
     pile = (r > 0.4) & (r < 0.6) & (y > 0.6)
     sigma_ry = np.where(pile, 1e9, scale * 1e4 * (r + y - 1.0))
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.column_stack([r, y, np.zeros_like(r)]), deep=True))
-    cells = vtkCellArray()
-    for i in range(len(r)):
-        cells.InsertNextCell(1, [i])
-    grid = vtkUnstructuredGrid()
-    grid.SetPoints(points)
-    grid.SetCells(VTK_VERTEX, cells)
-    for name, values, kind in [("sigma_ry", sigma_ry, None), ("body", pile.astype(np.int32), VTK_INT),
-                               ("material", pile.astype(np.int32), VTK_INT)]:
-        array = numpy_to_vtk(values, deep=True, array_type=kind)
-        array.SetName(name)
-        grid.GetPointData().AddArray(array)
-    writer = vtkXMLUnstructuredGridWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(grid)
-    if writer.Write() != 1:
-        sys.exit(f"make_monopile_history: cannot write {path}")
+    write_point_snapshot(path, r, y, {"sigma_ry": sigma_ry, "body": pile.astype(np.int32),
+                                      "material": pile.astype(np.int32)}, "make_monopile_history")
 
 
 def main():

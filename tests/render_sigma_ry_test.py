@@ -25,10 +25,9 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonCore import VTK_INT, vtkPoints
-from vtkmodules.vtkCommonDataModel import VTK_VERTEX, vtkCellArray, vtkUnstructuredGrid
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from point_snapshot import write_point_snapshot  # noqa: E402
 
 TOOL = Path(__file__).resolve().parent.parent / "tools" / "render_sigma_ry.py"
 
@@ -52,23 +51,8 @@ def write_snapshot(path):
     r, y, side = np.concatenate([r, wall_r]), np.concatenate([y, wall_y]), np.concatenate([side, wall_side])
     sigma_ry = np.where(body == 1, 1e9, 2e4 * (r - y))
     volume = side**2 * r  # per radian
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.column_stack([r, y, np.zeros_like(r)]), deep=True))
-    cells = vtkCellArray()
-    for i in range(len(r)):
-        cells.InsertNextCell(1, [i])
-    grid = vtkUnstructuredGrid()
-    grid.SetPoints(points)
-    grid.SetCells(VTK_VERTEX, cells)
-    for name, values, kind in [("sigma_ry", sigma_ry, None), ("volume", volume, None), ("body", body, VTK_INT)]:
-        array = numpy_to_vtk(values, deep=True, array_type=kind)
-        array.SetName(name)
-        grid.GetPointData().AddArray(array)
-    writer = vtkXMLUnstructuredGridWriter()
-    writer.SetFileName(str(path))
-    writer.SetInputData(grid)
-    if writer.Write() != 1:
-        sys.exit(f"render_sigma_ry_test: cannot write {path}")
+    write_point_snapshot(path, r, y, {"sigma_ry": sigma_ry, "volume": volume, "body": body},
+                         "render_sigma_ry_test")
 
 
 def main():
