@@ -11,6 +11,7 @@
 #include <tbb/info.h>
 
 #include <cmath>
+#include <sstream>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -29,6 +30,22 @@ const CLI::Validator finite_positive_seconds(
       return "";
     },
     "SECONDS");
+
+/// A finite number in [low, high] (CLI::Range lets nan through, as CLI::PositiveNumber did).
+CLI::Validator finite_within(double low, double high) {
+  return CLI::Validator(
+      [low, high](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !std::isfinite(x) || !(x >= low && x <= high)) {
+          std::ostringstream s;
+          s << "expected a finite number in [" << low << ", " << high << "], got " << text;
+          return s.str();
+        }
+        return "";
+      },
+      "NUMBER");
+}
 
 } // namespace
 
@@ -121,14 +138,16 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   verify->add_option("--bbar", options.bbar, "B-bar on (1) or off (0); default on");
   verify->add_option("--flip", options.flip_fraction, "FLIP fraction in [0, 1]")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(finite_within(0.0, 1.0));
   verify
       ->add_option("--xpic", options.xpic_order,
                    "XPIC order m (1 = PIC; replaces the FLIP/PIC blend)")
       ->check(CLI::Range(1, mpile::SolverSettings::max_xpic_order));
   verify->add_option("--poisson", options.poisson_ratio, "Poisson ratio for V3 and V5")
-      ->check(CLI::Range(-0.99, 0.4999));
-  verify->add_option("--courant", options.courant_number, "Courant number");
+      ->check(finite_within(-0.99, 0.4999));
+  // The solver settings bound the Courant number further; a non-finite one never reaches them.
+  verify->add_option("--courant", options.courant_number, "Courant number")
+      ->check(finite_within(1e-6, 2.0));
   std::string scheme;
   verify->add_option("--scheme", scheme, "musl (default) or usl")
       ->check(CLI::IsMember({"musl", "usl"}));

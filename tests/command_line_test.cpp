@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace mpile {
 namespace {
@@ -21,6 +23,25 @@ TEST(CommandLine, APilotOfNanOrInfiniteSecondsIsRefused) {
                   "--pilot: expected a finite number of seconds above 0, got " + seconds + "\n", 0),
               0u)
         << check.err;
+  }
+}
+
+TEST(CommandLine, VerifyOptionsRefuseNanAndValuesOutOfRange) {
+  // CLI::Range let nan through: `verify --poisson nan` ran, `--flip nan` failed later with exit 1,
+  // and --courant had no check.
+  const auto directory = fresh_directory("verify_options");
+  for (const auto& [option, value] :
+       std::vector<std::pair<std::string, std::string>>{{"--flip", "nan"},
+                                                        {"--flip", "1.5"},
+                                                        {"--poisson", "nan"},
+                                                        {"--poisson", "0.5"},
+                                                        {"--courant", "nan"},
+                                                        {"--courant", "inf"},
+                                                        {"--courant", "0"}}) {
+    const Finished verify = run_mpile({"verify", "V2", option, value}, 0, directory / "err.txt");
+    ASSERT_TRUE(verify.exited) << option << " " << value;
+    EXPECT_EQ(verify.status, 2) << option << " " << value;
+    EXPECT_EQ(verify.err.rfind(option + ": expected a finite number in [", 0), 0u) << verify.err;
   }
 }
 
