@@ -11,10 +11,10 @@
 #include <tbb/info.h>
 
 #include <cmath>
-#include <sstream>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 namespace {
 
