@@ -999,10 +999,11 @@ void read_pore_water(TomlTable& table, MaterialSpec& material) {
     drainage = table.string("drainage");
   }
   const auto& names = drainage_names();
-  if (std::find(names.begin(), names.end(), drainage) == names.end()) {
+  const auto named = std::find(names.begin(), names.end(), drainage);
+  if (named == names.end()) {
     table.fail("drainage", "'" + drainage + "' is not a drainage type: drained or undrained");
   }
-  material.water.drainage = drainage_from_name(drainage);
+  material.water.drainage = static_cast<Drainage>(named - names.begin());
   for (const PoreWaterParameter& parameter : pore_water_parameters()) {
     if (!table.has(parameter.name)) {
       continue;

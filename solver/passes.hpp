@@ -31,8 +31,8 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
 /// Each material's Material::pore_pressure_index (-1 for a dry or drained one), by material.
 std::vector<int> pore_pressure_slots(const Scene& scene);
 
-/// With contact and undrained soil, the pore water's share of field 0's internal force
-/// (Grid::pore_force); otherwise clears it (solver/pore_pressure_to_grid.cpp).
+/// The pore water's share of field 0's internal force (Grid::pore_force), for a scene with
+/// contact and undrained soil (solver/pore_pressure_to_grid.cpp).
 template <GeometryMode mode, ShapeFunctions shape>
 void map_pore_force(Scene& scene, const ParticleBins& bins);
 

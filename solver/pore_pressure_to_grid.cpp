@@ -3,13 +3,11 @@
 // state at Material::pore_pressure_index); writes Grid::pore_force = -sum V p grad N (with the
 // hoop term -sum V p N / r on the r row in axisymmetry) by a colored scatter: the same sum the
 // particle-to-grid pass makes of the total stress, taken of p 1 alone, so that the water's share of
-// a node's normal force is what the grid gives it, not a pressure times an area. Runs only in a
-// scene with contact and undrained soil; otherwise it leaves the field empty.
+// a node's normal force is what the grid gives it, not a pressure times an area. The solver runs it
+// only in a scene with contact and undrained soil; otherwise the field stays empty.
 #include "engine/shape_functions.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
-
-#include <algorithm>
 
 namespace mpile::passes {
 
@@ -25,11 +23,6 @@ template <GeometryMode mode, ShapeFunctions shape>
 void map_pore_force(Scene& scene, const ParticleBins& bins) {
   Grid& grid = scene.grid;
   const std::vector<int> slots = pore_pressure_slots(scene);
-  const bool saturated = std::any_of(slots.begin(), slots.end(), [](int s) { return s >= 0; });
-  if (!scene.has_contact() || !saturated) {
-    grid.pore_force.clear();
-    return;
-  }
   grid.pore_force.assign(grid.nodes.size(), {0.0, 0.0});
   const Particles& p = scene.particles;
   const ParticleFields fields(grid, scene);

@@ -1,7 +1,5 @@
 #include "engine/materials/pore_water.hpp"
 
-#include <stdexcept>
-
 namespace mpile {
 
 const std::vector<std::string>& drainage_names() {
@@ -9,19 +7,8 @@ const std::vector<std::string>& drainage_names() {
   return names;
 }
 
-Drainage drainage_from_name(std::string_view name) {
-  const auto& names = drainage_names();
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == name) {
-      return static_cast<Drainage>(i);
-    }
-  }
-  throw std::invalid_argument("unknown drainage '" + std::string(name) + "'");
-}
-
 const std::vector<PoreWaterParameter>& pore_water_parameters() {
-  // Water is never in tension large enough to matter here, nor lighter than a gas: the ranges
-  // refuse only what no pore water is.
+  // The ranges refuse only what no pore water is; what is merely implausible is the warnings'.
   static const std::vector<PoreWaterParameter> parameters{
       {"water_density",
        "kg/m^3",
@@ -31,14 +18,13 @@ const std::vector<PoreWaterParameter>& pore_water_parameters() {
       {"water_bulk_modulus",
        "Pa",
        "bulk modulus K_w of the pore water; a smaller one softens the undrained response "
-       "(Skempton's "
-       "B below 1), and `mpile check` prints what it implies",
+       "(Skempton's B below 1), and `mpile check` prints what it implies",
        &PoreWater::bulk_modulus,
        {Bound{0.0, false}, std::nullopt}},
       {"grain_density",
        "kg/m^3",
-       "density rho_s of the grains; with the dry density it gives the porosity n = 1 - rho_d / "
-       "rho_s",
+       "density rho_s of the grains; with the dry density it gives the porosity "
+       "n = 1 - rho_d / rho_s",
        &PoreWater::grain_density,
        {Bound{0.0, false}, std::nullopt}},
   };

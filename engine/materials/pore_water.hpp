@@ -7,21 +7,16 @@
 #include "engine/parameter_range.hpp"
 
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace mpile {
 
-enum class Drainage {
-  drained,  // no pore-water state: effective and total stress are one (today's dry sand)
-  undrained // no flow: the excess pore pressure follows the volumetric strain (PLAXIS's Undrained
-            // A)
-};
+/// drained: no pore-water state, effective and total stress are one (a dry sand); undrained: no
+/// flow, the pore pressure follows the volumetric strain (PLAXIS's Undrained A).
+enum class Drainage { drained, undrained };
 
 /// Drainage names as written in a case file, in enum order.
 const std::vector<std::string>& drainage_names();
-/// The Drainage a name stands for; throws std::invalid_argument for an unknown name.
-Drainage drainage_from_name(std::string_view name);
 
 struct PoreWater {
   Drainage drainage = Drainage::drained;

@@ -39,7 +39,6 @@ public:
   /// undrained bulk modulus, Skempton's B and the undrained Poisson ratio.
   UndrainedResponse response(const Stress& stress, const double* state) const;
 
-  const Material& skeleton() const { return *skeleton_; }
   double porosity() const { return porosity_; }
   /// K_w / n (Pa).
   double water_stiffness() const { return water_stiffness_; }
