@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 
@@ -36,11 +37,14 @@ std::string units_warnings(const std::string& text) {
   return found;
 }
 
+/// One units warning, at `where`, saying each of `says` (the suspicion and the likely mistake).
 void expect_one_warning(const std::string& text, const std::string& where,
-                        const std::string& says) {
+                        std::initializer_list<std::string> says) {
   const std::string found = units_warnings(text);
   EXPECT_EQ(found.rfind(where, 0), 0u) << found;
-  EXPECT_NE(found.find(says), std::string::npos) << found;
+  for (const std::string& part : says) {
+    EXPECT_NE(found.find(part), std::string::npos) << part << "\n" << found;
+  }
   EXPECT_EQ(std::count(found.begin(), found.end(), '\n'), 1) << found;
 }
 
@@ -51,17 +55,14 @@ TEST(CaseWarnings, TheGdpCaseAsShippedHasNone) {
 TEST(CaseWarnings, ATorqueInKilonewtonMetres) {
   expect_one_warning(gdp_edited("amplitude = 414500.0", "amplitude = 414.5"),
                      "case.toml:49: monopile.drive.torque: ",
-                     "torque amplitude 414.5 N m/rad is below 1 kN m/rad");
-  expect_one_warning(gdp_edited("amplitude = 414500.0", "amplitude = 414.5"), "case.toml",
-                     "did you mean 414.5 kN m/rad = 414500?");
+                     {"torque amplitude 414.5 N m/rad is below 1 kN m/rad",
+                      "did you mean 414.5 kN m/rad = 414500?"});
 }
 
 TEST(CaseWarnings, AFrictionCoefficientGivenAsAnAngle) {
   expect_one_warning(
-      gdp_edited("friction = 0.4", "friction = 21.8"),
-      "case.toml:38: monopile.friction: ", "friction = 21.8 is a coefficient mu = tan(delta)");
-  expect_one_warning(gdp_edited("friction = 0.4", "friction = 21.8"), "case.toml",
-                     "did you mean tan(21.8 deg) = 0.40?");
+      gdp_edited("friction = 0.4", "friction = 21.8"), "case.toml:38: monopile.friction: ",
+      {"friction = 21.8 is a coefficient mu = tan(delta)", "did you mean tan(21.8 deg) = 0.40?"});
 }
 
 TEST(CaseWarnings, AContactFrictionGivenAsAnAngle) {
@@ -80,43 +81,41 @@ TEST(CaseWarnings, AContactFrictionGivenAsAnAngle) {
 TEST(CaseWarnings, ADensityInGramsPerCubicCentimetre) {
   expect_one_warning(gdp_edited("density = 1656.25", "density = 1.65625"),
                      "case.toml:21: materials.sand.density: ",
-                     "density = 1.65625 kg/m^3 is lighter than any soil or steel");
-  expect_one_warning(gdp_edited("density = 1656.25", "density = 1.65625"), "case.toml",
-                     "did you mean 1656.25 (g/cm^3 given)?");
+                     {"density = 1.65625 kg/m^3 is lighter than any soil or steel",
+                      "did you mean 1656.25 (g/cm^3 given)?"});
   // A unit weight in kN/m^3 is named as well.
   expect_one_warning(gdp_edited("density = 1656.25", "density = 16.25"), "case.toml",
-                     "or 1656 (a unit weight in kN/m^3 given)?");
+                     {"or 1656 (a unit weight in kN/m^3 given)?"});
 }
 
 TEST(CaseWarnings, AReferencePressureInKilopascals) {
   expect_one_warning(gdp_edited("p_ref = 100e3", "p_ref = 100"),
                      "case.toml:18: materials.sand.p_ref: ",
-                     "p_ref = 100 Pa is far below the 100 kPa taken by convention (Schanz et al. "
-                     "1999): did you mean 100 kPa = 100000?");
+                     {"p_ref = 100 Pa is far below the 100 kPa taken by convention (Schanz et al. "
+                      "1999): did you mean 100 kPa = 100000?"});
 }
 
 TEST(CaseWarnings, GravityPointingUp) {
   expect_one_warning(gdp_edited("gravity = [0.0, -9.81]", "gravity = [0.0, 9.81]"),
                      "case.toml:53: solver.gravity: ",
-                     "gravity points up (g_y = 9.81 > 0; y is up): did you mean [0, -9.81]?");
+                     {"gravity points up (g_y = 9.81 > 0; y is up): did you mean [0, -9.81]?"});
   expect_one_warning(gdp_edited("gravity = [0.0, -9.81]", "gravity = [0.0, -9810.0]"),
-                     "case.toml:53: solver.gravity: ", "did you mean 9.81 (mm/s^2 given)?");
+                     "case.toml:53: solver.gravity: ", {"did you mean 9.81 (mm/s^2 given)?"});
 }
 
 TEST(CaseWarnings, AModulusInKilopascals) {
-  expect_one_warning(gdp_edited("young_modulus = 220e9", "young_modulus = 2e3"),
-                     "case.toml:25: materials.steel.young_modulus: ",
-                     "young_modulus = 2000 Pa is below any soil's");
-  expect_one_warning(gdp_edited("young_modulus = 220e9", "young_modulus = 2e3"), "case.toml",
-                     "did you mean 2000 kPa = 2e+06?");
+  expect_one_warning(
+      gdp_edited("young_modulus = 220e9", "young_modulus = 2e3"),
+      "case.toml:25: materials.steel.young_modulus: ",
+      {"young_modulus = 2000 Pa is below any soil's", "did you mean 2000 kPa = 2e+06?"});
 }
 
 TEST(CaseWarnings, AFrictionAngleInRadians) {
   // On a Mohr-Coulomb pile material (Hardening Soil refuses the sand's k0_nc with phi in radians).
-  expect_one_warning(
-      gdp_edited("type = \"linear_elastic\"",
-                 "type = \"mohr_coulomb\"\ncohesion = 0.0\nfriction_angle = 0.6545"),
-      "case.toml:26: materials.steel.friction_angle: ", "did you mean 0.6545 rad = 37.5 degrees?");
+  expect_one_warning(gdp_edited("type = \"linear_elastic\"",
+                                "type = \"mohr_coulomb\"\ncohesion = 0.0\nfriction_angle = 0.6545"),
+                     "case.toml:26: materials.steel.friction_angle: ",
+                     {"did you mean 0.6545 rad = 37.5 degrees?"});
 }
 
 TEST(CaseWarnings, AScaledMaterialIsNotJudged) {
