@@ -35,6 +35,36 @@ struct alignas(64) GridNode {
 };
 static_assert(sizeof(GridNode) == 64);
 
+/// The pore water of coupled soil at one node (physics.md section 9b), beside field 0's node,
+/// which then holds the skeleton. With m_w a particle's water mass and n its porosity:
+///   during particle-to-grid:  mass = sum N m_w / n (the water's own inertia, rho_w V),
+///                             share = sum N m_w (its part in the mixture's momentum),
+///                             drag = sum N m_w g / k (Darcy's n rho_w g / k V),
+///                             momentum = sum N (m_w / n) w, force = the water's f_ext - f_int,
+///                             skeleton_momentum = sum N m_w v (to take out of field 0's sum);
+///                             theta: the same times r (momentum) and r^2 (the three inertias)
+///   after the water update:   momentum = w^{n+1}, force = w^{n+1} - w^n (theta: angular).
+struct LiquidNode {
+  double mass = 0.0;
+  double share = 0.0;
+  double drag = 0.0;
+  double momentum[3] = {0.0, 0.0, 0.0};
+  double force[3] = {0.0, 0.0, 0.0};
+  double skeleton_momentum[3] = {0.0, 0.0, 0.0};
+  double inertia = 0.0;
+  double share_inertia = 0.0;
+  double drag_inertia = 0.0;
+  /// Field 0's mass and rotational inertia before couple_phases made them effective: the weights
+  /// the MUSL remap of the skeleton's velocity divides by.
+  double mixture_mass = 0.0;
+  double mixture_inertia = 0.0;
+
+  double* velocity() { return momentum; }
+  const double* velocity() const { return momentum; }
+  double* velocity_increment() { return force; }
+  const double* velocity_increment() const { return force; }
+};
+
 /// The four faces of the grid's rectangle.
 enum class GridFace { r_min, r_max, y_min, y_max };
 
@@ -98,6 +128,8 @@ public:
   /// grad N over its saturated particles, for the effective normal force of contact; kept only in
   /// a scene with contact and undrained soil, else empty.
   std::vector<std::array<double, 2>> pore_force;
+  /// The pore water of coupled soil per node; kept only in a scene with coupled soil, else empty.
+  std::vector<LiquidNode> liquid;
   /// Fields 1, 2, ...: one per contact structure; empty in a scene without contact.
   std::vector<NodeField> structure_fields;
 

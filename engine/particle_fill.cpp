@@ -47,6 +47,7 @@ std::size_t fill_region(Scene& scene, const Region& region, int per_direction,
   const Grid& grid = scene.grid;
   const double density = scene.materials.at(material)->density();
   const bool axisymmetric = scene.mode == GeometryMode::axisymmetric;
+  const bool coupled = scene.materials[material]->liquid_phase() != nullptr;
   const std::size_t before = scene.particles.size();
   for_each_seed(grid.r_axis(), grid.y_axis(), region, per_direction, band,
                 [&](int cr, int cy, double r, double y, double hr, double hy) {
@@ -56,6 +57,13 @@ std::size_t fill_region(Scene& scene, const Region& region, int per_direction,
                                       0.5 * hy / per_direction, material, body);
                   scene.particles.cell_r.back() = cr;
                   scene.particles.cell_y.back() = cy;
+                  if (coupled) {
+                    // Its water at rest in the pores of the dry density, before any K0 state.
+                    Particles& p = scene.particles;
+                    const auto stride = static_cast<std::size_t>(p.state_stride);
+                    scene.materials[material]->initialise_state(
+                        Stress{}, p.state.data() + (p.size() - 1) * stride);
+                  }
                 });
   return scene.particles.size() - before;
 }

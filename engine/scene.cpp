@@ -99,4 +99,13 @@ RigidBody& Scene::make_rigid(std::uint16_t body, double density, double mass, do
   return rigid_bodies.back();
 }
 
+bool has_coupled_water(const Scene& scene) {
+  for (const auto& material : scene.materials) {
+    if (material->liquid_phase() != nullptr) {
+      return true;
+    }
+  }
+  return false;
+}
+
 } // namespace mpile

@@ -63,4 +63,7 @@ struct Scene {
   RigidBody& make_rigid(std::uint16_t body, double density, double mass, double inertia);
 };
 
+/// Whether any material is coupled soil, whose water flows through its skeleton.
+bool has_coupled_water(const Scene& scene);
+
 } // namespace mpile

@@ -163,15 +163,20 @@ std::vector<KeySpec> material_keys(const std::vector<std::string>& material_name
       string("type", "the material model").needed().one_of(material_names),
       string("drainage",
              "how the pore water drains: \"drained\" (no water state: a dry or drained soil, "
-             "`density` its density) or \"undrained\" (saturated, no flow: the water's stiffness "
-             "K_w / n at each material point, PLAXIS's Undrained A; `density` is then the dry "
-             "density, the particles weigh the saturated density)")
+             "`density` its density), \"undrained\" (saturated, no flow: the water's stiffness "
+             "K_w / n at each material point, PLAXIS's Undrained A) or \"coupled\" (saturated, "
+             "the water flows through the skeleton against Darcy's drag: two-phase, with "
+             "`hydraulic_conductivity`); saturated, `density` is the dry density and the "
+             "particles weigh the saturated density")
           .or_default(std::string("drained"))
           .one_of(drainage_names())};
   const PoreWater defaults;
   for (const PoreWaterParameter& w : pore_water_parameters()) {
-    KeySpec key =
-        number(w.name, w.unit, w.meaning + "; undrained only").or_default(defaults.*w.member);
+    // The hydraulic conductivity has no default: a coupled material must give it.
+    const bool conductivity = w.member == &PoreWater::hydraulic_conductivity;
+    KeySpec key = conductivity ? number(w.name, w.unit, w.meaning)
+                               : number(w.name, w.unit, w.meaning + "; saturated only")
+                                     .or_default(defaults.*w.member);
     key.range = w.range;
     keys.push_back(std::move(key));
   }

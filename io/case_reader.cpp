@@ -986,31 +986,36 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   table->finish();
 }
 
-/// A material's drainage and its pore water's parameters, which only a saturated (undrained)
-/// material may give.
+/// A material's drainage and its pore water's parameters, which only a saturated (undrained or
+/// coupled) material may give; the hydraulic conductivity only a coupled one, which must.
 void read_pore_water(TomlTable& table, MaterialSpec& material) {
   std::string drainage = "drained";
   if (table.has("drainage")) {
-    const TomlValue& value = table.raw("drainage");
-    if (value.is_string() && value.as_string().str == "coupled") {
-      table.fail("drainage", "\"coupled\" (two-phase flow with Darcy drainage) is not built yet: "
-                             "drained or undrained");
-    }
     drainage = table.string("drainage");
   }
   const auto& names = drainage_names();
   const auto named = std::find(names.begin(), names.end(), drainage);
   if (named == names.end()) {
-    table.fail("drainage", "'" + drainage + "' is not a drainage type: drained or undrained");
+    table.fail("drainage",
+               "'" + drainage + "' is not a drainage type: drained, undrained or coupled");
   }
   material.water.drainage = static_cast<Drainage>(named - names.begin());
   for (const PoreWaterParameter& parameter : pore_water_parameters()) {
+    const bool conductivity = parameter.member == &PoreWater::hydraulic_conductivity;
     if (!table.has(parameter.name)) {
+      if (conductivity && material.water.drainage == Drainage::coupled) {
+        table.missing(parameter.name, "a coupled material's Darcy hydraulic conductivity k, in "
+                                      "m/s (the water's discharge per unit hydraulic gradient)");
+      }
       continue;
     }
     if (material.water.drainage == Drainage::drained) {
       table.fail(parameter.name, "a drained material has no pore water: give it with drainage = "
-                                 "\"undrained\", or remove it");
+                                 "\"undrained\" or \"coupled\", or remove it");
+    }
+    if (conductivity && material.water.drainage != Drainage::coupled) {
+      table.fail(parameter.name, "an undrained material's water does not flow: give k with "
+                                 "drainage = \"coupled\", or remove it");
     }
     const double x = table.number(parameter.name);
     if (!parameter.range.contains(x)) {

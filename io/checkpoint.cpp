@@ -120,9 +120,9 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     file.write("/solver/energy",
                std::vector<double>{e.external_work, e.internal_work, e.damping, e.contact,
                                    e.kinetic_reference, e.elastic_reference, e.transfer,
-                                   e.radiated},
+                                   e.radiated, e.drag},
                "external work, internal work, damping, contact, kinetic and elastic references, "
-               "transfer, radiated");
+               "transfer, radiated, drag");
     file.write("/run/counters",
                std::vector<double>{static_cast<double>(progress.phase),
                                    static_cast<double>(progress.history_rows),
@@ -282,7 +282,8 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
                        EnergyLedger{e.at(0), e.at(1), e.at(2), e.at(3), e.at(4), e.at(5),
                                     // A checkpoint written before the transfer term
                                     // was kept had none to keep (pure FLIP runs).
-                                    e.size() > 6 ? e[6] : 0.0, e.size() > 7 ? e[7] : 0.0}};
+                                    e.size() > 6 ? e[6] : 0.0, e.size() > 7 ? e[7] : 0.0,
+                                    e.size() > 8 ? e[8] : 0.0}};
   const auto c = file.read_doubles("/run/counters");
   RunProgress& progress = checkpoint.progress;
   progress.phase = static_cast<std::size_t>(c.at(0));

@@ -106,6 +106,10 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
     // Only a scene with absorbing faces radiates.
     series(file, "/energy/radiated", u.energy);
   }
+  if (has_coupled_water(scene)) {
+    // Only a scene with coupled soil has water flowing through its skeleton.
+    series(file, "/energy/drag", u.energy);
+  }
   series(file, "/energy/relative_residual", "-");
   for (const NodeConstraint& c : scene.boundaries.constraints) {
     const std::string base = "/boundaries/" + dataset_name(c.name);
@@ -292,6 +296,9 @@ void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase,
   series_.at("/energy/residual").append(energy.residual);
   if (!scene.boundaries.absorbing.empty()) {
     series_.at("/energy/radiated").append(energy.radiated);
+  }
+  if (has_coupled_water(scene)) {
+    series_.at("/energy/drag").append(energy.drag);
   }
   series_.at("/energy/relative_residual").append(energy.relative_residual);
   for (const NodeConstraint& c : scene.boundaries.constraints) {

@@ -1,6 +1,8 @@
 // Whole-scene sums. Deterministic reductions (fixed split of the range), so the figures are the
 // same for any thread count.
 #include "solver/diagnostics.hpp"
+#include "engine/materials/pore_water.hpp"
+#include "solver/passes.hpp"
 
 #include "engine/parallel.hpp"
 
@@ -36,8 +38,18 @@ double kinetic_energy(const Scene& scene) {
   const Particles& p = scene.particles;
   const bool theta = has_theta(scene.mode);
   const std::vector<char> rigid = scene.rigid_materials();
+  const std::vector<const LiquidPhase*> water = passes::liquid_phases(scene);
   double energy = deterministic_sum(p.size(), [&](std::size_t i) {
-    return rigid[p.material[i]] != 0 ? 0.0 : 0.5 * p.mass[i] * speed_squared(p, i, theta);
+    if (rigid[p.material[i]] != 0) {
+      return 0.0;
+    }
+    const LiquidPhase* phase = water[p.material[i]];
+    if (phase == nullptr) {
+      return 0.5 * p.mass[i] * speed_squared(p, i, theta);
+    }
+    // Coupled soil: the grains' mass moves at v, the water's at w.
+    return 0.5 * (1.0 - phase->mass_fraction) * p.mass[i] * speed_squared(p, i, theta) +
+           passes::water_kinetic_energy(p, i, *phase);
   });
   for (const RigidBody& body : scene.rigid_bodies) {
     energy += body.kinetic_energy();

@@ -14,6 +14,7 @@ EnergyLedger& operator+=(EnergyLedger& ledger, const EnergyIncrement& increment)
   ledger.contact += increment.contact;
   ledger.transfer += increment.transfer;
   ledger.radiated += increment.radiated;
+  ledger.drag += increment.drag;
   return ledger;
 }
 
@@ -35,11 +36,13 @@ EnergyBalance energy_balance(const Scene& scene, const EnergyLedger& ledger, dou
   b.contact = ledger.contact;
   b.transfer = ledger.transfer;
   b.radiated = ledger.radiated;
+  b.drag = ledger.drag;
   b.residual = b.external_work - (b.kinetic - ledger.kinetic_reference) - ledger.internal_work -
-               b.damping - b.contact - b.transfer - b.radiated;
-  const double scale = std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference,
-                                 b.elastic, std::abs(ledger.internal_work),
-                                 std::abs(b.damping + b.contact + b.transfer + b.radiated)});
+               b.damping - b.contact - b.transfer - b.radiated - b.drag;
+  const double scale =
+      std::max({std::abs(b.external_work), b.kinetic, ledger.kinetic_reference, b.elastic,
+                std::abs(ledger.internal_work),
+                std::abs(b.damping + b.contact + b.transfer + b.radiated + b.drag)});
   b.relative_residual = scale > 0.0 ? std::abs(b.residual) / scale : 0.0;
   return b;
 }

@@ -24,6 +24,8 @@ struct EnergyLedger {
   double transfer = 0.0;
   /// Taken out of the model by the dashpots of absorbing faces: the energy radiated away.
   double radiated = 0.0;
+  /// Taken by Darcy's drag between the pore water and the skeleton (coupled soil).
+  double drag = 0.0;
 };
 
 /// What one pass of a step adds to the ledger (J, per radian in axisymmetric mode). Each pass
@@ -35,12 +37,13 @@ struct EnergyIncrement {
   double contact = 0.0;
   double transfer = 0.0;
   double radiated = 0.0;
+  double drag = 0.0;
 };
 
 EnergyLedger& operator+=(EnergyLedger& ledger, const EnergyIncrement& increment);
 
 /// The balance at one instant: external work = (kinetic - its reference) + internal work +
-/// damping + contact + transfer + radiated + residual, with internal work = (elastic - its
+/// damping + contact + transfer + radiated + drag + residual, with internal work = (elastic - its
 /// reference) + plastic.
 struct EnergyBalance {
   double external_work = 0.0;
@@ -51,6 +54,7 @@ struct EnergyBalance {
   double contact = 0.0;
   double transfer = 0.0;
   double radiated = 0.0;
+  double drag = 0.0;
   double residual = 0.0;
   /// The residual over the largest energy in play: |external work|, the kinetic energy now or at
   /// the reference, the stored elastic energy, |internal work|, or the dissipated sum (a state

@@ -19,6 +19,20 @@
 
 namespace mpile {
 
+namespace {
+
+/// Mass scaling slows the skeleton's waves by scaling its inertia; the water's inertia and drag
+/// would need their own scaling, and the consolidation time would change with it.
+void require_unscaled_water(const SolverSettings& settings) {
+  if (settings.mass_scaling != 1.0) {
+    throw std::invalid_argument("mass_scaling must be 1 in a scene with coupled soil: scaling "
+                                "the skeleton's inertia but not the water's would change how "
+                                "fast it drains");
+  }
+}
+
+} // namespace
+
 ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log)
     : scene_(scene), settings_(settings), log_(log) {
   prepare();
@@ -72,6 +86,20 @@ void ExplicitSolver::prepare() {
     pore_water_at_contact_ =
         std::any_of(slots.begin(), slots.end(), [](int slot) { return slot >= 0; });
   }
+  liquid_phases_ = passes::liquid_phases(scene_);
+  if (std::none_of(liquid_phases_.begin(), liquid_phases_.end(),
+                   [](const LiquidPhase* phase) { return phase != nullptr; })) {
+    liquid_phases_.clear();
+  } else {
+    require_unscaled_water(settings_);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (liquid_phases_[p.material[i]] != nullptr && scene_.field_of(p.body[i]) != 0) {
+        throw std::invalid_argument(
+            "body '" + scene_.body_names[p.body[i]] +
+            "' is a contact structure of coupled soil: only the soil's field carries pore water");
+      }
+    }
+  }
   scene_.boundaries.mark_constrained_dofs(scene_.grid);
   if (scene_.moving_mesh) {
     // A restored run continues on the mesh of its rigid body's restored position.
@@ -108,6 +136,9 @@ void ExplicitSolver::report_settings() {
 
 void ExplicitSolver::change_settings(const SolverSettings& settings) {
   settings.validate();
+  if (!liquid_phases_.empty()) {
+    require_unscaled_water(settings);
+  }
   const bool rebin_needed = settings.block_cells != settings_.block_cells;
   const bool scaling_changed = settings.mass_scaling != settings_.mass_scaling;
   if (scaling_changed) {

@@ -110,6 +110,15 @@ private:
   /// Undrained soil beside a structure: the pore water's share of field 0's node forces, for
   /// the contact's effective normal force.
   template <GeometryMode mode, ShapeFunctions shape> void map_pore_force();
+  /// Coupled soil: the water's passes (solver/pore_water_passes.cpp), each a no-op without it.
+  template <GeometryMode mode, ShapeFunctions shape> void map_water_to_grid();
+  template <GeometryMode mode>
+  EnergyIncrement update_water_velocities(const passes::StepParameters& step);
+  template <GeometryMode mode, ShapeFunctions shape>
+  EnergyIncrement update_water_particle_velocities(const passes::StepParameters& step);
+  template <GeometryMode mode, ShapeFunctions shape>
+  void find_pore_pressure_from_flow(const passes::StepParameters& step);
+  EnergyIncrement apply_pore_pressure_from_flow();
   /// Loads, absorbing faces' holding forces, the momentum balance with damping, the dashpots.
   template <GeometryMode mode> EnergyIncrement balance_momentum(const passes::StepParameters& step);
   /// The structures' supports, the rigid bodies' prediction, contact, the bodies' accelerations.
@@ -165,6 +174,12 @@ private:
   double mass_floor_ = 0.0;
   /// A scene with contact and undrained soil: the contact's friction needs the pore pressure.
   bool pore_water_at_contact_ = false;
+  /// Each material's water phase when it is coupled soil (passes::liquid_phases); empty in a
+  /// scene without coupled soil, whose step then runs no water pass.
+  std::vector<const LiquidPhase*> liquid_phases_;
+  /// Each particle's pore-pressure change from the water's flow, between the passes that find
+  /// and apply it (scratch of one step).
+  std::vector<passes::PendingPorePressure> pending_pore_;
   double min_dt_ = 0.0;
   /// The log says what sets the step when it falls below this: half the step at the start, then
   /// half the step last reported (not in checkpoints: a restart reports from its own step).

@@ -56,19 +56,24 @@ void ExplicitSolver::step_in_mode(double dt) {
   if constexpr (contact) {
     map_pore_force<mode, shape>();
   }
+  map_water_to_grid<mode, shape>();
   energy_ += balance_momentum<mode>(step);
   if constexpr (contact) {
     energy_ += correct_for_contact<mode>(step);
   }
   energy_ += enforce_supports<contact>(step);
   energy_ += work_of_loads(step);
+  energy_ += update_water_velocities<mode>(step);
   energy_ += update_particle_velocities<mode, contact, shape>(step);
+  energy_ += update_water_particle_velocities<mode, shape>(step);
   if (settings_.musl) {
     remap_momentum<mode, contact, shape>(step);
   }
+  find_pore_pressure_from_flow<mode, shape>(step);
   passes::StressPassResult stress = update_stress<mode, contact, shape>(step);
   energy_ +=
       EnergyIncrement{.external_work = stress.gravity_work, .internal_work = stress.internal_work};
+  energy_ += apply_pore_pressure_from_flow();
   const double moved_crossing_time = move_bodies_and_mesh<contact>(step, stress);
   finish_step(dt, stress, moved_crossing_time);
 }
@@ -87,6 +92,53 @@ template <GeometryMode mode, ShapeFunctions shape> void ExplicitSolver::map_pore
   passes::map_pore_force<mode, shape>(scene_, bins_);
 }
 
+template <GeometryMode mode, ShapeFunctions shape> void ExplicitSolver::map_water_to_grid() {
+  if (liquid_phases_.empty()) {
+    return;
+  }
+  PassTimer timer(timings_.particle_to_grid);
+  passes::map_water_to_grid<mode, shape>(scene_, bins_, liquid_phases_, settings_);
+}
+
+template <GeometryMode mode>
+EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParameters& step) {
+  if (liquid_phases_.empty()) {
+    return {};
+  }
+  PassTimer timer(timings_.grid_update);
+  return {.drag = passes::update_water_velocities<mode>(scene_, step)};
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+EnergyIncrement ExplicitSolver::update_water_particle_velocities(const passes::StepParameters& step) {
+  if (liquid_phases_.empty()) {
+    return {};
+  }
+  PassTimer timer(timings_.grid_to_particle);
+  const passes::WaterParticleResult water = passes::update_water_particle_velocities<mode, shape>(
+      scene_, bins_, liquid_phases_, settings_, step);
+  return {.external_work = water.external_work, .transfer = water.transfer};
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+void ExplicitSolver::find_pore_pressure_from_flow(const passes::StepParameters& step) {
+  if (liquid_phases_.empty()) {
+    return;
+  }
+  PassTimer timer(timings_.stress_update);
+  passes::pore_pressure_from_flow<mode, shape>(scene_, bins_, liquid_phases_, settings_, step,
+                                               pending_pore_);
+}
+
+EnergyIncrement ExplicitSolver::apply_pore_pressure_from_flow() {
+  if (liquid_phases_.empty()) {
+    return {};
+  }
+  PassTimer timer(timings_.stress_update);
+  return {.internal_work =
+              passes::apply_pore_pressure_from_flow(scene_, bins_, liquid_phases_, pending_pore_)};
+}
+
 template <GeometryMode mode>
 EnergyIncrement ExplicitSolver::balance_momentum(const passes::StepParameters& step) {
   PassTimer timer(timings_.grid_update);
@@ -94,6 +146,9 @@ EnergyIncrement ExplicitSolver::balance_momentum(const passes::StepParameters& s
   // Absorbing faces' terms from the grid's coordinates this step, for both of their passes.
   const std::vector<passes::FaceNodeTerms> faces = passes::absorbing_face_terms(scene_);
   passes::apply_holding_tractions(scene_, faces, step);
+  if (!liquid_phases_.empty()) {
+    passes::couple_phases<mode>(scene_, step);
+  }
   const passes::GridUpdateResult grid =
       passes::update_grid_velocities<mode>(scene_, settings_, step);
   const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, faces, settings_, step);
@@ -151,6 +206,9 @@ template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void ExplicitSolver::remap_momentum(const passes::StepParameters& step) {
   PassTimer timer(timings_.momentum_remap);
   passes::remap_momentum<mode, contact, shape>(scene_, bins_, step);
+  if (!liquid_phases_.empty()) {
+    passes::rescale_remapped_skeleton<mode>(scene_);
+  }
   // The remapped velocities take the same corrections as the balanced ones, recording nothing.
   if constexpr (contact) {
     passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
@@ -160,6 +218,9 @@ void ExplicitSolver::remap_momentum(const passes::StepParameters& step) {
   }
   passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
                             soil_fields<contact>());
+  if (!liquid_phases_.empty()) {
+    passes::remap_water<mode, shape>(scene_, bins_, liquid_phases_);
+  }
 }
 
 template <GeometryMode mode, bool contact, ShapeFunctions shape>

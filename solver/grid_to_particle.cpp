@@ -8,6 +8,7 @@
 // kinetic energy the update took against FLIP's (J [/rad], the numerical dissipation of PIC, a
 // blend or XPIC; 0 for FLIP), for the energy balance.
 #include "engine/shape_functions.hpp"
+#include "engine/materials/pore_water.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 #include "solver/xpic.hpp"
@@ -30,6 +31,14 @@ double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSett
       contact ? std::optional<ParticleFields>(std::in_place, grid, scene) : std::nullopt;
   // A rigid body's particles carry no kinetic energy of their own (kinetic_energy).
   const std::vector<char> rigid_material = scene.rigid_materials();
+  // The share of a particle's mass that moves at its velocity v: a coupled soil's water moves at
+  // its own w (solver/pore_water_passes.cpp books its share).
+  std::vector<double> moving_fraction(scene.materials.size(), 1.0);
+  for (std::size_t m = 0; m < moving_fraction.size(); ++m) {
+    if (const LiquidPhase* phase = scene.materials[m]->liquid_phase()) {
+      moving_fraction[m] = 1.0 - phase->mass_fraction;
+    }
+  }
   // One sum per block, added in block order afterwards: the same for any thread count.
   std::vector<double> block_loss(dissipative ? static_cast<std::size_t>(bins.block_count()) : 0);
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
@@ -86,7 +95,7 @@ double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSett
         for (int d = 0; d < dofs; ++d) {
           drop += v_flip[d] * v_flip[d] - v_new[d] * v_new[d];
         }
-        loss += 0.5 * p.mass[i] * drop;
+        loss += 0.5 * p.mass[i] * drop * moving_fraction[p.material[i]];
       }
       p.v_r[i] = v_new[0];
       p.v_y[i] = v_new[1];

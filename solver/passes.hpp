@@ -36,6 +36,56 @@ std::vector<int> pore_pressure_slots(const Scene& scene);
 template <GeometryMode mode, ShapeFunctions shape>
 void map_pore_force(Scene& scene, const ParticleBins& bins);
 
+/// Each material's LiquidPhase (null for all but coupled soil), by material.
+std::vector<const LiquidPhase*> liquid_phases(const Scene& scene);
+
+/// The pore water of coupled soil (solver/pore_water_passes.cpp): its particle-to-grid map into
+/// Grid::liquid, ...
+template <GeometryMode mode, ShapeFunctions shape>
+void map_water_to_grid(Scene& scene, const ParticleBins& bins,
+                       const std::vector<const LiquidPhase*>& phases,
+                       const SolverSettings& settings);
+/// ... the water's inertia and drag folded into field 0's nodes before their momentum balance ...
+template <GeometryMode mode> void couple_phases(Scene& scene, const StepParameters& step);
+/// ... the water's velocities from the skeleton's final ones; returns the drag's dissipation ...
+template <GeometryMode mode>
+double update_water_velocities(Scene& scene, const StepParameters& step);
+/// ... the particles' water velocity ...
+struct WaterParticleResult {
+  double external_work = 0.0; // gravity on the water's path beyond the skeleton's
+  double transfer = 0.0;      // the water's kinetic energy a FLIP/PIC blend takes
+};
+template <GeometryMode mode, ShapeFunctions shape>
+WaterParticleResult update_water_particle_velocities(Scene& scene, const ParticleBins& bins,
+                                                     const std::vector<const LiquidPhase*>& phases,
+                                                     const SolverSettings& settings,
+                                                     const StepParameters& step);
+/// ... with MUSL, the skeleton's remapped velocities as the mixture's mass-weighted mean, and
+/// the water's remapped ...
+template <GeometryMode mode> void rescale_remapped_skeleton(Scene& scene);
+template <GeometryMode mode, ShapeFunctions shape>
+void remap_water(Scene& scene, const ParticleBins& bins,
+                 const std::vector<const LiquidPhase*>& phases);
+/// ... and the pore pressure's share from the water's flow, found before the stress pass (at the
+/// particles' positions of the step's start) and added after it (so that it takes the stress at
+/// the step's start); the second returns the pore water's work beyond the stress pass's.
+struct PendingPorePressure {
+  double pressure = 0.0;        // K_w div w dt
+  double water_strain = 0.0;    // div w dt
+  double skeleton_strain = 0.0; // div v dt
+  double pore_before = 0.0;     // p at the step's start
+};
+template <GeometryMode mode, ShapeFunctions shape>
+void pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
+                             const std::vector<const LiquidPhase*>& phases,
+                             const SolverSettings& settings, const StepParameters& step,
+                             std::vector<PendingPorePressure>& pending);
+double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
+                                     const std::vector<const LiquidPhase*>& phases,
+                                     const std::vector<PendingPorePressure>& pending);
+/// The kinetic energy of particle i's water, 1/2 m_w |w|^2.
+double water_kinetic_energy(const Particles& p, std::size_t i, const LiquidPhase& phase);
+
 void apply_nodal_loads(Scene& scene, const StepParameters& step);
 
 struct GridUpdateResult {

@@ -16,6 +16,7 @@ const std::vector<Case>& all_cases() {
       {"V8", "self-weight column, gravity loading", run_self_weight_column},
       {"V8k0", "self-weight column, K0 state stays put", run_k0_column},
       {"V9", "seed torsion with adhesion", run_torsion_with_adhesion},
+      {"V10", "Terzaghi consolidation (coupled soil)", run_terzaghi_consolidation},
       {"VHS", "Hardening Soil oedometer under a platen", run_hs_oedometer},
   };
   return cases;

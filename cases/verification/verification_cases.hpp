@@ -30,6 +30,7 @@ Report run_block_on_incline(const Options& options);      // V7, v7_block_on_inc
 Report run_self_weight_column(const Options& options);    // V8, self_weight_column.toml
 Report run_k0_column(const Options& options);             // V8k0, k0_column.toml
 Report run_torsion_with_adhesion(const Options& options); // V9, v9_torsion_adhesion.toml
+Report run_terzaghi_consolidation(const Options& options); // V10, terzaghi_consolidation.toml
 Report run_hs_oedometer(const Options& options);          // VHS, hs_oedometer.toml
 
 /// The seed paper's dry sand (Hardening Soil, its Table 5), as hs_oedometer.toml declares it.

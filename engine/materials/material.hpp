@@ -10,6 +10,8 @@
 
 namespace mpile {
 
+struct LiquidPhase;
+
 /// A run of material points of one material handed to its stress update. Strain increments and the
 /// constrained modulus are per entry of the run; stress and state are the particles' own.
 struct StressUpdateBatch {
@@ -41,6 +43,9 @@ public:
   /// Where the pore pressure is kept in the state of a saturated, undrained material (the
   /// particle's stress is then total: sigma' + p 1); -1 for a dry or drained one.
   virtual int pore_pressure_index() const { return -1; }
+  /// A saturated material whose water flows (drainage = "coupled"): where its particles keep the
+  /// water's state and the constants of its two phases; null for every other.
+  virtual const LiquidPhase* liquid_phase() const { return nullptr; }
   /// Sets the state consistent with a given initial stress (for example after a K0 procedure).
   virtual void initialise_state(const Stress& /*stress*/, double* /*state*/) const {}
 

@@ -3,7 +3,7 @@
 namespace mpile {
 
 const std::vector<std::string>& drainage_names() {
-  static const std::vector<std::string> names{"drained", "undrained"};
+  static const std::vector<std::string> names{"drained", "undrained", "coupled"};
   return names;
 }
 
@@ -26,6 +26,12 @@ const std::vector<PoreWaterParameter>& pore_water_parameters() {
        "density rho_s of the grains; with the dry density it gives the porosity "
        "n = 1 - rho_d / rho_s",
        &PoreWater::grain_density,
+       {Bound{0.0, false}, std::nullopt}},
+      {"hydraulic_conductivity",
+       "m/s",
+       "Darcy's hydraulic conductivity k of the skeleton (coupled only, and required there): "
+       "the water's discharge per unit hydraulic gradient",
+       &PoreWater::hydraulic_conductivity,
        {Bound{0.0, false}, std::nullopt}},
   };
   return parameters;

@@ -2,7 +2,9 @@
 
 // The pore water of a saturated soil and how it drains (PLAXIS's drainage types). A drained
 // material carries no water state and runs exactly as a dry one; an undrained one adds the water's
-// stiffness K_w / n to the skeleton's volumetric response at each material point (UndrainedSoil).
+// stiffness K_w / n to the skeleton's volumetric response at each material point (UndrainedSoil);
+// a coupled one also lets the water flow through the skeleton (Darcy), each material point
+// carrying the water's velocity as well as the skeleton's (physics.md section 9b).
 
 #include "engine/parameter_range.hpp"
 
@@ -12,8 +14,10 @@
 namespace mpile {
 
 /// drained: no pore-water state, effective and total stress are one (a dry sand); undrained: no
-/// flow, the pore pressure follows the volumetric strain (PLAXIS's Undrained A).
-enum class Drainage { drained, undrained };
+/// flow, the pore pressure follows the volumetric strain (PLAXIS's Undrained A); coupled: the
+/// water flows relative to the skeleton against Darcy's drag, and the pore pressure follows the
+/// volumetric strains of both phases (two-phase single-point MPM).
+enum class Drainage { drained, undrained, coupled };
 
 /// Drainage names as written in a case file, in enum order.
 const std::vector<std::string>& drainage_names();
@@ -23,6 +27,26 @@ struct PoreWater {
   double density = 1000.0;       // rho_w (kg/m^3)
   double bulk_modulus = 2.2e9;   // K_w (Pa): fresh or sea water at 10 to 20 degrees C
   double grain_density = 2650.0; // rho_s (kg/m^3): quartz; with the dry density, the porosity
+  /// k (m/s), coupled only: Darcy's hydraulic conductivity, the discharge per unit hydraulic
+  /// gradient; 0 when not given (a coupled material must give it).
+  double hydraulic_conductivity = 0.0;
+};
+
+/// Standard gravity (m/s^2): a hydraulic conductivity is measured under it, k = kappa rho_w g / mu,
+/// whatever gravity a scene sets (a scene without gravity still drains).
+inline constexpr double standard_gravity = 9.80665;
+
+/// What the solver's water passes need of a coupled material: where its particles keep the water's
+/// state, and the constants of its two phases. Each material point keeps its water's mass m_w =
+/// mass_fraction m (m the mixture's mass; the grains' is the rest), as Anura3D's single-point
+/// formulation keeps each phase's mass on its point.
+struct LiquidPhase {
+  int pore_slot = 0;     // state[pore_slot]: the pore pressure p (tension positive)
+  int velocity_slot = 0; // state[velocity_slot + 0, 1, 2]: the water's velocity w (r, y, theta)
+  int porosity_slot = 0; // state[porosity_slot]: the porosity n now
+  double mass_fraction = 0.0; // n0 rho_w / rho_sat
+  double drag_per_mass = 0.0; // g / k (1/s): Darcy's drag n rho_w g / k per unit water mass
+  double bulk_modulus = 0.0;  // K_w (Pa)
 };
 
 /// A water parameter as the case layer sees it: its key, unit, meaning, default and range, bound

@@ -23,6 +23,23 @@ UndrainedSoil::UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater
   pore_index_ = static_cast<int>(state_names_.size());
   state_names_.push_back("pore_pressure");
   state_names_.push_back("excess_pore_pressure");
+  coupled_ = water.drainage == Drainage::coupled;
+  if (coupled_) {
+    if (!(water.hydraulic_conductivity > 0.0)) {
+      throw std::invalid_argument("hydraulic_conductivity: a coupled material needs its Darcy "
+                                  "hydraulic conductivity k > 0 (m/s)");
+    }
+    liquid_.pore_slot = pore_index_;
+    liquid_.velocity_slot = static_cast<int>(state_names_.size());
+    state_names_.push_back("water_velocity_r");
+    state_names_.push_back("water_velocity_y");
+    state_names_.push_back("water_velocity_theta");
+    liquid_.porosity_slot = static_cast<int>(state_names_.size());
+    state_names_.push_back("porosity");
+    liquid_.mass_fraction = porosity_ * water.density / density_;
+    liquid_.drag_per_mass = standard_gravity / water.hydraulic_conductivity;
+    liquid_.bulk_modulus = water.bulk_modulus;
+  }
 }
 
 Stress UndrainedSoil::effective(const Stress& stress, const double* state) const {
@@ -37,6 +54,13 @@ Stress UndrainedSoil::effective(const Stress& stress, const double* state) const
 void UndrainedSoil::initialise_state(const Stress& stress, double* state) const {
   skeleton_->initialise_state(effective(stress, state), state);
   state[pore_index_ + 1] = 0.0;
+  if (coupled_) {
+    // The water starts with the skeleton (at rest), in the pores of the dry density.
+    state[liquid_.velocity_slot] = 0.0;
+    state[liquid_.velocity_slot + 1] = 0.0;
+    state[liquid_.velocity_slot + 2] = 0.0;
+    state[liquid_.porosity_slot] = porosity_;
+  }
 }
 
 void UndrainedSoil::update_stress(const StressUpdateBatch& batch) const {
@@ -56,19 +80,34 @@ void UndrainedSoil::update_stress(const StressUpdateBatch& batch) const {
     const auto i = static_cast<std::size_t>(batch.particles[k]);
     const StrainIncrement& de = batch.strain[k];
     double* water = batch.state + i * stride + pore;
-    const double dp = water_stiffness_ * (de[RR] + de[YY] + de[TT]);
+    const double volumetric = de[RR] + de[YY] + de[TT];
+    double stiffness = water_stiffness_;
+    double dp = 0.0;
+    if (coupled_) {
+      // The skeleton's share of the water's volume change, (1 - n) d eps_vol: the grains it moves
+      // into or out of the pores; the water's own flow adds n d eps_vol,w (the solver's water
+      // pass). The grains are incompressible, so their volume (1 - n) V is kept.
+      double& n = batch.state[i * stride + static_cast<std::size_t>(liquid_.porosity_slot)];
+      dp = liquid_.bulk_modulus * (1.0 - n) / n * volumetric;
+      n = 1.0 - (1.0 - n) / (1.0 + volumetric);
+      // The step follows the undrained P-wave, the faster of the two phases' (Biot's fast wave
+      // lies between the drained skeleton's and it).
+      stiffness = liquid_.bulk_modulus / n;
+    } else {
+      dp = water_stiffness_ * volumetric;
+    }
     water[0] += dp;
     water[1] += dp;
     Stress& s = batch.stress[i];
     s[RR] += water[0];
     s[YY] += water[0];
     s[TT] += water[0];
-    batch.constrained_modulus[k] += water_stiffness_;
+    batch.constrained_modulus[k] += stiffness;
   }
 }
 
 double UndrainedSoil::constrained_modulus(const Stress& stress, const double* state) const {
-  return skeleton_->constrained_modulus(effective(stress, state), state) + water_stiffness_;
+  return skeleton_->constrained_modulus(effective(stress, state), state) + water_stiffness(state);
 }
 
 double UndrainedSoil::shear_modulus(const Stress& stress, const double* state) const {
@@ -79,13 +118,13 @@ UndrainedResponse UndrainedSoil::response(const Stress& stress, const double* st
   const Stress sigma = effective(stress, state);
   const double shear = skeleton_->shear_modulus(sigma, state);
   const double bulk = skeleton_->constrained_modulus(sigma, state) - 4.0 / 3.0 * shear;
-  return undrained_response(bulk, shear, water_stiffness_);
+  return undrained_response(bulk, shear, water_stiffness(state));
 }
 
 double UndrainedSoil::elastic_energy_density(const Stress& stress, const double* state) const {
   const double p = state[pore_index_];
   return skeleton_->elastic_energy_density(effective(stress, state), state) +
-         0.5 * p * p / water_stiffness_;
+         0.5 * p * p / water_stiffness(state);
 }
 
 } // namespace mpile

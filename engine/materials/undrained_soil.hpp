@@ -1,9 +1,12 @@
 #pragma once
 
-// A soil skeleton with its pores full of water that cannot drain in the time of the loading
-// (PLAXIS's "Undrained A"): the skeleton's model works on the effective stress, and the water,
-// of bulk modulus K_w in a porosity n, adds the volumetric stiffness K_w / n, its pressure changing
-// by dp = (K_w / n) d eps_vol at each material point (incompressible grains). The particle's
+// A soil skeleton with its pores full of water. Undrained (PLAXIS's "Undrained A"): the water
+// cannot drain in the time of the loading; the skeleton's model works on the effective stress,
+// and the water, of bulk modulus K_w in a porosity n, adds the volumetric stiffness K_w / n, its
+// pressure changing by dp = (K_w / n) d eps_vol at each material point (incompressible grains).
+// Coupled (two-phase): the water also flows, so its pressure follows both phases' volumetric
+// strains, dp = (K_w / n) ((1 - n) d eps_vol + n d eps_vol,w); this model takes the skeleton's
+// share and the solver's water pass the water's (solver/pore_water_passes.cpp). The particle's
 // stress is the total stress sigma = sigma' + p 1, with p the pore pressure, tension positive
 // like every stress here (so a compressed pore water has p < 0).
 
@@ -19,7 +22,7 @@ namespace mpile {
 class UndrainedSoil final : public Material {
 public:
   /// Throws std::invalid_argument when the skeleton's density is not below the grains' (no pores)
-  /// or is rigid.
+  /// or is rigid, or when a coupled one has no hydraulic conductivity.
   UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater& water);
 
   std::string_view type() const override { return skeleton_->type(); }
@@ -27,6 +30,7 @@ public:
   double density() const override { return density_; }
   std::span<const std::string> state_names() const override { return state_names_; }
   int pore_pressure_index() const override { return pore_index_; }
+  const LiquidPhase* liquid_phase() const override { return coupled_ ? &liquid_ : nullptr; }
   /// The skeleton's state from the effective stress: the pore pressure must already be in state.
   void initialise_state(const Stress& stress, double* state) const override;
   void update_stress(const StressUpdateBatch& batch) const override;
@@ -39,13 +43,19 @@ public:
   /// undrained bulk modulus, Skempton's B and the undrained Poisson ratio.
   UndrainedResponse response(const Stress& stress, const double* state) const;
 
+  /// The initial porosity n0 = 1 - rho_d / rho_s.
   double porosity() const { return porosity_; }
-  /// K_w / n (Pa).
+  /// K_w / n0 (Pa).
   double water_stiffness() const { return water_stiffness_; }
   double water_density() const { return water_density_; }
+  Drainage drainage() const { return coupled_ ? Drainage::coupled : Drainage::undrained; }
 
 private:
   Stress effective(const Stress& stress, const double* state) const;
+  /// K_w / n at this state: n0's for undrained soil, the particle's porosity now for coupled.
+  double water_stiffness(const double* state) const {
+    return coupled_ ? liquid_.bulk_modulus / state[liquid_.porosity_slot] : water_stiffness_;
+  }
 
   std::unique_ptr<Material> skeleton_;
   double porosity_ = 0.0;
@@ -53,6 +63,8 @@ private:
   double density_ = 0.0;
   double water_density_ = 0.0;
   int pore_index_ = 0; // state[pore_index_] is p, state[pore_index_ + 1] its change since the start
+  bool coupled_ = false;
+  LiquidPhase liquid_;
   std::vector<std::string> state_names_;
 };
 

@@ -1,0 +1,486 @@
+// The pore water of coupled soil (physics.md section 9b): two-phase single-point MPM in the
+// velocity form Anura3D implements (each material point carries the skeleton's velocity v and the
+// water's w; Jassim, Stolle and Vermeer 2013). Per unit volume, with n the porosity, rho_w the
+// water's density, p the pore pressure (tension positive) and sigma the total stress:
+//   water:    rho_w a_w = grad p + rho_w g - (n rho_w g / k) (w - v)
+//   mixture:  (1 - n) rho_s a_v + n rho_w a_w = div sigma + rho_sat g
+//   pressure: dp = (K_w / n) ((1 - n) div v + n div w) dt
+// The passes, in step order:
+//   map_water_to_grid       reads the coupled particles' water state; writes Grid::liquid
+//   couple_phases           field 0's node becomes the skeleton's, with the water's inertia and
+//                           drag folded into an effective mass and force (the drag implicit, so
+//                           it sets no time step)
+//   update_water_velocities after the skeleton's supports and contact: w^{n+1} from the skeleton's
+//                           v^{n+1}, the drag again implicit
+//   update_water_particle_velocities  the particles' w (FLIP/PIC, as the skeleton's v)
+//   rescale_remapped_skeleton, remap_water  MUSL: both phases' nodal velocities from the
+//                           particles' (the skeleton's remap weighted by the mixture's masses)
+//   pore_pressure_from_flow the pore pressure's share from div w, from the velocities the
+//                           stress pass reads, held until ...
+//   apply_pore_pressure_from_flow  ... the stress pass has used the stress at the step's start
+// A scene without coupled soil runs none of them.
+#include "engine/materials/pore_water.hpp"
+#include "engine/parallel.hpp"
+#include "engine/shape_functions.hpp"
+#include "solver/passes.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace mpile::passes {
+
+std::vector<const LiquidPhase*> liquid_phases(const Scene& scene) {
+  std::vector<const LiquidPhase*> phases;
+  for (const auto& material : scene.materials) {
+    phases.push_back(material->liquid_phase());
+  }
+  return phases;
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+void map_water_to_grid(Scene& scene, const ParticleBins& bins,
+                       const std::vector<const LiquidPhase*>& phases,
+                       const SolverSettings& settings) {
+  Grid& grid = scene.grid;
+  grid.liquid.resize(grid.nodes.size());
+  parallel_for(grid.liquid.size(), [&](std::size_t i) { grid.liquid[i] = LiquidNode{}; });
+  const Particles& p = scene.particles;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const double g_r = settings.gravity[0];
+  const double g_y = settings.gravity[1];
+  bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const LiquidPhase* phase = phases[p.material[i]];
+      if (phase == nullptr) {
+        continue;
+      }
+      const double* state = p.state.data() + i * stride;
+      const double n = state[phase->porosity_slot];
+      const double* w = state + phase->velocity_slot;
+      const double water_mass = phase->mass_fraction * p.mass[i];
+      const double inertia = water_mass / n; // rho_w V
+      const double drag = water_mass * phase->drag_per_mass;
+      // The pore pressure's share of the water's internal force, as the particle-to-grid pass
+      // takes the total stress's, with sigma = p 1.
+      const double weighted = p.volume[i] * state[phase->pore_slot];
+      const double hoop = has_theta(mode) ? weighted / p.r[i] : 0.0;
+      const auto weights = particle_weights<shape>(grid, p, i);
+      for (int k = 0; k < weights.size; ++k) {
+        LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[k])];
+        const double N = weights.N[k];
+        node.mass += N * inertia;
+        node.share += N * water_mass;
+        node.drag += N * drag;
+        node.momentum[0] += N * inertia * w[0];
+        node.momentum[1] += N * inertia * w[1];
+        node.force[0] += N * inertia * g_r - (weights.dN_dr[k] * weighted + N * hoop);
+        node.force[1] += N * inertia * g_y - weights.dN_dy[k] * weighted;
+        node.skeleton_momentum[0] += N * water_mass * p.v_r[i];
+        node.skeleton_momentum[1] += N * water_mass * p.v_y[i];
+      }
+      if constexpr (has_theta(mode)) {
+        // The theta DOF is angular, as the skeleton's: the water's angular momentum and its three
+        // rotational inertias. The pore pressure exerts no torque.
+        const double r = p.r[i];
+        for (int k = 0; k < weights.size; ++k) {
+          LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[k])];
+          const double N = weights.N[k];
+          node.momentum[2] += N * inertia * r * w[2];
+          node.inertia += N * inertia * r * r;
+          node.share_inertia += N * water_mass * r * r;
+          node.drag_inertia += N * drag * r * r;
+          node.skeleton_momentum[2] += N * water_mass * r * p.v_theta[i];
+        }
+      }
+    }
+  });
+}
+
+namespace {
+
+/// One DOF of the coupled balance at a node. The water's update with the drag at the new
+/// velocities, (M_w + dt Q) w' = M_w w + dt F_w + dt Q v', put into the mixture's, M_s (v' - v) +
+/// M_nw (w' - w) = dt F, leaves the skeleton's own balance with an effective mass and force:
+///   M* = M_s + M_nw dt Q / D,  F* = F - (M_nw / D) (F_w - Q (w - v)),  D = M_w + dt Q,
+/// so that v' = v + dt F* / M*. With k -> 0 the phases move together (M* -> M_s + M_nw); with
+/// k -> infinity the skeleton feels the water only through the pore pressure in F.
+struct EffectiveDof {
+  double mass;
+  double force;
+};
+inline EffectiveDof effective_dof(double skeleton_mass, double share, double water_mass,
+                                  double drag, double force, double water_force, double v,
+                                  double w, double dt) {
+  const double d = water_mass + dt * drag;
+  return {skeleton_mass + share * dt * drag / d,
+          force - share / d * (water_force - drag * (w - v))};
+}
+
+} // namespace
+
+template <GeometryMode mode> void couple_phases(Scene& scene, const StepParameters& step) {
+  Grid& grid = scene.grid;
+  parallel_for(grid.liquid.size(), [&](std::size_t i) {
+    LiquidNode& water = grid.liquid[i];
+    if (!(water.mass > 0.0)) {
+      return;
+    }
+    GridNode& node = grid.nodes[i];
+    const double skeleton_mass = node.mass - water.share;
+    if (!(skeleton_mass > step.mass_floor)) {
+      // Every particle brings its grains with its water, so only round-off leaves a node here.
+      for (int d = 0; d < 3; ++d) {
+        water.velocity()[d] = 0.0;
+      }
+      return;
+    }
+    water.mixture_mass = node.mass;
+    water.mixture_inertia = node.inertia;
+    double mass = skeleton_mass;
+    for (int d = 0; d < 2; ++d) {
+      const double v = (node.momentum[d] - water.skeleton_momentum[d]) / skeleton_mass;
+      const double w = water.momentum[d] / water.mass;
+      const EffectiveDof dof = effective_dof(skeleton_mass, water.share, water.mass, water.drag,
+                                             node.force[d], water.force[d], v, w, step.dt);
+      mass = dof.mass; // the same for r and y
+      node.momentum[d] = dof.mass * v;
+      node.force[d] = dof.force;
+      water.velocity()[d] = w;
+    }
+    node.mass = mass;
+    if constexpr (has_theta(mode)) {
+      const double skeleton_inertia = node.inertia - water.share_inertia;
+      const double omega = (node.momentum[2] - water.skeleton_momentum[2]) / skeleton_inertia;
+      const double omega_w = water.momentum[2] / water.inertia;
+      const EffectiveDof dof =
+          effective_dof(skeleton_inertia, water.share_inertia, water.inertia, water.drag_inertia,
+                        node.force[2], water.force[2], omega, omega_w, step.dt);
+      node.inertia = dof.mass;
+      node.momentum[2] = dof.mass * omega;
+      node.force[2] = dof.force;
+      water.velocity()[2] = omega_w;
+    }
+  });
+}
+
+template <GeometryMode mode>
+double update_water_velocities(Scene& scene, const StepParameters& step) {
+  constexpr int dofs = has_theta(mode) ? 3 : 2;
+  Grid& grid = scene.grid;
+  const double dt = step.dt;
+  auto update = [&](std::size_t begin, std::size_t end, double dissipated) {
+    for (std::size_t i = begin; i < end; ++i) {
+      LiquidNode& water = grid.liquid[i];
+      const GridNode& node = grid.nodes[i];
+      if (!(water.mass > 0.0) || node.mass <= step.mass_floor) {
+        water = LiquidNode{};
+        continue;
+      }
+      const double mass[3] = {water.mass, water.mass, water.inertia};
+      const double porosity = water.share / water.mass;
+      const double drag[3] = {water.drag, water.drag, water.drag_inertia};
+      for (int d = 0; d < dofs; ++d) {
+        const double v = node.velocity()[d];
+        const double w = water.velocity()[d];
+        double w_new = (mass[d] * w + dt * water.force[d] + dt * drag[d] * v) / (mass[d] + dt * drag[d]);
+        // A face that holds the skeleton is impermeable: the water keeps to the skeleton's normal
+        // velocity there (the theta DOF is a direction along every face).
+        if (d < 2 && (grid.constrained[i] & (1u << d)) != 0) {
+          w_new = v;
+        }
+        // Darcy's drag takes n Q (w - v)^2 per unit time, at the velocities it acts on: the
+        // water's balance here is per unit pore volume (divided by n), so its forces' power is
+        // n times theirs; the node's n is the water's share over its mass.
+        dissipated += porosity * drag[d] * (w_new - v) * (w_new - v) * dt;
+        water.velocity()[d] = w_new;
+        water.velocity_increment()[d] = w_new - w;
+      }
+    }
+    return dissipated;
+  };
+  return parallel_reduce(
+      grid.liquid.size(), 0.0, update, [](double a, double b) { return a + b; }, true);
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+WaterParticleResult update_water_particle_velocities(Scene& scene, const ParticleBins& bins,
+                                                     const std::vector<const LiquidPhase*>& phases,
+                                                     const SolverSettings& settings,
+                                                     const StepParameters& step) {
+  const Grid& grid = scene.grid;
+  Particles& p = scene.particles;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const double flip = settings.flip_fraction;
+  const double pic = 1.0 - flip;
+  const double g_r = settings.gravity[0];
+  const double g_y = settings.gravity[1];
+  std::vector<WaterParticleResult> block_results(static_cast<std::size_t>(bins.block_count()));
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    WaterParticleResult& out = block_results[static_cast<std::size_t>(block)];
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const LiquidPhase* phase = phases[p.material[i]];
+      if (phase == nullptr) {
+        continue;
+      }
+      const auto weights = particle_weights<shape>(grid, p, i);
+      double velocity[3] = {0.0, 0.0, 0.0}, increment[3] = {0.0, 0.0, 0.0};
+      double skeleton[2] = {0.0, 0.0};
+      constexpr int dofs = has_theta(mode) ? 3 : 2;
+      for (int a = 0; a < weights.size; ++a) {
+        const auto node = static_cast<std::size_t>(weights.node[a]);
+        const LiquidNode& water = grid.liquid[node];
+        for (int d = 0; d < dofs; ++d) {
+          velocity[d] += weights.N[a] * water.velocity()[d];
+          increment[d] += weights.N[a] * water.velocity_increment()[d];
+        }
+        skeleton[0] += weights.N[a] * grid.nodes[node].velocity()[0];
+        skeleton[1] += weights.N[a] * grid.nodes[node].velocity()[1];
+      }
+      const double r = has_theta(mode) ? p.r[i] : 0.0;
+      double* w = p.state.data() + i * stride + phase->velocity_slot;
+      const double w_flip[3] = {w[0] + increment[0], w[1] + increment[1],
+                                has_theta(mode) ? w[2] + r * increment[2] : 0.0};
+      const double w_new[3] = {flip * w_flip[0] + pic * velocity[0],
+                               flip * w_flip[1] + pic * velocity[1],
+                               flip * w_flip[2] + pic * r * velocity[2]};
+      const double water_mass = phase->mass_fraction * p.mass[i];
+      double drop = 0.0;
+      for (int d = 0; d < dofs; ++d) {
+        drop += w_flip[d] * w_flip[d] - w_new[d] * w_new[d];
+        w[d] = w_new[d];
+      }
+      out.transfer += 0.5 * water_mass * drop;
+      // Gravity on the water works along the water's path; the stress pass books the mixture's
+      // weight along the skeleton's, so the difference is added here.
+      out.external_work += water_mass *
+                           (g_r * (velocity[0] - skeleton[0]) + g_y * (velocity[1] - skeleton[1])) *
+                           step.dt;
+    }
+  });
+  WaterParticleResult total;
+  for (const std::int32_t block : bins.non_empty_blocks()) {
+    const WaterParticleResult& out = block_results[static_cast<std::size_t>(block)];
+    total.external_work += out.external_work;
+    total.transfer += out.transfer;
+  }
+  return total;
+}
+
+template <GeometryMode mode> void rescale_remapped_skeleton(Scene& scene) {
+  Grid& grid = scene.grid;
+  parallel_for(grid.liquid.size(), [&](std::size_t i) {
+    const LiquidNode& water = grid.liquid[i];
+    if (!(water.mass > 0.0) || !(water.mixture_mass > 0.0)) {
+      return;
+    }
+    // The remap summed N m v over the mixture's masses m and divided by the effective mass
+    // couple_phases left; divided by the mixture's own sum it is their weighted mean.
+    GridNode& node = grid.nodes[i];
+    node.velocity()[0] *= node.mass / water.mixture_mass;
+    node.velocity()[1] *= node.mass / water.mixture_mass;
+    if constexpr (has_theta(mode)) {
+      node.velocity()[2] *= node.inertia / water.mixture_inertia;
+    }
+  });
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+void remap_water(Scene& scene, const ParticleBins& bins,
+                 const std::vector<const LiquidPhase*>& phases) {
+  constexpr int dofs = has_theta(mode) ? 3 : 2;
+  Grid& grid = scene.grid;
+  const Particles& p = scene.particles;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  parallel_for(grid.liquid.size(), [&](std::size_t i) {
+    for (int d = 0; d < 3; ++d) {
+      grid.liquid[i].momentum[d] = 0.0;
+    }
+  });
+  bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const LiquidPhase* phase = phases[p.material[i]];
+      if (phase == nullptr) {
+        continue;
+      }
+      const double* state = p.state.data() + i * stride;
+      const double* w = state + phase->velocity_slot;
+      const double inertia = phase->mass_fraction * p.mass[i] / state[phase->porosity_slot];
+      const double momentum[3] = {inertia * w[0], inertia * w[1],
+                                  has_theta(mode) ? inertia * p.r[i] * w[2] : 0.0};
+      const auto weights = particle_weights<shape>(grid, p, i);
+      for (int a = 0; a < weights.size; ++a) {
+        LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[a])];
+        for (int d = 0; d < dofs; ++d) {
+          node.momentum[d] += weights.N[a] * momentum[d];
+        }
+      }
+    }
+  });
+  parallel_for(grid.liquid.size(), [&](std::size_t i) {
+    LiquidNode& water = grid.liquid[i];
+    const GridNode& node = grid.nodes[i];
+    const double inverse[3] = {water.mass > 0.0 ? 1.0 / water.mass : 0.0,
+                               water.mass > 0.0 ? 1.0 / water.mass : 0.0,
+                               water.inertia > 0.0 ? 1.0 / water.inertia : 0.0};
+    for (int d = 0; d < dofs; ++d) {
+      water.velocity()[d] = water.momentum[d] * inverse[d];
+      // Impermeable where the skeleton is held, as in update_water_velocities.
+      if (d < 2 && (grid.constrained[i] & (1u << d)) != 0) {
+        water.velocity()[d] = node.velocity()[d];
+      }
+    }
+  });
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+void pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
+                             const std::vector<const LiquidPhase*>& phases,
+                             const SolverSettings& settings, const StepParameters& step,
+                             std::vector<PendingPorePressure>& pending) {
+  const Grid& grid = scene.grid;
+  Particles& p = scene.particles;
+  const double dt = step.dt;
+  pending.resize(p.size());
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    // The divergences of both phases' velocities (the ones the stress pass reads) at each
+    // particle, then (with B-bar) as the volume-weighted mean of its cell, as the skeleton's
+    // volumetric strain is taken: the water's share of the pressure is no rougher than the
+    // skeleton's.
+    thread_local std::vector<std::array<double, 2>> divergence;
+    thread_local std::vector<std::array<double, 3>> cell_sum;
+    divergence.assign(particles.size(), {0.0, 0.0});
+    const auto [cr0, cy0] = bins.block_origin(block);
+    const int block_cells = bins.block_cells();
+    cell_sum.assign(static_cast<std::size_t>(block_cells * block_cells), {0.0, 0.0, 0.0});
+    const auto cell_of = [&](std::size_t i) {
+      return static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
+    };
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const auto i = static_cast<std::size_t>(particles[k]);
+      if (phases[p.material[i]] == nullptr) {
+        continue;
+      }
+      const auto weights = particle_weights<shape>(grid, p, i);
+      double div_w = 0.0, div_v = 0.0, w_r = 0.0, v_r = 0.0;
+      for (int a = 0; a < weights.size; ++a) {
+        const auto node = static_cast<std::size_t>(weights.node[a]);
+        const double* w = grid.liquid[node].velocity();
+        const double* v = grid.nodes[node].velocity();
+        div_w += weights.dN_dr[a] * w[0] + weights.dN_dy[a] * w[1];
+        div_v += weights.dN_dr[a] * v[0] + weights.dN_dy[a] * v[1];
+        w_r += weights.N[a] * w[0];
+        v_r += weights.N[a] * v[0];
+      }
+      if constexpr (has_theta(mode)) {
+        div_w += w_r / p.r[i];
+        div_v += v_r / p.r[i];
+      }
+      divergence[k] = {div_w, div_v};
+      if (settings.bbar) {
+        auto& sum = cell_sum[cell_of(i)];
+        sum[0] += p.volume[i] * div_w;
+        sum[1] += p.volume[i] * div_v;
+        sum[2] += p.volume[i];
+      }
+    }
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      const auto i = static_cast<std::size_t>(particles[k]);
+      const LiquidPhase* phase = phases[p.material[i]];
+      if (phase == nullptr) {
+        continue;
+      }
+      double div_w = divergence[k][0], div_v = divergence[k][1];
+      if (settings.bbar) {
+        const auto& sum = cell_sum[cell_of(i)];
+        div_w = sum[0] / sum[2];
+        div_v = sum[1] / sum[2];
+      }
+      // The water's share of the pressure change, K_w div w dt (its flow into or out of the
+      // pores); the skeleton's share is the material's.
+      pending[i] = {phase->bulk_modulus * div_w * dt, div_w * dt, div_v * dt,
+                    p.state[i * static_cast<std::size_t>(p.state_stride) +
+                            static_cast<std::size_t>(phase->pore_slot)]};
+    }
+  });
+}
+
+double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
+                                     const std::vector<const LiquidPhase*>& phases,
+                                     const std::vector<PendingPorePressure>& pending) {
+  Particles& p = scene.particles;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  std::vector<double> block_work(static_cast<std::size_t>(bins.block_count()), 0.0);
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    double work = 0.0;
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const LiquidPhase* phase = phases[p.material[i]];
+      if (phase == nullptr) {
+        continue;
+      }
+      double* state = p.state.data() + i * stride;
+      const PendingPorePressure& change = pending[i];
+      const double n = state[phase->porosity_slot];
+      double& pore = state[phase->pore_slot];
+      // The water's stored energy n p^2 / (2 K_w) V changes by p_mid ((1 - n) d eps + n d eps_w) V,
+      // p_mid the step's mean pressure. The stress pass booked its trapezoid on sigma : d eps
+      // with the skeleton's share dp_s alone, (p^n + dp_s / 2) d eps V; this is the rest. The two
+      // shares are each large and nearly cancel while the water barely drains, so neither half
+      // step may be dropped.
+      const double skeleton_mean = 0.5 * (change.pore_before + pore); // p^n + dp_s / 2
+      const double storage = (1.0 - n) * change.skeleton_strain + n * change.water_strain;
+      work += p.volume[i] * (n * skeleton_mean * (change.water_strain - change.skeleton_strain) +
+                             0.5 * change.pressure * storage);
+      pore += change.pressure;
+      state[phase->pore_slot + 1] += change.pressure;
+      Stress& s = p.stress[i];
+      s[RR] += change.pressure;
+      s[YY] += change.pressure;
+      s[TT] += change.pressure;
+    }
+    block_work[static_cast<std::size_t>(block)] = work;
+  });
+  double total = 0.0;
+  for (const std::int32_t block : bins.non_empty_blocks()) {
+    total += block_work[static_cast<std::size_t>(block)];
+  }
+  return total;
+}
+
+double water_kinetic_energy(const Particles& p, std::size_t i, const LiquidPhase& phase) {
+  const double* w = p.state.data() + i * static_cast<std::size_t>(p.state_stride) +
+                    phase.velocity_slot;
+  const double w2 = w[0] * w[0] + w[1] * w[1] + (has_theta(p.mode) ? w[2] * w[2] : 0.0);
+  return 0.5 * phase.mass_fraction * p.mass[i] * w2;
+}
+
+#define MPILE_WATER_PASSES(MODE, SHAPE)                                                           \
+  template void map_water_to_grid<MODE, SHAPE>(Scene&, const ParticleBins&,                       \
+                                               const std::vector<const LiquidPhase*>&,           \
+                                               const SolverSettings&);                            \
+  template WaterParticleResult update_water_particle_velocities<MODE, SHAPE>(                     \
+      Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&, \
+      const StepParameters&);                                                                     \
+  template void remap_water<MODE, SHAPE>(Scene&, const ParticleBins&,                             \
+                                         const std::vector<const LiquidPhase*>&);                 \
+  template void pore_pressure_from_flow<MODE, SHAPE>(                                             \
+      Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&, \
+      const StepParameters&, std::vector<PendingPorePressure>&);
+MPILE_WATER_PASSES(GeometryMode::axisymmetric, ShapeFunctions::linear)
+MPILE_WATER_PASSES(GeometryMode::axisymmetric, ShapeFunctions::gimp)
+MPILE_WATER_PASSES(GeometryMode::plane_strain, ShapeFunctions::linear)
+MPILE_WATER_PASSES(GeometryMode::plane_strain, ShapeFunctions::gimp)
+#undef MPILE_WATER_PASSES
+template void rescale_remapped_skeleton<GeometryMode::axisymmetric>(Scene&);
+template void rescale_remapped_skeleton<GeometryMode::plane_strain>(Scene&);
+template void couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
+template void couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&);
+template double update_water_velocities<GeometryMode::axisymmetric>(Scene&,
+                                                                    const StepParameters&);
+template double update_water_velocities<GeometryMode::plane_strain>(Scene&,
+                                                                    const StepParameters&);
+
+} // namespace mpile::passes
