@@ -106,7 +106,8 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
     return {};
   }
   PassTimer timer(timings_.grid_update);
-  return {.drag = passes::update_water_velocities<mode>(scene_, step)};
+  const passes::WaterVelocityResult water = passes::update_water_velocities<mode>(scene_, step);
+  return {.external_work = water.support_work, .drag = water.drag};
 }
 
 template <GeometryMode mode, ShapeFunctions shape>

@@ -47,9 +47,13 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
                        const SolverSettings& settings);
 /// ... the water's inertia and drag folded into field 0's nodes before their momentum balance ...
 template <GeometryMode mode> void couple_phases(Scene& scene, const StepParameters& step);
-/// ... the water's velocities from the skeleton's final ones; returns the drag's dissipation ...
+/// ... the water's velocities from the skeleton's final ones ...
+struct WaterVelocityResult {
+  double drag = 0.0;         // taken by Darcy's drag over the step
+  double support_work = 0.0; // done on the water by the impermeable faces
+};
 template <GeometryMode mode>
-double update_water_velocities(Scene& scene, const StepParameters& step);
+WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step);
 /// ... the particles' water velocity ...
 struct WaterParticleResult {
   double external_work = 0.0; // gravity on the water's path beyond the skeleton's

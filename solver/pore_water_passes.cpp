@@ -165,11 +165,11 @@ template <GeometryMode mode> void couple_phases(Scene& scene, const StepParamete
 }
 
 template <GeometryMode mode>
-double update_water_velocities(Scene& scene, const StepParameters& step) {
+WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   const double dt = step.dt;
-  auto update = [&](std::size_t begin, std::size_t end, double dissipated) {
+  auto update = [&](std::size_t begin, std::size_t end, WaterVelocityResult result) {
     for (std::size_t i = begin; i < end; ++i) {
       LiquidNode& water = grid.liquid[i];
       const GridNode& node = grid.nodes[i];
@@ -183,24 +183,35 @@ double update_water_velocities(Scene& scene, const StepParameters& step) {
       for (int d = 0; d < dofs; ++d) {
         const double v = node.velocity()[d];
         const double w = water.velocity()[d];
-        double w_new = (mass[d] * w + dt * water.force[d] + dt * drag[d] * v) / (mass[d] + dt * drag[d]);
+        const double held = mass[d] + dt * drag[d];
+        double w_new = (mass[d] * w + dt * water.force[d] + dt * drag[d] * v) / held;
         // A face that holds the skeleton is impermeable: the water keeps to the skeleton's normal
-        // velocity there (the theta DOF is a direction along every face).
+        // velocity there (the theta DOF is a direction along every face). The skeleton's support
+        // booked the mixture's reaction as if the water had moved freely; held, the water's share
+        // of the mixture's momentum, M_nw = n M_w, changes by M_nw (v - w_free) more, and the
+        // face does that work too.
         if (d < 2 && (grid.constrained[i] & (1u << d)) != 0) {
+          result.support_work += porosity * mass[d] * (v - w_new) * v;
           w_new = v;
         }
         // Darcy's drag takes n Q (w - v)^2 per unit time, at the velocities it acts on: the
         // water's balance here is per unit pore volume (divided by n), so its forces' power is
         // n times theirs; the node's n is the water's share over its mass.
-        dissipated += porosity * drag[d] * (w_new - v) * (w_new - v) * dt;
+        result.drag += porosity * drag[d] * (w_new - v) * (w_new - v) * dt;
         water.velocity()[d] = w_new;
         water.velocity_increment()[d] = w_new - w;
       }
     }
-    return dissipated;
+    return result;
   };
   return parallel_reduce(
-      grid.liquid.size(), 0.0, update, [](double a, double b) { return a + b; }, true);
+      grid.liquid.size(), WaterVelocityResult{}, update,
+      [](WaterVelocityResult a, const WaterVelocityResult& b) {
+        a.drag += b.drag;
+        a.support_work += b.support_work;
+        return a;
+      },
+      true);
 }
 
 template <GeometryMode mode, ShapeFunctions shape>
@@ -478,9 +489,9 @@ template void rescale_remapped_skeleton<GeometryMode::axisymmetric>(Scene&);
 template void rescale_remapped_skeleton<GeometryMode::plane_strain>(Scene&);
 template void couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
 template void couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&);
-template double update_water_velocities<GeometryMode::axisymmetric>(Scene&,
-                                                                    const StepParameters&);
-template double update_water_velocities<GeometryMode::plane_strain>(Scene&,
-                                                                    const StepParameters&);
+template WaterVelocityResult
+update_water_velocities<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
+template WaterVelocityResult
+update_water_velocities<GeometryMode::plane_strain>(Scene&, const StepParameters&);
 
 } // namespace mpile::passes

@@ -431,8 +431,7 @@ name = "one"
 duration = 0.01
 )";
   const std::vector<BadWater> bad{
-      {"coupled is not built", "drainage = \"coupled\"\n", "not built yet", "drainage ="},
-      {"unknown drainage", "drainage = \"partially\"\n", "must be \"drained\" or \"undrained\"",
+      {"unknown drainage", "drainage = \"partially\"\n", "must be \"drained\", \"undrained\" or \"coupled\"",
        "drainage ="},
       {"water for a drained material", "water_bulk_modulus = 1e9\n",
        "a drained material has no pore water", "water_bulk_modulus"},
