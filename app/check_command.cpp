@@ -106,10 +106,15 @@ void print_pore_water(std::ostream& out, const CaseSpec& spec, const Scene& scen
       nu_high = std::max(nu_high, r.poisson_ratio);
     }
     out << std::defaultfloat << std::setprecision(4) << "material " << spec.materials[m].name
-        << ": undrained, porosity " << soil->porosity() << ", saturated density " << soil->density()
-        << " kg/m^3, K_w " << water.bulk_modulus << " Pa"
+        << ": " << drainage_names()[static_cast<std::size_t>(soil->drainage())] << ", porosity "
+        << soil->porosity() << ", saturated density " << soil->density() << " kg/m^3, K_w "
+        << water.bulk_modulus << " Pa"
         << (water.bulk_modulus < PoreWater{}.bulk_modulus ? " (reduced from water's 2.2e9)" : "")
-        << ", K_w / n " << soil->water_stiffness() << " Pa\n";
+        << ", K_w / n " << soil->water_stiffness() << " Pa";
+    if (soil->drainage() == Drainage::coupled) {
+      out << ", k " << water.hydraulic_conductivity << " m/s";
+    }
+    out << "\n";
     if (b_high >= b_low) {
       out << "  at the first phase's initial stresses: Skempton B " << b_low << " to " << b_high
           << ", undrained Poisson ratio " << nu_low << " to " << nu_high << "\n";
