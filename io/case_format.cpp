@@ -174,9 +174,10 @@ std::vector<KeySpec> material_keys(const std::vector<std::string>& material_name
   for (const PoreWaterParameter& w : pore_water_parameters()) {
     // The hydraulic conductivity has no default: a coupled material must give it.
     const bool conductivity = w.member == &PoreWater::hydraulic_conductivity;
-    KeySpec key = conductivity ? number(w.name, w.unit, w.meaning)
-                               : number(w.name, w.unit, w.meaning + "; saturated only")
-                                     .or_default(defaults.*w.member);
+    KeySpec key =
+        conductivity
+            ? number(w.name, w.unit, w.meaning)
+            : number(w.name, w.unit, w.meaning + "; saturated only").or_default(defaults.*w.member);
     key.range = w.range;
     keys.push_back(std::move(key));
   }

@@ -119,8 +119,8 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
     const EnergyLedger& e = solver.energy;
     file.write("/solver/energy",
                std::vector<double>{e.external_work, e.internal_work, e.damping, e.contact,
-                                   e.kinetic_reference, e.elastic_reference, e.transfer,
-                                   e.radiated, e.drag},
+                                   e.kinetic_reference, e.elastic_reference, e.transfer, e.radiated,
+                                   e.drag},
                "external work, internal work, damping, contact, kinetic and elastic references, "
                "transfer, radiated, drag");
     file.write("/run/counters",

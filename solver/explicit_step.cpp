@@ -111,7 +111,8 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
 }
 
 template <GeometryMode mode, ShapeFunctions shape>
-EnergyIncrement ExplicitSolver::update_water_particle_velocities(const passes::StepParameters& step) {
+EnergyIncrement
+ExplicitSolver::update_water_particle_velocities(const passes::StepParameters& step) {
   if (liquid_phases_.empty()) {
     return {};
   }

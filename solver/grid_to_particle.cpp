@@ -7,8 +7,8 @@
 // the field's XPIC correction; the position increment stays the nodal velocity's. Returns the
 // kinetic energy the update took against FLIP's (J [/rad], the numerical dissipation of PIC, a
 // blend or XPIC; 0 for FLIP), for the energy balance.
-#include "engine/shape_functions.hpp"
 #include "engine/materials/pore_water.hpp"
+#include "engine/shape_functions.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 #include "solver/xpic.hpp"

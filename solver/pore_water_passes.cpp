@@ -110,8 +110,8 @@ struct EffectiveDof {
   double force;
 };
 inline EffectiveDof effective_dof(double skeleton_mass, double share, double water_mass,
-                                  double drag, double force, double water_force, double v,
-                                  double w, double dt) {
+                                  double drag, double force, double water_force, double v, double w,
+                                  double dt) {
   const double d = water_mass + dt * drag;
   return {skeleton_mass + share * dt * drag / d,
           force - share / d * (water_force - drag * (w - v))};
@@ -462,23 +462,22 @@ double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
 }
 
 double water_kinetic_energy(const Particles& p, std::size_t i, const LiquidPhase& phase) {
-  const double* w = p.state.data() + i * static_cast<std::size_t>(p.state_stride) +
-                    phase.velocity_slot;
+  const double* w =
+      p.state.data() + i * static_cast<std::size_t>(p.state_stride) + phase.velocity_slot;
   const double w2 = w[0] * w[0] + w[1] * w[1] + (has_theta(p.mode) ? w[2] * w[2] : 0.0);
   return 0.5 * phase.mass_fraction * p.mass[i] * w2;
 }
 
-#define MPILE_WATER_PASSES(MODE, SHAPE)                                                           \
-  template void map_water_to_grid<MODE, SHAPE>(Scene&, const ParticleBins&,                       \
-                                               const std::vector<const LiquidPhase*>&,           \
-                                               const SolverSettings&);                            \
-  template WaterParticleResult update_water_particle_velocities<MODE, SHAPE>(                     \
-      Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&, \
-      const StepParameters&);                                                                     \
-  template void remap_water<MODE, SHAPE>(Scene&, const ParticleBins&,                             \
-                                         const std::vector<const LiquidPhase*>&);                 \
-  template void pore_pressure_from_flow<MODE, SHAPE>(                                             \
-      Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&, \
+#define MPILE_WATER_PASSES(MODE, SHAPE)                                                            \
+  template void map_water_to_grid<MODE, SHAPE>(                                                    \
+      Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&); \
+  template WaterParticleResult update_water_particle_velocities<MODE, SHAPE>(                      \
+      Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&,  \
+      const StepParameters&);                                                                      \
+  template void remap_water<MODE, SHAPE>(Scene&, const ParticleBins&,                              \
+                                         const std::vector<const LiquidPhase*>&);                  \
+  template void pore_pressure_from_flow<MODE, SHAPE>(                                              \
+      Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&,  \
       const StepParameters&, std::vector<PendingPorePressure>&);
 MPILE_WATER_PASSES(GeometryMode::axisymmetric, ShapeFunctions::linear)
 MPILE_WATER_PASSES(GeometryMode::axisymmetric, ShapeFunctions::gimp)

@@ -50,7 +50,8 @@ type = "linear_elastic"
 young_modulus = 100e6
 poisson_ratio = 0.25
 density = 1600.0
-)" + drainage + R"(
+)" + drainage +
+         R"(
 [[bodies]]
 name = "column"
 material = "sand"

@@ -431,8 +431,8 @@ name = "one"
 duration = 0.01
 )";
   const std::vector<BadWater> bad{
-      {"unknown drainage", "drainage = \"partially\"\n", "must be \"drained\", \"undrained\" or \"coupled\"",
-       "drainage ="},
+      {"unknown drainage", "drainage = \"partially\"\n",
+       "must be \"drained\", \"undrained\" or \"coupled\"", "drainage ="},
       {"water for a drained material", "water_bulk_modulus = 1e9\n",
        "a drained material has no pore water", "water_bulk_modulus"},
       {"no stiffness", "drainage = \"undrained\"\nwater_bulk_modulus = 0.0\n",

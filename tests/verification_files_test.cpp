@@ -35,7 +35,7 @@ TEST(VerificationFiles, VerifyListsEveryCaseFromV1ToV9InOrder) {
   for (const verification::Case& c : verification::all_cases()) {
     ids.push_back(c.id);
   }
-  const std::vector<std::string> expected{"V1",  "V2", "V3", "V4",   "V4p", "V5", "V6",
+  const std::vector<std::string> expected{"V1",  "V2", "V3", "V4",   "V4p", "V5",  "V6",
                                           "V6c", "V7", "V8", "V8k0", "V9",  "V10", "VHS"};
   EXPECT_EQ(ids, expected);
   EXPECT_NE(verification::find_case("V7"), nullptr);

@@ -129,9 +129,9 @@ Report run_terzaghi_consolidation(const Options& options) {
   const double dry_density = run.parameter("soil", "density");
   const double n = porosity(dry_density, soil.water);
   const double water_stiffness = soil.water.bulk_modulus / n;
-  const double c_v = soil.water.hydraulic_conductivity /
-                     (soil.water.density * standard_gravity *
-                      (1.0 / oedometer + n / soil.water.bulk_modulus));
+  const double c_v =
+      soil.water.hydraulic_conductivity /
+      (soil.water.density * standard_gravity * (1.0 / oedometer + n / soil.water.bulk_modulus));
   const double c_v_over_h2 = c_v / (height * height);
   const TimeFunction& traction = run.spec().loads.at(0).traction;
   const double load = -traction.value(1.0);
@@ -166,10 +166,9 @@ Report run_terzaghi_consolidation(const Options& options) {
     const WindowAverage& w = windows[f];
     std::ostringstream name;
     name << "degree of consolidation U at T_v = " << factors[f];
-    const double exact = 1.0 - averaged_reference(traction, rise, c_v_over_h2, w.from, w.to,
-                                                  [](double tv) {
-                                                    return 1.0 - degree_of_consolidation(tv);
-                                                  });
+    const double exact =
+        1.0 - averaged_reference(traction, rise, c_v_over_h2, w.from, w.to,
+                                 [](double tv) { return 1.0 - degree_of_consolidation(tv); });
     // 2 % of the consolidation (the target): the scale is the final degree, 1.
     report.checks.push_back({name.str(), "-", 1.0 - w.sum.mean / u0, exact, 1.0, 0.02});
   }
