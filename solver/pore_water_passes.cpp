@@ -29,6 +29,23 @@
 
 namespace mpile::passes {
 
+namespace {
+
+/// Calls f(i, phase, water state) for each particle of coupled soil among `particles`.
+template <class F>
+void for_each_coupled(std::span<const std::int32_t> particles, Particles& p,
+                      const std::vector<const LiquidPhase*>& phases, F&& f) {
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  for (const std::int32_t q : particles) {
+    const auto i = static_cast<std::size_t>(q);
+    if (const LiquidPhase* phase = phases[p.material[i]]) {
+      f(i, *phase, p.state.data() + i * stride);
+    }
+  }
+}
+
+} // namespace
+
 std::vector<const LiquidPhase*> liquid_phases(const Scene& scene) {
   std::vector<const LiquidPhase*> phases;
   for (const auto& material : scene.materials) {
@@ -44,56 +61,50 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
   Grid& grid = scene.grid;
   grid.liquid.resize(grid.nodes.size());
   parallel_for(grid.liquid.size(), [&](std::size_t i) { grid.liquid[i] = LiquidNode{}; });
-  const Particles& p = scene.particles;
-  const auto stride = static_cast<std::size_t>(p.state_stride);
+  Particles& p = scene.particles;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
   bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
-    for (const std::int32_t q : particles) {
-      const auto i = static_cast<std::size_t>(q);
-      const LiquidPhase* phase = phases[p.material[i]];
-      if (phase == nullptr) {
-        continue;
-      }
-      const double* state = p.state.data() + i * stride;
-      const double n = state[phase->porosity_slot];
-      const double* w = state + phase->velocity_slot;
-      const double water_mass = phase->mass_fraction * p.mass[i];
-      const double inertia = water_mass / n; // rho_w V
-      const double drag = water_mass * phase->drag_per_mass;
-      // The pore pressure's share of the water's internal force, as the particle-to-grid pass
-      // takes the total stress's, with sigma = p 1.
-      const double weighted = p.volume[i] * state[phase->pore_slot];
-      const double hoop = has_theta(mode) ? weighted / p.r[i] : 0.0;
-      const auto weights = particle_weights<shape>(grid, p, i);
-      for (int k = 0; k < weights.size; ++k) {
-        LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[k])];
-        const double N = weights.N[k];
-        node.mass += N * inertia;
-        node.share += N * water_mass;
-        node.drag += N * drag;
-        node.momentum[0] += N * inertia * w[0];
-        node.momentum[1] += N * inertia * w[1];
-        node.force[0] += N * inertia * g_r - (weights.dN_dr[k] * weighted + N * hoop);
-        node.force[1] += N * inertia * g_y - weights.dN_dy[k] * weighted;
-        node.skeleton_momentum[0] += N * water_mass * p.v_r[i];
-        node.skeleton_momentum[1] += N * water_mass * p.v_y[i];
-      }
-      if constexpr (has_theta(mode)) {
-        // The theta DOF is angular, as the skeleton's: the water's angular momentum and its three
-        // rotational inertias. The pore pressure exerts no torque.
-        const double r = p.r[i];
-        for (int k = 0; k < weights.size; ++k) {
-          LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[k])];
-          const double N = weights.N[k];
-          node.momentum[2] += N * inertia * r * w[2];
-          node.inertia += N * inertia * r * r;
-          node.share_inertia += N * water_mass * r * r;
-          node.drag_inertia += N * drag * r * r;
-          node.skeleton_momentum[2] += N * water_mass * r * p.v_theta[i];
-        }
-      }
-    }
+    for_each_coupled(
+        particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, const double* state) {
+          const double n = state[phase.porosity_slot];
+          const double* w = state + phase.velocity_slot;
+          const double water_mass = phase.mass_fraction * p.mass[i];
+          const double inertia = water_mass / n; // rho_w V
+          const double drag = water_mass * phase.drag_per_mass;
+          // The pore pressure's share of the water's internal force, as the particle-to-grid pass
+          // takes the total stress's, with sigma = p 1.
+          const double weighted = p.volume[i] * state[phase.pore_slot];
+          const double hoop = has_theta(mode) ? weighted / p.r[i] : 0.0;
+          const auto weights = particle_weights<shape>(grid, p, i);
+          for (int k = 0; k < weights.size; ++k) {
+            LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[k])];
+            const double N = weights.N[k];
+            node.mass += N * inertia;
+            node.share += N * water_mass;
+            node.drag += N * drag;
+            node.momentum[0] += N * inertia * w[0];
+            node.momentum[1] += N * inertia * w[1];
+            node.force[0] += N * inertia * g_r - (weights.dN_dr[k] * weighted + N * hoop);
+            node.force[1] += N * inertia * g_y - weights.dN_dy[k] * weighted;
+            node.skeleton_momentum[0] += N * water_mass * p.v_r[i];
+            node.skeleton_momentum[1] += N * water_mass * p.v_y[i];
+          }
+          if constexpr (has_theta(mode)) {
+            // The theta DOF is angular, as the skeleton's: the water's angular momentum and its
+            // three rotational inertias. The pore pressure exerts no torque.
+            const double r = p.r[i];
+            for (int k = 0; k < weights.size; ++k) {
+              LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[k])];
+              const double N = weights.N[k];
+              node.momentum[2] += N * inertia * r * w[2];
+              node.inertia += N * inertia * r * r;
+              node.share_inertia += N * water_mass * r * r;
+              node.drag_inertia += N * drag * r * r;
+              node.skeleton_momentum[2] += N * water_mass * r * p.v_theta[i];
+            }
+          }
+        });
   });
 }
 
@@ -302,33 +313,27 @@ void remap_water(Scene& scene, const ParticleBins& bins,
                  const std::vector<const LiquidPhase*>& phases) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
-  const Particles& p = scene.particles;
-  const auto stride = static_cast<std::size_t>(p.state_stride);
+  Particles& p = scene.particles;
   parallel_for(grid.liquid.size(), [&](std::size_t i) {
     for (int d = 0; d < 3; ++d) {
       grid.liquid[i].momentum[d] = 0.0;
     }
   });
   bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
-    for (const std::int32_t q : particles) {
-      const auto i = static_cast<std::size_t>(q);
-      const LiquidPhase* phase = phases[p.material[i]];
-      if (phase == nullptr) {
-        continue;
-      }
-      const double* state = p.state.data() + i * stride;
-      const double* w = state + phase->velocity_slot;
-      const double inertia = phase->mass_fraction * p.mass[i] / state[phase->porosity_slot];
-      const double momentum[3] = {inertia * w[0], inertia * w[1],
-                                  has_theta(mode) ? inertia * p.r[i] * w[2] : 0.0};
-      const auto weights = particle_weights<shape>(grid, p, i);
-      for (int a = 0; a < weights.size; ++a) {
-        LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[a])];
-        for (int d = 0; d < dofs; ++d) {
-          node.momentum[d] += weights.N[a] * momentum[d];
-        }
-      }
-    }
+    for_each_coupled(
+        particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, const double* state) {
+          const double* w = state + phase.velocity_slot;
+          const double inertia = phase.mass_fraction * p.mass[i] / state[phase.porosity_slot];
+          const double momentum[3] = {inertia * w[0], inertia * w[1],
+                                      has_theta(mode) ? inertia * p.r[i] * w[2] : 0.0};
+          const auto weights = particle_weights<shape>(grid, p, i);
+          for (int a = 0; a < weights.size; ++a) {
+            LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[a])];
+            for (int d = 0; d < dofs; ++d) {
+              node.momentum[d] += weights.N[a] * momentum[d];
+            }
+          }
+        });
   });
   parallel_for(grid.liquid.size(), [&](std::size_t i) {
     LiquidNode& water = grid.liquid[i];

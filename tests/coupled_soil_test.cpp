@@ -7,6 +7,7 @@
 #include "io/case_error.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
+#include "tests/saturated_column.hpp"
 
 #include <gtest/gtest.h>
 
@@ -37,50 +38,6 @@ TEST(CoupledSoil, TerzaghiConsolidationMatchesTheClosedForm) {
   }
 }
 
-/// A saturated column driven at its base by a velocity step (uniaxial strain), drainage and k
-/// as given; no gravity.
-std::string wave_column(const std::string& drainage) {
-  return R"(title = "saturated wave"
-geometry = "axisymmetric"
-[grid]
-r = [{ start = 0.0, end = 0.1, cells = 2 }]
-y = [{ start = 0.0, end = 30.0, cells = 600 }]
-[materials.sand]
-type = "linear_elastic"
-young_modulus = 100e6
-poisson_ratio = 0.25
-density = 1600.0
-)" + drainage +
-         R"(
-[[bodies]]
-name = "column"
-material = "sand"
-region = { r = [0.0, 0.1], y = [0.0, 30.0] }
-[boundaries]
-r_max = "roller"
-[[prescribed]]
-name = "piston"
-nodes = { y = 0.0 }
-velocity_y = 0.01
-[[phases]]
-name = "wave"
-duration = 0.015
-gravity = false
-)";
-}
-
-/// The highest particle moving at half the step's velocity or more.
-double front(const CaseRun& run) {
-  const Particles& p = run.scene->particles;
-  double y = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.v_y[i] >= 0.005) {
-      y = std::max(y, p.y[i]);
-    }
-  }
-  return y;
-}
-
 // With a k so small that the water cannot move against the skeleton within the wave's passage
 // (its relaxation time k / (n g) is 2.6e-10 s against a 3 us step), the coupled column carries
 // the undrained P-wave c = sqrt((M + K_w / n) / rho_sat) = 1 690 m/s. The front is measured
@@ -88,15 +45,15 @@ double front(const CaseRun& run) {
 // what a 0.05 m cell and half a cell of front position allow over the 10 m between them (the
 // undrained material's test, UndrainedSoil.UndrainedPWaveRunsAtTheSaturatedSpeed, uses the same).
 TEST(CoupledSoil, SmallConductivityCarriesTheUndrainedPWave) {
-  CaseRun run(wave_column("drainage = \"coupled\"\nhydraulic_conductivity = 1e-9"));
+  CaseRun run(saturated_wave_column("drainage = \"coupled\"\nhydraulic_conductivity = 1e-9"));
   const double n = 1.0 - 1600.0 / 2650.0;
   const double rho_sat = 1600.0 + n * 1000.0;
   const double m = 100e6 * 0.75 / (1.25 * 0.5);
   const double c = std::sqrt((m + 2.2e9 / n) / rho_sat);
   run.solver->advance_to(0.006);
-  const double y1 = front(run);
+  const double y1 = wave_front(run);
   run.solver->advance_to(0.012);
-  const double y2 = front(run);
+  const double y2 = wave_front(run);
   EXPECT_NEAR((y2 - y1) / 0.006, c, 0.02 * c) << "front at " << y1 << " and " << y2 << " m";
   // And the ledger closes: the piston's work is the two phases' kinetic energy, the skeleton's
   // and the water's stored energy, and what the drag took (2 %, the target).
@@ -110,7 +67,8 @@ TEST(CoupledSoil, SmallConductivityCarriesTheUndrainedPWave) {
 TEST(CoupledSoil, WaveDampingGrowsWithConductivity) {
   double previous = -1.0;
   for (const char* k : {"1e-7", "1e-5", "1e-3"}) {
-    CaseRun run(wave_column(std::string("drainage = \"coupled\"\nhydraulic_conductivity = ") + k));
+    CaseRun run(saturated_wave_column(
+        std::string("drainage = \"coupled\"\nhydraulic_conductivity = ") + k));
     run.solver->advance_to(0.006);
     const EnergyBalance balance = run.solver->energy_balance();
     const double share = balance.drag / balance.external_work;
@@ -148,7 +106,8 @@ TEST(CoupledSoil, ResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
 
 // Each refusal names the file, the line and the key.
 TEST(CoupledSoil, BadWaterInputIsRefusedAtItsLine) {
-  const std::string base = wave_column("drainage = \"coupled\"\nhydraulic_conductivity = 1e-4");
+  const std::string base =
+      saturated_wave_column("drainage = \"coupled\"\nhydraulic_conductivity = 1e-4");
   struct Bad {
     const char* what;
     std::string from, to;

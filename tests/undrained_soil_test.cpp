@@ -12,6 +12,7 @@
 #include "io/element_test_file.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
+#include "tests/saturated_column.hpp"
 
 #include <gtest/gtest.h>
 
@@ -255,52 +256,15 @@ TEST(UndrainedSoil, KZeroPutsTheWaterHydrostaticAndTheColumnStaysAtRest) {
 // between two instants so that the front's start-up and its smearing over a few cells cancel; 2 %
 // is what a 0.05 m cell and half a cell of front position allow over the 10 m run between them.
 TEST(UndrainedSoil, UndrainedPWaveRunsAtTheSaturatedSpeed) {
-  const std::string text = R"(title = "undrained wave"
-geometry = "axisymmetric"
-[grid]
-r = [{ start = 0.0, end = 0.1, cells = 2 }]
-y = [{ start = 0.0, end = 30.0, cells = 600 }]
-[materials.sand]
-type = "linear_elastic"
-drainage = "undrained"
-young_modulus = 100e6
-poisson_ratio = 0.25
-density = 1600.0
-[[bodies]]
-name = "column"
-material = "sand"
-region = { r = [0.0, 0.1], y = [0.0, 30.0] }
-[boundaries]
-r_max = "roller"
-[[prescribed]]
-name = "piston"
-nodes = { y = 0.0 }
-velocity_y = 0.01
-[[phases]]
-name = "wave"
-duration = 0.015
-gravity = false
-)";
-  CaseRun run(text);
+  CaseRun run(saturated_wave_column("drainage = \"undrained\""));
   const double n = 1.0 - 1600.0 / 2650.0;
   const double rho_sat = 1600.0 + n * 1000.0;
   const double m = 100e6 * 0.75 / (1.25 * 0.5);
   const double c = std::sqrt((m + 2.2e9 / n) / rho_sat);
-  const auto front = [&]() {
-    // The highest particle moving at half the step's velocity or more.
-    const Particles& p = run.scene->particles;
-    double y = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if (p.v_y[i] >= 0.005) {
-        y = std::max(y, p.y[i]);
-      }
-    }
-    return y;
-  };
   run.solver->advance_to(0.006);
-  const double y1 = front();
+  const double y1 = wave_front(run);
   run.solver->advance_to(0.012);
-  const double y2 = front();
+  const double y2 = wave_front(run);
   EXPECT_NEAR((y2 - y1) / 0.006, c, 0.02 * c) << "front at " << y1 << " and " << y2 << " m";
 }
 

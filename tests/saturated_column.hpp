@@ -1,0 +1,57 @@
+#pragma once
+
+// The saturated column the undrained and coupled tests drive with a velocity step at its base
+// (uniaxial strain, no gravity): 30 m of linear elastic sand (E = 100 MPa, nu = 0.25, dry density
+// 1600 kg/m^3) in 0.05 m cells, its water's keys given by the test.
+
+#include "engine/particles.hpp"
+#include "tests/case_run.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace mpile {
+
+inline std::string saturated_wave_column(const std::string& water_keys) {
+  return R"(title = "saturated wave"
+geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 0.1, cells = 2 }]
+y = [{ start = 0.0, end = 30.0, cells = 600 }]
+[materials.sand]
+type = "linear_elastic"
+young_modulus = 100e6
+poisson_ratio = 0.25
+density = 1600.0
+)" + water_keys +
+         R"(
+[[bodies]]
+name = "column"
+material = "sand"
+region = { r = [0.0, 0.1], y = [0.0, 30.0] }
+[boundaries]
+r_max = "roller"
+[[prescribed]]
+name = "piston"
+nodes = { y = 0.0 }
+velocity_y = 0.01
+[[phases]]
+name = "wave"
+duration = 0.015
+gravity = false
+)";
+}
+
+/// The highest particle moving at half the piston's velocity or more: the front.
+inline double wave_front(const CaseRun& run) {
+  const Particles& p = run.scene->particles;
+  double y = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.v_y[i] >= 0.005) {
+      y = std::max(y, p.y[i]);
+    }
+  }
+  return y;
+}
+
+} // namespace mpile
