@@ -30,6 +30,11 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 // 0.1 and 0.5 within 2 % of the load, energy residual under 2 %), each with its reason in
 // cases/verification/terzaghi_consolidation.cpp.
 TEST(CoupledSoil, TerzaghiConsolidationMatchesTheClosedForm) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  // 42 000 steps take 9 s in the release suite, which runs this test; under a sanitizer they would
+  // take minutes. The water's passes are exercised there by the shorter tests below.
+  GTEST_SKIP() << "V10 runs in the release suite (42 000 steps)";
+#endif
   const verification::Report report = verification::run_terzaghi_consolidation({});
   ASSERT_EQ(report.checks.size(), 7u);
   for (const verification::Check& check : report.checks) {
