@@ -221,7 +221,7 @@ void ExplicitSolver::remap_momentum(const passes::StepParameters& step) {
   passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
                             soil_fields<contact>());
   if (!liquid_phases_.empty()) {
-    passes::remap_water<mode, shape>(scene_, bins_, liquid_phases_);
+    passes::remap_water<mode, shape>(scene_, bins_, liquid_phases_, step.mass_floor);
   }
 }
 

@@ -69,7 +69,7 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
 template <GeometryMode mode> void rescale_remapped_skeleton(Scene& scene);
 template <GeometryMode mode, ShapeFunctions shape>
 void remap_water(Scene& scene, const ParticleBins& bins,
-                 const std::vector<const LiquidPhase*>& phases);
+                 const std::vector<const LiquidPhase*>& phases, double mass_floor);
 /// ... and the pore pressure's share from the water's flow, found before the stress pass (at the
 /// particles' positions of the step's start) and added after it (so that it takes the stress at
 /// the step's start); the second returns the pore water's work beyond the stress pass's.

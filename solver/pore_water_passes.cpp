@@ -180,6 +180,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   const double dt = step.dt;
+  const bool structures = !grid.structure_fields.empty();
   auto update = [&](std::size_t begin, std::size_t end, WaterVelocityResult result) {
     for (std::size_t i = begin; i < end; ++i) {
       LiquidNode& water = grid.liquid[i];
@@ -190,6 +191,10 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
       }
       const double mass[3] = {water.mass, water.mass, water.inertia};
       const double porosity = water.share / water.mass;
+      // A structure's wall is impermeable: where one has mass the water keeps to the skeleton,
+      // which the contact has just kept out of the wall (the wall's tangential drag on the water
+      // is left out: water has no friction).
+      const bool at_wall = structures && grid.structure_occupies(i, step.mass_floor);
       const double drag[3] = {water.drag, water.drag, water.drag_inertia};
       for (int d = 0; d < dofs; ++d) {
         const double v = node.velocity()[d];
@@ -201,7 +206,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
         // booked the mixture's reaction as if the water had moved freely; held, the water's share
         // of the mixture's momentum, M_nw = n M_w, changes by M_nw (v - w_free) more, and the
         // face does that work too.
-        if (d < 2 && (grid.constrained[i] & (1u << d)) != 0) {
+        if (d < 2 && ((grid.constrained[i] & (1u << d)) != 0 || at_wall)) {
           result.support_work += porosity * mass[d] * (v - w_new) * v;
           w_new = v;
         }
@@ -310,7 +315,7 @@ template <GeometryMode mode> void rescale_remapped_skeleton(Scene& scene) {
 
 template <GeometryMode mode, ShapeFunctions shape>
 void remap_water(Scene& scene, const ParticleBins& bins,
-                 const std::vector<const LiquidPhase*>& phases) {
+                 const std::vector<const LiquidPhase*>& phases, double mass_floor) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   Particles& p = scene.particles;
@@ -335,16 +340,18 @@ void remap_water(Scene& scene, const ParticleBins& bins,
           }
         });
   });
+  const bool structures = !grid.structure_fields.empty();
   parallel_for(grid.liquid.size(), [&](std::size_t i) {
     LiquidNode& water = grid.liquid[i];
     const GridNode& node = grid.nodes[i];
+    const bool at_wall = structures && grid.structure_occupies(i, mass_floor);
     const double inverse[3] = {water.mass > 0.0 ? 1.0 / water.mass : 0.0,
                                water.mass > 0.0 ? 1.0 / water.mass : 0.0,
                                water.inertia > 0.0 ? 1.0 / water.inertia : 0.0};
     for (int d = 0; d < dofs; ++d) {
       water.velocity()[d] = water.momentum[d] * inverse[d];
-      // Impermeable where the skeleton is held, as in update_water_velocities.
-      if (d < 2 && (grid.constrained[i] & (1u << d)) != 0) {
+      // Impermeable where the skeleton is held or a structure is, as in update_water_velocities.
+      if (d < 2 && ((grid.constrained[i] & (1u << d)) != 0 || at_wall)) {
         water.velocity()[d] = node.velocity()[d];
       }
     }
@@ -439,6 +446,10 @@ double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
       }
       double* state = p.state.data() + i * stride;
       const PendingPorePressure& change = pending[i];
+      if (state[phase->pore_slot] == 0.0 && p.stress[i] == Stress{}) {
+        // Made stress-free inside a rigid body by the stress pass: its water let go too.
+        continue;
+      }
       const double n = state[phase->porosity_slot];
       double& pore = state[phase->pore_slot];
       // The water's stored energy n p^2 / (2 K_w) V changes by p_mid ((1 - n) d eps + n d eps_w) V,
@@ -480,7 +491,7 @@ double water_kinetic_energy(const Particles& p, std::size_t i, const LiquidPhase
       Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&,  \
       const StepParameters&);                                                                      \
   template void remap_water<MODE, SHAPE>(Scene&, const ParticleBins&,                              \
-                                         const std::vector<const LiquidPhase*>&);                  \
+                                         const std::vector<const LiquidPhase*>&, double);          \
   template void pore_pressure_from_flow<MODE, SHAPE>(                                              \
       Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&,  \
       const StepParameters&, std::vector<PendingPorePressure>&);
