@@ -1,5 +1,6 @@
 #pragma once
 
+#include "app/progress_estimate.hpp"
 #include "solver/run_phase.hpp"
 
 #include <chrono>
@@ -12,8 +13,9 @@ namespace mpile {
 
 /// The run's progress for the user: on a terminal, one line rewritten in place (the phase's goal
 /// and how far it is, steps per second, ETA); otherwise a log line every few seconds. The ETA is
-/// the phase's: the remaining distance to its goal over the rate at which the goal's quantity has
-/// moved since the phase began, and no later than its end time at the rate simulated time moves.
+/// the phase's, from what is known at the moment (ProgressEstimator): an estimate, a range while a
+/// pile gathers speed, or, where nothing yet says when the phase's criterion ends it, the bound
+/// its end time sets ("ETA <= 464 s").
 class ProgressReporter {
 public:
   /// seconds: the wall clock (steady, in seconds); a test passes its own.
@@ -21,10 +23,6 @@ public:
                    std::function<double()> seconds = steady_seconds);
   void update(const std::string& phase, long steps, const PhaseGoal& goal);
   void finish();
-
-  /// The ETA of a phase in seconds of wall time, from the goal's values at the phase's start and
-  /// now and the wall time between them; infinity while nothing has moved.
-  static double eta(const PhaseGoal& start, const PhaseGoal& now, double elapsed);
 
 private:
   static double steady_seconds();
@@ -34,7 +32,7 @@ private:
   std::function<double()> seconds_;
   double last_ = 0.0;
   std::string phase_;
-  PhaseGoal phase_start_;
+  ProgressEstimator estimator_;
   double phase_start_seconds_ = 0.0;
   long phase_start_steps_ = 0;
   bool shown_ = false;

@@ -221,6 +221,12 @@ void PhaseRunner::outputs_after_step() {
 }
 
 PhaseGoal PhaseRunner::goal(const RunPhase& phase, double phase_end) const {
+  PhaseGoal result = goal_of(phase, phase_end);
+  result.ends_at_equilibrium = phase.equilibrium_tolerance.has_value();
+  return result;
+}
+
+PhaseGoal PhaseRunner::goal_of(const RunPhase& phase, double phase_end) const {
   const double t = solver_.time();
   if (!phase.stop_at) {
     return {"t", t, phase_end, "s", t, phase_end};
@@ -240,9 +246,11 @@ PhaseGoal PhaseRunner::goal(const RunPhase& phase, double phase_end) const {
 }
 
 // Whether the phase ends after this step before its duration, and why.
-bool PhaseRunner::ends_phase(const RunPhase& phase, const PhaseGoal& now, std::string& why) {
-  if (phase.equilibrium_tolerance && solver_.step_count() % equilibrium_steps == 0) {
-    const EquilibriumMeasure measure = measure_equilibrium(solver_, *phase.equilibrium_tolerance);
+bool PhaseRunner::ends_phase(const RunPhase& phase, const PhaseGoal& now,
+                             const std::optional<EquilibriumMeasure>& equilibrium,
+                             std::string& why) {
+  if (equilibrium) {
+    const EquilibriumMeasure& measure = *equilibrium;
     if (measure.reached) {
       std::ostringstream s;
       s << "at equilibrium (out-of-balance force ratio " << std::setprecision(3)
@@ -312,11 +320,20 @@ PhaseRunner::Outcome PhaseRunner::run(const PhaseSetUp& set_up, const StopReques
       solver_.step(landing_step(limit, solver_.stable_time_step()));
       ++steps; // every step counts, the one that ends a phase too
       outputs_after_step();
-      const PhaseGoal now = goal(phase, phase_end);
+      PhaseGoal now = goal(phase, phase_end);
+      // Equilibrium is measured before the observers are told of the step, so that the
+      // progress line sees the criterion's trend.
+      std::optional<EquilibriumMeasure> equilibrium;
+      if (phase.equilibrium_tolerance && solver_.step_count() % equilibrium_steps == 0) {
+        equilibrium = measure_equilibrium(solver_, *phase.equilibrium_tolerance);
+        const double force = std::isnan(equilibrium->force_ratio) ? 0.0 : equilibrium->force_ratio;
+        now.equilibrium =
+            std::max(equilibrium->kinetic_ratio, force) / *phase.equilibrium_tolerance;
+      }
       for (RunObserver* observer : observers_) {
         observer->stepped(phase, solver_.step_count(), now);
       }
-      if (ends_phase(phase, now, ended)) {
+      if (ends_phase(phase, now, equilibrium, ended)) {
         break;
       }
       if (stop(steps)) {

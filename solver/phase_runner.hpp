@@ -7,11 +7,13 @@
 // it; anything else that runs phases (tests, the benchmark, verification) uses the same path.
 
 #include "solver/energy_balance.hpp"
+#include "solver/equilibrium.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/run_log.hpp"
 #include "solver/run_phase.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,8 +82,10 @@ private:
   EnergyBalance record_row();
   void check_energy_residual(const EnergyBalance& energy, bool recorded);
   void outputs_after_step();
-  bool ends_phase(const RunPhase& phase, const PhaseGoal& now, std::string& why);
+  bool ends_phase(const RunPhase& phase, const PhaseGoal& now,
+                  const std::optional<EquilibriumMeasure>& equilibrium, std::string& why);
   PhaseGoal goal(const RunPhase& phase, double phase_end) const;
+  PhaseGoal goal_of(const RunPhase& phase, double phase_end) const;
   void take_snapshot(double time);
   bool skip_reached_depths();
 

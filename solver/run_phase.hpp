@@ -4,6 +4,7 @@
 // each, the output schedule observers are called on, and the progress a checkpoint saves.
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -71,6 +72,10 @@ struct PhaseGoal {
   std::string_view unit = "s";
   double time = 0.0;     // simulated time now
   double end_time = 0.0; // the phase's end time, the latest it can end
+  /// With an equilibrium criterion, on the steps it is checked: how far the state is from it, the
+  /// larger of its two ratios over the tolerance (below 1 ends the phase); NaN on other steps.
+  double equilibrium = std::numeric_limits<double>::quiet_NaN();
+  bool ends_at_equilibrium = false; // the phase has an equilibrium criterion
 };
 
 } // namespace mpile
