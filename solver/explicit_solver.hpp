@@ -118,7 +118,8 @@ private:
   EnergyIncrement update_water_particle_velocities(const passes::StepParameters& step);
   template <GeometryMode mode, ShapeFunctions shape>
   void find_pore_pressure_from_flow(const passes::StepParameters& step);
-  EnergyIncrement apply_pore_pressure_from_flow();
+  /// some_made_stress_free: the stress pass made soil inside a rigid body stress-free this step.
+  EnergyIncrement apply_pore_pressure_from_flow(bool some_made_stress_free);
   /// Loads, absorbing faces' holding forces, the momentum balance with damping, the dashpots.
   template <GeometryMode mode> EnergyIncrement balance_momentum(const passes::StepParameters& step);
   /// The structures' supports, the rigid bodies' prediction, contact, the bodies' accelerations.

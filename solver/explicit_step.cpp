@@ -73,7 +73,7 @@ void ExplicitSolver::step_in_mode(double dt) {
   passes::StressPassResult stress = update_stress<mode, contact, shape>(step);
   energy_ +=
       EnergyIncrement{.external_work = stress.gravity_work, .internal_work = stress.internal_work};
-  energy_ += apply_pore_pressure_from_flow();
+  energy_ += apply_pore_pressure_from_flow(stress.stress_free_inside_rigid > 0);
   const double moved_crossing_time = move_bodies_and_mesh<contact>(step, stress);
   finish_step(dt, stress, moved_crossing_time);
 }
@@ -132,13 +132,13 @@ void ExplicitSolver::find_pore_pressure_from_flow(const passes::StepParameters& 
                                                pending_pore_);
 }
 
-EnergyIncrement ExplicitSolver::apply_pore_pressure_from_flow() {
+EnergyIncrement ExplicitSolver::apply_pore_pressure_from_flow(bool some_made_stress_free) {
   if (liquid_phases_.empty()) {
     return {};
   }
   PassTimer timer(timings_.stress_update);
-  return {.internal_work =
-              passes::apply_pore_pressure_from_flow(scene_, bins_, liquid_phases_, pending_pore_)};
+  return {.internal_work = passes::apply_pore_pressure_from_flow(
+              scene_, bins_, liquid_phases_, pending_pore_, some_made_stress_free)};
 }
 
 template <GeometryMode mode>

@@ -31,7 +31,7 @@ namespace mpile::passes {
 
 namespace {
 
-/// Calls f(i, phase, water state) for each particle of coupled soil among `particles`.
+/// Calls f(i, phase, state) for each particle of coupled soil among `particles`, state its own.
 template <class F>
 void for_each_coupled(std::span<const std::int32_t> particles, Particles& p,
                       const std::vector<const LiquidPhase*>& phases, F&& f) {
@@ -237,7 +237,6 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
                                                      const StepParameters& step) {
   const Grid& grid = scene.grid;
   Particles& p = scene.particles;
-  const auto stride = static_cast<std::size_t>(p.state_stride);
   const double flip = settings.flip_fraction;
   const double pic = 1.0 - flip;
   const double g_r = settings.gravity[0];
@@ -245,46 +244,42 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
   std::vector<WaterParticleResult> block_results(static_cast<std::size_t>(bins.block_count()));
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
     WaterParticleResult& out = block_results[static_cast<std::size_t>(block)];
-    for (const std::int32_t q : particles) {
-      const auto i = static_cast<std::size_t>(q);
-      const LiquidPhase* phase = phases[p.material[i]];
-      if (phase == nullptr) {
-        continue;
-      }
-      const auto weights = particle_weights<shape>(grid, p, i);
-      double velocity[3] = {0.0, 0.0, 0.0}, increment[3] = {0.0, 0.0, 0.0};
-      double skeleton[2] = {0.0, 0.0};
-      constexpr int dofs = has_theta(mode) ? 3 : 2;
-      for (int a = 0; a < weights.size; ++a) {
-        const auto node = static_cast<std::size_t>(weights.node[a]);
-        const LiquidNode& water = grid.liquid[node];
-        for (int d = 0; d < dofs; ++d) {
-          velocity[d] += weights.N[a] * water.velocity()[d];
-          increment[d] += weights.N[a] * water.velocity_increment()[d];
-        }
-        skeleton[0] += weights.N[a] * grid.nodes[node].velocity()[0];
-        skeleton[1] += weights.N[a] * grid.nodes[node].velocity()[1];
-      }
-      const double r = has_theta(mode) ? p.r[i] : 0.0;
-      double* w = p.state.data() + i * stride + phase->velocity_slot;
-      const double w_flip[3] = {w[0] + increment[0], w[1] + increment[1],
-                                has_theta(mode) ? w[2] + r * increment[2] : 0.0};
-      const double w_new[3] = {flip * w_flip[0] + pic * velocity[0],
-                               flip * w_flip[1] + pic * velocity[1],
-                               flip * w_flip[2] + pic * r * velocity[2]};
-      const double water_mass = phase->mass_fraction * p.mass[i];
-      double drop = 0.0;
-      for (int d = 0; d < dofs; ++d) {
-        drop += w_flip[d] * w_flip[d] - w_new[d] * w_new[d];
-        w[d] = w_new[d];
-      }
-      out.transfer += 0.5 * water_mass * drop;
-      // Gravity on the water works along the water's path; the stress pass books the mixture's
-      // weight along the skeleton's, so the difference is added here.
-      out.external_work += water_mass *
-                           (g_r * (velocity[0] - skeleton[0]) + g_y * (velocity[1] - skeleton[1])) *
-                           step.dt;
-    }
+    for_each_coupled(
+        particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, double* state) {
+          const auto weights = particle_weights<shape>(grid, p, i);
+          double velocity[3] = {0.0, 0.0, 0.0}, increment[3] = {0.0, 0.0, 0.0};
+          double skeleton[2] = {0.0, 0.0};
+          constexpr int dofs = has_theta(mode) ? 3 : 2;
+          for (int a = 0; a < weights.size; ++a) {
+            const auto node = static_cast<std::size_t>(weights.node[a]);
+            const LiquidNode& water = grid.liquid[node];
+            for (int d = 0; d < dofs; ++d) {
+              velocity[d] += weights.N[a] * water.velocity()[d];
+              increment[d] += weights.N[a] * water.velocity_increment()[d];
+            }
+            skeleton[0] += weights.N[a] * grid.nodes[node].velocity()[0];
+            skeleton[1] += weights.N[a] * grid.nodes[node].velocity()[1];
+          }
+          const double r = has_theta(mode) ? p.r[i] : 0.0;
+          double* w = state + phase.velocity_slot;
+          const double w_flip[3] = {w[0] + increment[0], w[1] + increment[1],
+                                    has_theta(mode) ? w[2] + r * increment[2] : 0.0};
+          const double w_new[3] = {flip * w_flip[0] + pic * velocity[0],
+                                   flip * w_flip[1] + pic * velocity[1],
+                                   flip * w_flip[2] + pic * r * velocity[2]};
+          const double water_mass = phase.mass_fraction * p.mass[i];
+          double drop = 0.0;
+          for (int d = 0; d < dofs; ++d) {
+            drop += w_flip[d] * w_flip[d] - w_new[d] * w_new[d];
+            w[d] = w_new[d];
+          }
+          out.transfer += 0.5 * water_mass * drop;
+          // Gravity on the water works along the water's path; the stress pass books the mixture's
+          // weight along the skeleton's, so the difference is added here.
+          out.external_work +=
+              water_mass * (g_r * (velocity[0] - skeleton[0]) + g_y * (velocity[1] - skeleton[1])) *
+              step.dt;
+        });
   });
   WaterParticleResult total;
   for (const std::int32_t block : bins.non_empty_blocks()) {
@@ -432,42 +427,39 @@ void pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
 
 double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
                                      const std::vector<const LiquidPhase*>& phases,
-                                     const std::vector<PendingPorePressure>& pending) {
+                                     const std::vector<PendingPorePressure>& pending,
+                                     bool some_made_stress_free) {
   Particles& p = scene.particles;
-  const auto stride = static_cast<std::size_t>(p.state_stride);
   std::vector<double> block_work(static_cast<std::size_t>(bins.block_count()), 0.0);
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
     double work = 0.0;
-    for (const std::int32_t q : particles) {
-      const auto i = static_cast<std::size_t>(q);
-      const LiquidPhase* phase = phases[p.material[i]];
-      if (phase == nullptr) {
-        continue;
-      }
-      double* state = p.state.data() + i * stride;
-      const PendingPorePressure& change = pending[i];
-      if (state[phase->pore_slot] == 0.0 && p.stress[i] == Stress{}) {
-        // Made stress-free inside a rigid body by the stress pass: its water let go too.
-        continue;
-      }
-      const double n = state[phase->porosity_slot];
-      double& pore = state[phase->pore_slot];
-      // The water's stored energy n p^2 / (2 K_w) V changes by p_mid ((1 - n) d eps + n d eps_w) V,
-      // p_mid the step's mean pressure. The stress pass booked its trapezoid on sigma : d eps
-      // with the skeleton's share dp_s alone, (p^n + dp_s / 2) d eps V; this is the rest. The two
-      // shares are each large and nearly cancel while the water barely drains, so neither half
-      // step may be dropped.
-      const double skeleton_mean = 0.5 * (change.pore_before + pore); // p^n + dp_s / 2
-      const double storage = (1.0 - n) * change.skeleton_strain + n * change.water_strain;
-      work += p.volume[i] * (n * skeleton_mean * (change.water_strain - change.skeleton_strain) +
+    for_each_coupled(
+        particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, double* state) {
+          const PendingPorePressure& change = pending[i];
+          if (some_made_stress_free && state[phase.pore_slot] == 0.0 && p.stress[i] == Stress{}) {
+            // Made stress-free inside a rigid body by this step's stress pass: its water let go
+            // too.
+            return;
+          }
+          const double n = state[phase.porosity_slot];
+          double& pore = state[phase.pore_slot];
+          // The water's stored energy n p^2 / (2 K_w) V changes by p_mid ((1 - n) d eps + n d
+          // eps_w) V, p_mid the step's mean pressure. The stress pass booked its trapezoid on sigma
+          // : d eps with the skeleton's share dp_s alone, (p^n + dp_s / 2) d eps V; this is the
+          // rest. The two shares are each large and nearly cancel while the water barely drains, so
+          // neither half step may be dropped.
+          const double skeleton_mean = 0.5 * (change.pore_before + pore); // p^n + dp_s / 2
+          const double storage = (1.0 - n) * change.skeleton_strain + n * change.water_strain;
+          work +=
+              p.volume[i] * (n * skeleton_mean * (change.water_strain - change.skeleton_strain) +
                              0.5 * change.pressure * storage);
-      pore += change.pressure;
-      state[phase->pore_slot + 1] += change.pressure;
-      Stress& s = p.stress[i];
-      s[RR] += change.pressure;
-      s[YY] += change.pressure;
-      s[TT] += change.pressure;
-    }
+          pore += change.pressure;
+          state[phase.pore_slot + 1] += change.pressure;
+          Stress& s = p.stress[i];
+          s[RR] += change.pressure;
+          s[YY] += change.pressure;
+          s[TT] += change.pressure;
+        });
     block_work[static_cast<std::size_t>(block)] = work;
   });
   double total = 0.0;
