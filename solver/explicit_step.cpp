@@ -64,7 +64,7 @@ void ExplicitSolver::step_in_mode(double dt) {
   energy_ += work_of_loads(step);
   energy_ += update_particle_velocities<mode, contact, shape>(step);
   if (settings_.musl) {
-    remap_momentum<mode, contact, shape>(step);
+    energy_ += remap_momentum<mode, contact, shape>(step);
   }
   passes::StressPassResult stress = update_stress<mode, contact, shape>(step);
   energy_ +=
@@ -148,18 +148,22 @@ EnergyIncrement ExplicitSolver::update_particle_velocities(const passes::StepPar
 }
 
 template <GeometryMode mode, bool contact, ShapeFunctions shape>
-void ExplicitSolver::remap_momentum(const passes::StepParameters& step) {
+EnergyIncrement ExplicitSolver::remap_momentum(const passes::StepParameters& step) {
   PassTimer timer(timings_.momentum_remap);
   passes::remap_momentum<mode, contact, shape>(scene_, bins_, step);
-  // The remapped velocities take the same corrections as the balanced ones, recording nothing.
+  // The remapped velocities take the same corrections as the balanced ones; contact books the
+  // work friction and adhesion do on the slip they leave (the strain increments' slip).
+  double slip = 0.0;
   if constexpr (contact) {
     passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
                               passes::ConstraintFields::structures);
     passes::reset_rigid_fields(scene_, step);
-    passes::resolve_contact<mode>(scene_, settings_, step, passes::CorrectionPass::after_remap);
+    slip =
+        passes::resolve_contact<mode>(scene_, settings_, step, passes::CorrectionPass::after_remap);
   }
   passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
                             soil_fields<contact>());
+  return {.contact = slip};
 }
 
 template <GeometryMode mode, bool contact, ShapeFunctions shape>
