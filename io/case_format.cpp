@@ -235,6 +235,11 @@ std::vector<TableSpec> declare() {
             .or_default(2L)
             .at_least(1)
             .at_most(8),
+        string("seeding",
+               "\"centres\": a particle at each sub-cell centre in the region; \"cut_cells\": "
+               "also the sub-cells the outline cuts, each a particle of the part inside")
+            .or_default(std::string("centres"))
+            .one_of({"centres", "cut_cells"}),
         numbers("velocity", "m/s", "initial velocity (v_r, v_y, v_theta)")
             .length(3)
             .or_computed("[0, 0, 0]"),

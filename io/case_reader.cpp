@@ -268,6 +268,7 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
     body.line = table.line_of("region");
     body.key = table.key_path("region");
     body.particles_per_direction = static_cast<int>(table.integer("particles_per_cell"));
+    body.cut_cells = table.string("seeding") == "cut_cells";
     if (std::optional<TomlTable> profile = table.optional_table("velocity_profile")) {
       VelocityProfile p;
       p.component = component_index(*profile, "component");

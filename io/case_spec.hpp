@@ -49,6 +49,9 @@ struct BodySpec {
   std::string material;
   Region region{Rectangle{0.0, 0.0, 0.0, 0.0}};
   int particles_per_direction = 2;
+  /// Sub-cells the outline cuts are seeded with the part inside (their own centroid, volume and
+  /// extent), not by whether their centre lies inside.
+  bool cut_cells = false;
   std::array<double, 3> velocity{0.0, 0.0, 0.0};
   std::optional<VelocityProfile> velocity_profile;
   std::optional<RigidSpec> rigid;

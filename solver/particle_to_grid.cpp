@@ -139,10 +139,20 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         if (near_outline && (!mixed || fields->is_soil(body))) {
           // Half the particle's size (a square domain of its area in the r-y plane), widened by
           // 1 % so that a particle whose domain ends on the outline counts as touching it.
+          // A particle seeded from a cut sub-cell has the extent of its part: its half-extent
+          // along the outline's normal, with the same margin.
+          const bool cut = !scene.cut_cell_bodies.empty() && scene.cut_cell_bodies[body] != 0;
           const double area = has_theta(mode) ? p.volume[i] / p.r[i] : p.volume[i];
           const double half_size = 0.505 * std::sqrt(area);
           for (const OutlineGap& g : gaps) {
-            const double gap = g.distance(p.r[i], p.y[i]) - half_size;
+            double gap = 0.0;
+            if (cut) {
+              const OutlineDistance::Nearest near = g.distance.nearest(p.r[i], p.y[i]);
+              gap =
+                  near.distance - 1.01 * std::hypot(near.n_r * p.half_r[i], near.n_y * p.half_y[i]);
+            } else {
+              gap = g.distance(p.r[i], p.y[i]) - half_size;
+            }
             for (int k = 0; k < w.size; ++k) {
               double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
               node_gap = std::min(node_gap, gap);

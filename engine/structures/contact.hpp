@@ -66,6 +66,22 @@ public:
     }
     return distance;
   }
+  /// The signed distance and the outward normal of the edge that gives it.
+  struct Nearest {
+    double distance;
+    double n_r;
+    double n_y;
+  };
+  Nearest nearest(double r, double y) const {
+    Nearest best{-std::numeric_limits<double>::infinity(), 0.0, 0.0};
+    for (const auto& [n_r, n_y, offset] : lines_) {
+      const double d = n_r * r + n_y * y - offset;
+      if (d > best.distance) {
+        best = {d, n_r, n_y};
+      }
+    }
+    return best;
+  }
 
 private:
   std::vector<std::array<double, 3>> lines_; // outward unit normal and offset of each edge
