@@ -262,6 +262,18 @@ struct NodeSurface {
   double area = 0.0;
 };
 
+/// Whether all of a node's outline area lies on one surface (not a corner shared by two).
+bool single_surface(const ContactPair& pair, std::size_t i) {
+  const std::size_t surfaces = pair.surface_count();
+  for (std::size_t q = 0; q < surfaces; ++q) {
+    const double share = pair.surface_area[i * surfaces + q];
+    if (share != 0.0) {
+      return share == pair.area[i];
+    }
+  }
+  return false;
+}
+
 /// The outline's normal and area where the node has them (inside the outline, the facing edge's
 /// normal for the soil's relative velocity `relative`, and no area), or the normalised mass
 /// gradient with the area of a straight surface through the node across its share of the cells.
@@ -272,7 +284,11 @@ std::optional<NodeSurface> node_surface(const Grid& grid, const NodeField& field
                                         const std::array<double, 3>& relative) {
   NodeSurface at;
   if (pair.outline) {
-    if (pair.gap[i] > 0.0) {
+    // On a straight run of one surface, the gap of the soil's surface at the node; elsewhere (a
+    // corner shared by surfaces, a node inside the outline) the smallest gap of its cells.
+    const bool straight = pair.area[i] > 0.0 && single_surface(pair, i);
+    const double gap = straight ? pair.surface_gap[i].at_node() : pair.gap[i];
+    if (gap > 0.0) {
       return std::nullopt;
     }
     if (pair.area[i] > 0.0) {

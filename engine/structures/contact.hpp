@@ -87,6 +87,40 @@ private:
   std::vector<std::array<double, 3>> lines_; // outward unit normal and offset of each edge
 };
 
+/// The soil's gap from an outline on either side of a node along the outline (below and above it
+/// in r, or in y for an outline nearer vertical): the smallest gap of a soil particle within a cell
+/// of the node on that side, and that particle's distance from the node along the tangent.
+struct SurfaceGap {
+  double below = std::numeric_limits<double>::infinity();
+  double below_distance = 0.0;
+  double above = std::numeric_limits<double>::infinity();
+  double above_distance = 0.0;
+
+  /// Takes a particle's gap at signed distance `offset` from the node along the tangent.
+  void add(double gap, double offset) {
+    if (offset <= 0.0) {
+      if (gap < below) {
+        below = gap;
+        below_distance = -offset;
+      }
+    } else if (gap < above) {
+      above = gap;
+      above_distance = offset;
+    }
+  }
+  /// The gap linearly interpolated to the node between its two sides; where the soil lies on one
+  /// side only, that side's; +inf where it lies on neither.
+  double at_node() const {
+    if (below == std::numeric_limits<double>::infinity() ||
+        above == std::numeric_limits<double>::infinity()) {
+      return std::min(below, above);
+    }
+    const double span = below_distance + above_distance;
+    return span > 0.0 ? (below * above_distance + above * below_distance) / span
+                      : std::min(below, above);
+  }
+};
+
 /// Contact between the soil (field 0) and one structure with a field of its own (physics.md
 /// section 5): Coulomb friction mu and adhesion c_a, normals from the outline when the structure
 /// has one, from the structure's mass gradient otherwise. The per-node arrays are sized to the grid
@@ -128,6 +162,10 @@ struct ContactPair {
   /// Contact needs it: a node both bodies occupy may still have a gap smaller than a cell between
   /// them, which the nodal test alone would never let close.
   std::vector<double> gap;
+  /// Per node, with an outline: the soil's gap on either side of the node along the outline's
+  /// tangent (SurfaceGap), which interpolated to the node gives the gap of the soil's surface at
+  /// the node itself. Contact takes it at nodes on one surface's straight run.
+  std::vector<SurfaceGap> surface_gap;
 
   // Sums of the last step per surface: (F_r, F_y, F_theta) and the torque about the axis.
   std::vector<std::array<double, 3>> surface_force;
