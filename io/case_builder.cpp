@@ -296,6 +296,7 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     ContactPair& pair = scene->add_contact_structure(b);
     pair.friction = contact.friction;
     pair.adhesion = contact.adhesion;
+    pair.surface_gap_at_node = contact.surface_gap;
     if (contact.outline) {
       pair.outline = region_outline(body.region, spec.mode, edge_surfaces(contact.surfaces, pair));
     } else {

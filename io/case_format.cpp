@@ -331,6 +331,12 @@ std::vector<TableSpec> declare() {
                           "be convex); \"mass_gradient\": from the structure's particles")
             .or_default(std::string("outline"))
             .one_of({"outline", "mass_gradient"}),
+        string("gap",
+               "outline only: \"cells\": a node may be in contact once any soil particle of its "
+               "cells touches the outline; \"surface\": on a straight run of one surface along r "
+               "or y, once the soil's surface interpolated to the node does")
+            .or_default(std::string("cells"))
+            .one_of({"cells", "surface"}),
         any("surfaces", "",
             "outline only: a rectangle's edges named in a table { bottom, right, top, left } (an "
             "edge left out is no contact surface); a polygon's, one name per edge in an array "

@@ -404,6 +404,10 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
     warn_implausible_friction(table, "friction", contact.friction, spec.warnings);
     contact.adhesion = table.number("adhesion");
     contact.outline = table.string("normals") == "outline";
+    contact.surface_gap = table.string("gap") == "surface";
+    if (contact.surface_gap && !contact.outline) {
+      table.fail("gap", "the soil's surface gap needs the outline's normals");
+    }
     if (contact.outline) {
       contact.surfaces = read_outline_surfaces(table, body->region, body->name);
     } else {

@@ -66,6 +66,9 @@ struct ContactSpec {
   double friction = 0.0;
   double adhesion = 0.0;
   bool outline = true; // normals from the structure's region, else its mass gradient
+  /// With an outline: contact at a node on a straight run of one surface along r or y needs the
+  /// soil's surface interpolated to the node to reach the outline (ContactPair::surface_gap).
+  bool surface_gap = false;
   /// With an outline, the surface name of each of its edges (empty: not a contact surface), in
   /// the order of the region's vertices(): a rectangle's bottom, right, top and left edges, a
   /// polygon's edges counter-clockwise; a circle's single name. With mass-gradient normals, the

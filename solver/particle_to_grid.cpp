@@ -102,10 +102,12 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
       if (pair.outline && !reach.empty()) {
         parallel_for_box(reach, grid.nodes_r(), [&](std::size_t i) {
           pair.gap[i] = std::numeric_limits<double>::infinity();
-          pair.surface_gap[i] = SurfaceGap{};
+          if (pair.surface_gap_at_node) {
+            pair.surface_gap[i] = SurfaceGap{};
+          }
         });
-        gaps.push_back(
-            {OutlineDistance(*pair.outline), pair.gap.data(), pair.surface_gap.data(), reach});
+        gaps.push_back({OutlineDistance(*pair.outline), pair.gap.data(),
+                        pair.surface_gap_at_node ? pair.surface_gap.data() : nullptr, reach});
       }
     }
   }
@@ -148,6 +150,14 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
           const double area = has_theta(mode) ? p.volume[i] / p.r[i] : p.volume[i];
           const double half_size = 0.505 * std::sqrt(area);
           for (const OutlineGap& g : gaps) {
+            if (!cut && g.surface_gap == nullptr) {
+              const double gap = g.distance(p.r[i], p.y[i]) - half_size;
+              for (int k = 0; k < w.size; ++k) {
+                double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
+                node_gap = std::min(node_gap, gap);
+              }
+              continue;
+            }
             // The nearest edge's normal: its tangent runs along r for an edge nearer horizontal,
             // along y otherwise.
             const OutlineDistance::Nearest near = g.distance.nearest(p.r[i], p.y[i]);
@@ -163,7 +173,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
               double& node_gap = g.gap[node];
               node_gap = std::min(node_gap, gap);
               const double offset = x - (along_r ? grid.node_r(w.node[k]) : grid.node_y(w.node[k]));
-              if (std::abs(offset) <= cell) {
+              if (g.surface_gap != nullptr && std::abs(offset) <= cell) {
                 g.surface_gap[node].add(gap, offset);
               }
             }

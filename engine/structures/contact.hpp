@@ -162,9 +162,13 @@ struct ContactPair {
   /// Contact needs it: a node both bodies occupy may still have a gap smaller than a cell between
   /// them, which the nodal test alone would never let close.
   std::vector<double> gap;
-  /// Per node, with an outline: the soil's gap on either side of the node along the outline's
-  /// tangent (SurfaceGap), which interpolated to the node gives the gap of the soil's surface at
-  /// the node itself. Contact takes it at nodes on one surface's straight run.
+  /// With an outline, whether contact at a node on a straight run of one surface along r or y needs
+  /// the soil's surface at the node to reach the outline (`gap = "surface"`), rather than any
+  /// particle of its cells.
+  bool surface_gap_at_node = false;
+  /// Per node, with surface_gap_at_node: the soil's gap on either side of the node along the
+  /// outline's tangent (SurfaceGap), which interpolated to the node gives the gap of the soil's
+  /// surface at the node itself.
   std::vector<SurfaceGap> surface_gap;
 
   // Sums of the last step per surface: (F_r, F_y, F_theta) and the torque about the axis.
