@@ -2,6 +2,7 @@
 
 #include "engine/materials/undrained_soil.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mpile {
@@ -40,10 +41,111 @@ void for_each_seed(const GradedAxis& r_axis, const GradedAxis& y_axis, const Reg
   }
 }
 
+/// The part of the sub-cell [r0, r0 + hr] x [y0, y0 + hy] inside the region and the band, from a
+/// lattice of samples: its area, its integral of r dA, its centroid and the half-extents from the
+/// centroid to its far edges.
+struct CutPart {
+  double area = 0.0;
+  double r_area = 0.0;
+  double r = 0.0;
+  double y = 0.0;
+  double half_r = 0.0;
+  double half_y = 0.0;
+};
+
+CutPart cut_part(const Region& region, SeedBand band, double r0, double y0, double hr, double hy) {
+  constexpr int samples = 16;
+  const double dr = hr / samples;
+  const double dy = hy / samples;
+  CutPart part;
+  double r_low = r0 + hr, r_high = r0, y_low = y0 + hy, y_high = y0;
+  int inside = 0;
+  for (int b = 0; b < samples; ++b) {
+    const double y = y0 + (b + 0.5) * dy;
+    if (!band.contains(y)) {
+      continue;
+    }
+    for (int a = 0; a < samples; ++a) {
+      const double r = r0 + (a + 0.5) * dr;
+      if (!region.contains(r, y)) {
+        continue;
+      }
+      ++inside;
+      part.r += r;
+      part.y += y;
+      part.r_area += r * dr * dy;
+      r_low = std::min(r_low, r - 0.5 * dr);
+      r_high = std::max(r_high, r + 0.5 * dr);
+      y_low = std::min(y_low, y - 0.5 * dy);
+      y_high = std::max(y_high, y + 0.5 * dy);
+    }
+  }
+  if (inside > 0) {
+    part.area = inside * dr * dy;
+    part.r /= inside;
+    part.y /= inside;
+    part.half_r = std::max(part.r - r_low, r_high - part.r);
+    part.half_y = std::max(part.y - y_low, y_high - part.y);
+  }
+  return part;
+}
+
+/// Seeds the sub-cells the region's outline cuts (not all four corners inside) with their part
+/// inside; whole sub-cells as fill_region does.
+std::size_t fill_cut_cells(Scene& scene, const Region& region, int per_direction,
+                           std::uint16_t material, std::uint16_t body, SeedBand band) {
+  const Grid& grid = scene.grid;
+  const double density = scene.materials.at(material)->density();
+  const bool axisymmetric = scene.mode == GeometryMode::axisymmetric;
+  const std::size_t before = scene.particles.size();
+  const Rectangle& box = region.bounds();
+  auto inside = [&](double r, double y) { return band.contains(y) && region.contains(r, y); };
+  for (int cy = 0; cy < grid.y_axis().cell_count(); ++cy) {
+    if (grid.y_axis().node(cy + 1) < box.y_min || grid.y_axis().node(cy) > box.y_max) {
+      continue;
+    }
+    for (int cr = 0; cr < grid.r_axis().cell_count(); ++cr) {
+      if (grid.r_axis().node(cr + 1) < box.r_min || grid.r_axis().node(cr) > box.r_max) {
+        continue;
+      }
+      const double hr = grid.r_axis().cell_size(cr) / per_direction;
+      const double hy = grid.y_axis().cell_size(cy) / per_direction;
+      for (int j = 0; j < per_direction; ++j) {
+        for (int i = 0; i < per_direction; ++i) {
+          const double r0 = grid.r_axis().node(cr) + i * hr;
+          const double y0 = grid.y_axis().node(cy) + j * hy;
+          if (inside(r0, y0) && inside(r0 + hr, y0) && inside(r0, y0 + hy) &&
+              inside(r0 + hr, y0 + hy)) {
+            const double r = r0 + 0.5 * hr;
+            const double area = hr * hy;
+            const double weight = axisymmetric ? area * r : area;
+            scene.particles.add(r, y0 + 0.5 * hy, density * weight, weight, 0.5 * hr, 0.5 * hy,
+                                material, body);
+          } else {
+            const CutPart part = cut_part(region, band, r0, y0, hr, hy);
+            if (part.area == 0.0) {
+              continue;
+            }
+            const double weight = axisymmetric ? part.r_area : part.area;
+            scene.particles.add(part.r, part.y, density * weight, weight, part.half_r, part.half_y,
+                                material, body);
+          }
+          scene.particles.cell_r.back() = cr;
+          scene.particles.cell_y.back() = cy;
+        }
+      }
+    }
+  }
+  return scene.particles.size() - before;
+}
+
 } // namespace
 
 std::size_t fill_region(Scene& scene, const Region& region, int per_direction,
-                        std::uint16_t material, std::uint16_t body, SeedBand band) {
+                        std::uint16_t material, std::uint16_t body, SeedBand band, bool cut_cells) {
+  if (cut_cells) {
+    return fill_cut_cells(scene, region, per_direction, material, body, band);
+  }
   const Grid& grid = scene.grid;
   const double density = scene.materials.at(material)->density();
   const bool axisymmetric = scene.mode == GeometryMode::axisymmetric;

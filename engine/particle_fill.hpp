@@ -18,9 +18,13 @@ struct SeedBand {
 /// Fills a region with particles: per cell, per_direction x per_direction particles at the
 /// centres of equal sub-cells, keeping those inside the region (and the band). Mass rho A_p r_p
 /// and weight A_p r_p per radian (axisymmetric) or rho A_p and A_p (plane strain). Returns how many
-/// were added.
+/// were added. With cut_cells, a sub-cell whose corners are not all inside is sampled on a 16 x 16
+/// lattice and, where any of it is inside, seeded with the part inside: a particle at that part's
+/// centroid, with its area (times r) and the half-extents that reach its far edges, so that a
+/// curved outline is not seeded as a staircase of whole sub-cells.
 std::size_t fill_region(Scene& scene, const Region& region, int per_direction,
-                        std::uint16_t material, std::uint16_t body, SeedBand band = {});
+                        std::uint16_t material, std::uint16_t body, SeedBand band = {},
+                        bool cut_cells = false);
 std::size_t fill_rectangle(Scene& scene, const Rectangle& region, int per_direction,
                            std::uint16_t material, std::uint16_t body);
 

@@ -35,6 +35,10 @@ struct Scene {
   /// The materials' names (the case's, or "<body> (rigid)" for a rigid body's), for outputs.
   std::vector<std::string> material_names;
   std::vector<std::string> body_names;
+  /// Per body, 1 where its outline's cut sub-cells were seeded with the part inside (each
+  /// particle's extent is then that part's): contact measures such a particle's gap with its
+  /// extent along the outline's normal. Empty: no such body.
+  std::vector<std::uint8_t> cut_cell_bodies;
   Boundaries boundaries;
   VelocityField velocity_field;
   /// Contact (physics.md section 5): the field each body maps to (empty: every body in field 0,

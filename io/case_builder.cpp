@@ -138,8 +138,8 @@ std::size_t seed_body(Scene& scene, const BodySpec& body, std::uint16_t material
     if (y_lines != nullptr) {
       scene.grid.set_y_nodes(*y_lines);
     }
-    const std::size_t added =
-        fill_region(scene, body.region, body.particles_per_direction, material, index, band);
+    const std::size_t added = fill_region(scene, body.region, body.particles_per_direction,
+                                          material, index, band, body.cut_cells);
     if (y_lines != nullptr) {
       scene.grid.set_y_nodes(mesh->reference_y);
     }
@@ -264,6 +264,8 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     const std::uint16_t index = scene->add_body(body.name);
     const std::size_t first = scene->particles.size();
     const std::size_t added = seed_body(*scene, body, material, index);
+    scene->cut_cell_bodies.resize(scene->body_names.size(), 0);
+    scene->cut_cell_bodies[index] = body.cut_cells ? 1 : 0;
     if (added == 0) {
       throw CaseError(spec.file + ": body '" + body.name +
                       "': its region holds no particle position (smaller than a cell?)");
@@ -294,6 +296,7 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     ContactPair& pair = scene->add_contact_structure(b);
     pair.friction = contact.friction;
     pair.adhesion = contact.adhesion;
+    pair.surface_gap_at_node = contact.surface_gap;
     if (contact.outline) {
       pair.outline = region_outline(body.region, spec.mode, edge_surfaces(contact.surfaces, pair));
     } else {

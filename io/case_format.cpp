@@ -241,6 +241,11 @@ std::vector<TableSpec> declare() {
             .or_default(2L)
             .at_least(1)
             .at_most(8),
+        string("seeding",
+               "\"centres\": a particle at each sub-cell centre in the region; \"cut_cells\": "
+               "also the sub-cells the outline cuts, each a particle of the part inside")
+            .or_default(std::string("centres"))
+            .one_of({"centres", "cut_cells"}),
         numbers("velocity", "m/s", "initial velocity (v_r, v_y, v_theta)")
             .length(3)
             .or_computed("[0, 0, 0]"),
@@ -332,6 +337,12 @@ std::vector<TableSpec> declare() {
                           "be convex); \"mass_gradient\": from the structure's particles")
             .or_default(std::string("outline"))
             .one_of({"outline", "mass_gradient"}),
+        string("gap",
+               "outline only: \"cells\": a node may be in contact once any soil particle of its "
+               "cells touches the outline; \"surface\": on a straight run of one surface along r "
+               "or y, once the soil's surface interpolated to the node does")
+            .or_default(std::string("cells"))
+            .one_of({"cells", "surface"}),
         any("surfaces", "",
             "outline only: a rectangle's edges named in a table { bottom, right, top, left } (an "
             "edge left out is no contact surface); a polygon's, one name per edge in an array "

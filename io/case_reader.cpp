@@ -268,6 +268,7 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
     body.line = table.line_of("region");
     body.key = table.key_path("region");
     body.particles_per_direction = static_cast<int>(table.integer("particles_per_cell"));
+    body.cut_cells = table.string("seeding") == "cut_cells";
     if (std::optional<TomlTable> profile = table.optional_table("velocity_profile")) {
       VelocityProfile p;
       p.component = component_index(*profile, "component");
@@ -403,6 +404,10 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
     warn_implausible_friction(table, "friction", contact.friction, spec.warnings);
     contact.adhesion = table.number("adhesion");
     contact.outline = table.string("normals") == "outline";
+    contact.surface_gap = table.string("gap") == "surface";
+    if (contact.surface_gap && !contact.outline) {
+      table.fail("gap", "the soil's surface gap needs the outline's normals");
+    }
     if (contact.outline) {
       contact.surfaces = read_outline_surfaces(table, body->region, body->name);
     } else {

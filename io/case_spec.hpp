@@ -49,6 +49,9 @@ struct BodySpec {
   std::string material;
   Region region{Rectangle{0.0, 0.0, 0.0, 0.0}};
   int particles_per_direction = 2;
+  /// Sub-cells the outline cuts are seeded with the part inside (their own centroid, volume and
+  /// extent), not by whether their centre lies inside.
+  bool cut_cells = false;
   std::array<double, 3> velocity{0.0, 0.0, 0.0};
   std::optional<VelocityProfile> velocity_profile;
   std::optional<RigidSpec> rigid;
@@ -63,6 +66,9 @@ struct ContactSpec {
   double friction = 0.0;
   double adhesion = 0.0;
   bool outline = true; // normals from the structure's region, else its mass gradient
+  /// With an outline: contact at a node on a straight run of one surface along r or y needs the
+  /// soil's surface interpolated to the node to reach the outline (ContactPair::surface_gap).
+  bool surface_gap = false;
   /// With an outline, the surface name of each of its edges (empty: not a contact surface), in
   /// the order of the region's vertices(): a rectangle's bottom, right, top and left edges, a
   /// polygon's edges counter-clockwise; a circle's single name. With mass-gradient normals, the

@@ -22,8 +22,9 @@ predict_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepPar
 /// The Bardenhagen correction at every node both the soil and a structure occupy. After the
 /// momentum balance, also the FLIP increments, the per-node and per-surface forces and the
 /// rigid-body reactions (the outlines' nodal areas are refreshed first), and returns the kinetic
-/// energy the correction took (J [/rad]); after the remap, the same kind of correction at the same
-/// nodes, and 0.
+/// energy the normal correction took (J [/rad]); after the remap, the same kind of correction at
+/// the same nodes, and returns the work friction and adhesion did on the slip of the remapped
+/// velocities.
 template <GeometryMode mode>
 double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
                        CorrectionPass pass);

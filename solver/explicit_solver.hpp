@@ -131,7 +131,7 @@ private:
   EnergyIncrement update_particle_velocities(const passes::StepParameters& step);
   /// The MUSL remap and the same corrections on the remapped velocities.
   template <GeometryMode mode, bool contact, ShapeFunctions shape>
-  void remap_momentum(const passes::StepParameters& step);
+  EnergyIncrement remap_momentum(const passes::StepParameters& step);
   template <GeometryMode mode, bool contact, ShapeFunctions shape>
   passes::StressPassResult update_stress(const passes::StepParameters& step);
   /// Moves the rigid bodies and the mesh and splits grown particles; returns the crossing time in

@@ -67,7 +67,7 @@ void ExplicitSolver::step_in_mode(double dt) {
   energy_ += update_particle_velocities<mode, contact, shape>(step);
   energy_ += update_water_particle_velocities<mode, shape>(step);
   if (settings_.musl) {
-    remap_momentum<mode, contact, shape>(step);
+    energy_ += remap_momentum<mode, contact, shape>(step);
   }
   find_pore_pressure_from_flow<mode, shape>(step);
   passes::StressPassResult stress = update_stress<mode, contact, shape>(step);
@@ -205,24 +205,28 @@ EnergyIncrement ExplicitSolver::update_particle_velocities(const passes::StepPar
 }
 
 template <GeometryMode mode, bool contact, ShapeFunctions shape>
-void ExplicitSolver::remap_momentum(const passes::StepParameters& step) {
+EnergyIncrement ExplicitSolver::remap_momentum(const passes::StepParameters& step) {
   PassTimer timer(timings_.momentum_remap);
   passes::remap_momentum<mode, contact, shape>(scene_, bins_, step);
   if (!liquid_phases_.empty()) {
     passes::rescale_remapped_skeleton<mode>(scene_);
   }
-  // The remapped velocities take the same corrections as the balanced ones, recording nothing.
+  // The remapped velocities take the same corrections as the balanced ones; contact books the
+  // work friction and adhesion do on the slip they leave (the strain increments' slip).
+  double slip = 0.0;
   if constexpr (contact) {
     passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
                               passes::ConstraintFields::structures);
     passes::reset_rigid_fields(scene_, step);
-    passes::resolve_contact<mode>(scene_, settings_, step, passes::CorrectionPass::after_remap);
+    slip =
+        passes::resolve_contact<mode>(scene_, settings_, step, passes::CorrectionPass::after_remap);
   }
   passes::apply_constraints(scene_, settings_, step, passes::CorrectionPass::after_remap,
                             soil_fields<contact>());
   if (!liquid_phases_.empty()) {
     passes::remap_water<mode, shape>(scene_, bins_, liquid_phases_, step.mass_floor);
   }
+  return {.contact = slip};
 }
 
 template <GeometryMode mode, bool contact, ShapeFunctions shape>

@@ -92,6 +92,7 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
   struct OutlineGap {
     OutlineDistance distance;
     double* gap;
+    SurfaceGap* surface_gap;
     NodeBox reach;
   };
   std::vector<OutlineGap> gaps;
@@ -101,8 +102,12 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
       if (pair.outline && !reach.empty()) {
         parallel_for_box(reach, grid.nodes_r(), [&](std::size_t i) {
           pair.gap[i] = std::numeric_limits<double>::infinity();
+          if (pair.surface_gap_at_node) {
+            pair.surface_gap[i] = SurfaceGap{};
+          }
         });
-        gaps.push_back({OutlineDistance(*pair.outline), pair.gap.data(), reach});
+        gaps.push_back({OutlineDistance(*pair.outline), pair.gap.data(),
+                        pair.surface_gap_at_node ? pair.surface_gap.data() : nullptr, reach});
       }
     }
   }
@@ -139,13 +144,38 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         if (near_outline && (!mixed || fields->is_soil(body))) {
           // Half the particle's size (a square domain of its area in the r-y plane), widened by
           // 1 % so that a particle whose domain ends on the outline counts as touching it.
+          // A particle seeded from a cut sub-cell has the extent of its part: its half-extent
+          // along the outline's normal, with the same margin.
+          const bool cut = !scene.cut_cell_bodies.empty() && scene.cut_cell_bodies[body] != 0;
           const double area = has_theta(mode) ? p.volume[i] / p.r[i] : p.volume[i];
           const double half_size = 0.505 * std::sqrt(area);
           for (const OutlineGap& g : gaps) {
-            const double gap = g.distance(p.r[i], p.y[i]) - half_size;
+            if (!cut && g.surface_gap == nullptr) {
+              const double gap = g.distance(p.r[i], p.y[i]) - half_size;
+              for (int k = 0; k < w.size; ++k) {
+                double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
+                node_gap = std::min(node_gap, gap);
+              }
+              continue;
+            }
+            // The nearest edge's normal: its tangent runs along r for an edge nearer horizontal,
+            // along y otherwise.
+            const OutlineDistance::Nearest near = g.distance.nearest(p.r[i], p.y[i]);
+            const double gap = cut ? near.distance - 1.01 * std::hypot(near.n_r * p.half_r[i],
+                                                                       near.n_y * p.half_y[i])
+                                   : g.distance(p.r[i], p.y[i]) - half_size;
+            const bool along_r = std::abs(near.n_y) >= std::abs(near.n_r);
+            const double x = along_r ? p.r[i] : p.y[i];
+            const double cell = along_r ? grid.r_axis().cell_size(p.cell_r[i])
+                                        : grid.y_axis().cell_size(p.cell_y[i]);
             for (int k = 0; k < w.size; ++k) {
-              double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
+              const auto node = static_cast<std::size_t>(w.node[k]);
+              double& node_gap = g.gap[node];
               node_gap = std::min(node_gap, gap);
+              const double offset = x - (along_r ? grid.node_r(w.node[k]) : grid.node_y(w.node[k]));
+              if (g.surface_gap != nullptr && std::abs(offset) <= cell) {
+                g.surface_gap[node].add(gap, offset);
+              }
             }
           }
         }

@@ -129,7 +129,7 @@ TEST(CaseFormat, AnUnknownKeyListsTheKeysOfItsTable) {
   const std::string message =
       error_of(block + "[[contact]]\nstructure = \"block\"\nfricton = 0.3\n");
   EXPECT_EQ(message, "case.toml:29: contact[0].fricton: unknown key ([[contact]] has structure, "
-                     "friction, adhesion, normals, surfaces, surface)");
+                     "friction, adhesion, normals, gap, surfaces, surface)");
 }
 
 TEST(CaseFormat, ReadingAnUndeclaredKeyIsAProgrammingError) {

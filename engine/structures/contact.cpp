@@ -138,6 +138,7 @@ void ContactPair::allocate(std::size_t node_count) {
   contact_normal.assign(node_count, {0.0, 0.0});
   written = {};
   gap.assign(outline ? node_count : 0, 0.0);
+  surface_gap.assign(outline && surface_gap_at_node ? node_count : 0, SurfaceGap{});
   // Sums of the last step survive (a restart restores them before the solver sizes the rest).
   surface_force.resize(surfaces.size(), {0.0, 0.0, 0.0});
   surface_torque.resize(surfaces.size(), 0.0);

@@ -66,9 +66,59 @@ public:
     }
     return distance;
   }
+  /// The signed distance and the outward normal of the edge that gives it.
+  struct Nearest {
+    double distance;
+    double n_r;
+    double n_y;
+  };
+  Nearest nearest(double r, double y) const {
+    Nearest best{-std::numeric_limits<double>::infinity(), 0.0, 0.0};
+    for (const auto& [n_r, n_y, offset] : lines_) {
+      const double d = n_r * r + n_y * y - offset;
+      if (d > best.distance) {
+        best = {d, n_r, n_y};
+      }
+    }
+    return best;
+  }
 
 private:
   std::vector<std::array<double, 3>> lines_; // outward unit normal and offset of each edge
+};
+
+/// The soil's gap from an outline on either side of a node along the outline (below and above it
+/// in r, or in y for an outline nearer vertical): the smallest gap of a soil particle within a cell
+/// of the node on that side, and that particle's distance from the node along the tangent.
+struct SurfaceGap {
+  double below = std::numeric_limits<double>::infinity();
+  double below_distance = 0.0;
+  double above = std::numeric_limits<double>::infinity();
+  double above_distance = 0.0;
+
+  /// Takes a particle's gap at signed distance `offset` from the node along the tangent.
+  void add(double gap, double offset) {
+    if (offset <= 0.0) {
+      if (gap < below) {
+        below = gap;
+        below_distance = -offset;
+      }
+    } else if (gap < above) {
+      above = gap;
+      above_distance = offset;
+    }
+  }
+  /// The gap linearly interpolated to the node between its two sides; where the soil lies on one
+  /// side only, that side's; +inf where it lies on neither.
+  double at_node() const {
+    if (below == std::numeric_limits<double>::infinity() ||
+        above == std::numeric_limits<double>::infinity()) {
+      return std::min(below, above);
+    }
+    const double span = below_distance + above_distance;
+    return span > 0.0 ? (below * above_distance + above * below_distance) / span
+                      : std::min(below, above);
+  }
 };
 
 /// Contact between the soil (field 0) and one structure with a field of its own (physics.md
@@ -112,6 +162,14 @@ struct ContactPair {
   /// Contact needs it: a node both bodies occupy may still have a gap smaller than a cell between
   /// them, which the nodal test alone would never let close.
   std::vector<double> gap;
+  /// With an outline, whether contact at a node on a straight run of one surface along r or y needs
+  /// the soil's surface at the node to reach the outline (`gap = "surface"`), rather than any
+  /// particle of its cells.
+  bool surface_gap_at_node = false;
+  /// Per node, with surface_gap_at_node: the soil's gap on either side of the node along the
+  /// outline's tangent (SurfaceGap), which interpolated to the node gives the gap of the soil's
+  /// surface at the node itself.
+  std::vector<SurfaceGap> surface_gap;
 
   // Sums of the last step per surface: (F_r, F_y, F_theta) and the torque about the axis.
   std::vector<std::array<double, 3>> surface_force;

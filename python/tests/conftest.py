@@ -37,15 +37,15 @@ def mpile_binary():
 @pytest.fixture(scope="session")
 def real_run(tmp_path_factory):
     """V7 (an elastic block sliding 1 s down a rigid incline, plane strain; 0.3 s of computing):
-    a real history with /phases, units and a contact surface, and five snapshots with particle
-    ids, body and material names, re-sorted between snapshots."""
+    a real history with /phases, units and a contact surface, a row every step, and five
+    snapshots with particle ids, body and material names, re-sorted between snapshots."""
     binary = mpile_binary()
     if binary is None:
         pytest.skip("no mpile program: set MPILE to its path (ctest does)")
     out = tmp_path_factory.mktemp("v7") / "run"
     case = REPOSITORY / "cases" / "verification" / "v7_block_on_incline.toml"
-    subprocess.run([binary, "run", str(case), "--out", str(out), "--threads", "1"], check=True,
-                   capture_output=True, timeout=300)
+    subprocess.run([binary, "run", str(case), "--out", str(out), "--threads", "1", "--set",
+                    "output.history_interval=0"], check=True, capture_output=True, timeout=300)
     return out
 
 
