@@ -129,6 +129,7 @@ void Boundaries::mark_constrained_dofs(Grid& grid) const {
     std::vector<std::uint8_t>& mask = grid.field_constrained(f);
     std::fill(mask.begin(), mask.end(), std::uint8_t{0});
   }
+  grid.water_held.assign(grid.nodes.size(), 0);
   for (const NodeConstraint& c : constraints) {
     for (int f = 0; f < grid.field_count(); ++f) {
       if (c.field != NodeConstraint::all_fields && c.field != f) {
@@ -137,6 +138,9 @@ void Boundaries::mark_constrained_dofs(Grid& grid) const {
       std::vector<std::uint8_t>& mask = grid.field_constrained(f);
       for (const int node : c.nodes) {
         mask[static_cast<std::size_t>(node)] |= c.dofs;
+        if (f == 0 && !c.drained) {
+          grid.water_held[static_cast<std::size_t>(node)] |= c.dofs;
+        }
       }
     }
   }

@@ -22,6 +22,8 @@ struct NodeConstraint {
   std::uint8_t dofs = 0; // DofBit mask
   std::array<std::optional<TimeFunction>, 3> velocity;
   bool theta_is_rotation = false;
+  /// A drained face: the pore water of coupled soil flows through it though the skeleton is held.
+  bool drained = false;
   /// The velocity field the constraint acts on: every field (all_fields: a support holds whatever
   /// body reaches it), 0 for the soil only, k for the k-th contact structure only. Rigid bodies'
   /// fields follow their DOFs and are never constrained.
@@ -79,7 +81,8 @@ struct Boundaries {
 
   /// The supports on the faces of active absorbing faces give way (the axis keeps its own).
   void release_absorbing_supports();
-  /// Sets grid.constrained from the constraints (the DOFs that local damping leaves alone).
+  /// Sets grid.constrained from the constraints (the DOFs that local damping leaves alone) and
+  /// grid.water_held from the impermeable ones.
   void mark_constrained_dofs(Grid& grid) const;
   const NodeConstraint& constraint(const std::string& name) const;
 };

@@ -9,6 +9,7 @@ Grid::Grid(GradedAxis r_axis, GradedAxis y_axis)
   const auto count = static_cast<std::size_t>(nodes_r()) * static_cast<std::size_t>(nodes_y());
   nodes.assign(count, GridNode{});
   constrained.assign(count, 0);
+  water_held.assign(count, 0);
   update_cell_sizes();
 }
 

@@ -124,6 +124,9 @@ public:
   /// Constrained DOFs per node (DofBit mask), set from the boundary conditions. Local damping
   /// skips constrained DOFs so that reactions at moving supports are not polluted by it.
   std::vector<std::uint8_t> constrained;
+  /// Field 0's constrained DOFs that hold the pore water of coupled soil to the skeleton too
+  /// (impermeable faces); a drained face's are not among them.
+  std::vector<std::uint8_t> water_held;
   /// The pore water's share of field 0's internal force per node (r, y; N or N/rad): -sum V p
   /// grad N over its saturated particles, for the effective normal force of contact; kept only in
   /// a scene with contact and undrained soil, else empty.

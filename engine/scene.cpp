@@ -2,6 +2,7 @@
 
 #include "engine/materials/rigid_material.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mpile {
@@ -106,6 +107,11 @@ bool has_coupled_water(const Scene& scene) {
     }
   }
   return false;
+}
+
+bool has_pore_water(const Scene& scene) {
+  return std::any_of(scene.materials.begin(), scene.materials.end(),
+                     [](const auto& material) { return material->pore_pressure_index() >= 0; });
 }
 
 } // namespace mpile

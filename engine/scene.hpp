@@ -69,5 +69,8 @@ struct Scene {
 
 /// Whether any material is coupled soil, whose water flows through its skeleton.
 bool has_coupled_water(const Scene& scene);
+/// Whether any material carries a pore pressure (undrained or coupled soil): contact then takes
+/// friction on the effective normal force and splits each surface's force into its parts.
+bool has_pore_water(const Scene& scene);
 
 } // namespace mpile

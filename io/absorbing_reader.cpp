@@ -1,5 +1,7 @@
 #include "io/absorbing_reader.hpp"
 
+#include "io/face_list_reader.hpp"
+
 #include <algorithm>
 
 namespace mpile {
@@ -11,32 +13,8 @@ void read_absorbing_faces(TomlTable& table, CaseSpec& spec, bool grid_starts_on_
     }
     return;
   }
-  const TomlValue& list = table.raw("absorbing");
-  const char* names[] = {"r_min", "r_max", "y_min", "y_max"};
-  const std::string expected =
-      "must be a list of grid faces, each \"r_min\", \"r_max\", \"y_min\" or \"y_max\" once";
-  if (!list.is_array() || list.as_array().empty()) {
-    table.fail("absorbing", expected);
-  }
-  for (const TomlValue& entry : list.as_array()) {
-    if (!entry.is_string()) {
-      table.fail("absorbing", expected);
-    }
-    const std::string name = entry.as_string();
-    const auto found = std::find(std::begin(names), std::end(names), name);
-    if (found == std::end(names)) {
-      table.fail("absorbing", expected + ", got \"" + name + "\"");
-    }
-    const auto face = static_cast<GridFace>(found - std::begin(names));
-    if (std::find(spec.absorbing.faces.begin(), spec.absorbing.faces.end(), face) !=
-        spec.absorbing.faces.end()) {
-      table.fail("absorbing", "lists \"" + name + "\" twice");
-    }
-    if (face == GridFace::r_min && grid_starts_on_axis) {
-      table.fail("absorbing", "\"r_min\" is the axis here, where no wave leaves");
-    }
-    spec.absorbing.faces.push_back(face);
-  }
+  spec.absorbing.faces =
+      read_face_list(table, "absorbing", grid_starts_on_axis ? "where no wave leaves" : "");
   spec.absorbing.phase = table.string_or("absorbing_phase", "");
 }
 

@@ -329,6 +329,9 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     if (spec.faces[f] != FaceCondition::free) {
       boundaries.constraints.push_back(
           face_constraint(scene->grid, spec.mode, faces[f], spec.faces[f]));
+      boundaries.constraints.back().drained =
+          std::find(spec.drained_faces.begin(), spec.drained_faces.end(), faces[f]) !=
+          spec.drained_faces.end();
     }
   }
   if (spec.mode == GeometryMode::axisymmetric && scene->grid.r_axis().start() == 0.0) {

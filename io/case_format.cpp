@@ -476,6 +476,11 @@ std::vector<TableSpec> declare() {
                                         "absorbing_phase on), each once")
                        .one_of({"r_min", "r_max", "y_min", "y_max"})
                        .or_computed("none"));
+    keys.push_back(strings("drained", "held faces the pore water of coupled soil flows out "
+                                      "through (p = 0 beyond them); other held faces are "
+                                      "impermeable, a free face drains already")
+                       .one_of({"r_min", "r_max", "y_min", "y_max"})
+                       .or_computed("none"));
     keys.push_back(string("absorbing_phase", "the phase at whose start the absorbing faces "
                                              "switch on")
                        .or_computed(first_phase));

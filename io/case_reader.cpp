@@ -8,6 +8,7 @@
 #include "io/case_spec.hpp"
 #include "io/case_warnings.hpp"
 #include "io/dataset_name.hpp"
+#include "io/face_list_reader.hpp"
 #include "io/monopile_reader.hpp"
 #include "io/region_reader.hpp"
 #include "io/toml_reader.hpp"
@@ -1152,6 +1153,21 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
     for (std::size_t f = 0; f < 4; ++f) {
       spec.faces[f] = read_face(*boundaries, keys[f]);
+    }
+    if (boundaries->has("drained")) {
+      spec.drained_faces = read_face_list(*boundaries, "drained");
+      for (const GridFace face : spec.drained_faces) {
+        if (spec.faces[static_cast<std::size_t>(face)] == FaceCondition::free) {
+          boundaries->fail("drained", std::string("lists \"") + keys[static_cast<int>(face)] +
+                                          "\", a free face: the water leaves a free face already");
+        }
+      }
+      if (std::none_of(spec.materials.begin(), spec.materials.end(), [](const MaterialSpec& m) {
+            return m.water.drainage == Drainage::coupled;
+          })) {
+        boundaries->fail("drained", "no material is coupled (drainage = \"coupled\"): only "
+                                    "flowing pore water drains through a face");
+      }
     }
     if (spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0 &&
         boundaries->has("r_min")) {

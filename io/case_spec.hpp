@@ -193,6 +193,9 @@ struct CaseSpec {
   std::vector<BodySpec> bodies;
   std::array<FaceCondition, 4> faces{FaceCondition::free, FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free};
+  /// Held faces the pore water of coupled soil flows out through (p = 0 beyond them); every other
+  /// held face is impermeable.
+  std::vector<GridFace> drained_faces;
   /// Faces whose support gives way to dashpots (engine/absorbing_boundary.hpp) at the start of a
   /// phase (empty: the first).
   struct Absorbing {

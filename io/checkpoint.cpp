@@ -104,6 +104,13 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
         forces.push_back(pair.surface_torque[q]);
       }
       file.write(base + "/surface_forces", forces, "F_r, F_y, F_theta, M_theta per surface");
+      if (has_pore_water(scene)) {
+        std::vector<double> pore;
+        for (const auto& f : pair.surface_pore_force) {
+          pore.insert(pore.end(), f.begin(), f.end());
+        }
+        file.write(base + "/surface_pore_forces", pore, "the pore water's F_r, F_y per surface");
+      }
       if (pair.outline) {
         std::vector<double> vertices;
         for (const auto& v : pair.outline->vertices) {
@@ -263,6 +270,13 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
     for (std::size_t q = 0; q < pair.surfaces.size(); ++q) {
       pair.surface_force[q] = {forces.at(4 * q), forces.at(4 * q + 1), forces.at(4 * q + 2)};
       pair.surface_torque[q] = forces.at(4 * q + 3);
+    }
+    pair.surface_pore_force.assign(pair.surfaces.size(), {0.0, 0.0});
+    if (file.exists(base + "/surface_pore_forces")) {
+      const auto pore = file.read_doubles(base + "/surface_pore_forces");
+      for (std::size_t q = 0; q < pair.surfaces.size(); ++q) {
+        pair.surface_pore_force[q] = {pore.at(2 * q), pore.at(2 * q + 1)};
+      }
     }
     if (pair.outline) {
       const auto vertices = file.read_doubles(base + "/outline");

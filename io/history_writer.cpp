@@ -132,6 +132,12 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
         series(file, base + "/F_theta", u.force);
         series(file, base + "/M_theta", u.moment);
       }
+      if (has_pore_water(scene)) {
+        // The pore water's pressure on the surface and the rest, the effective stress's.
+        for (const char* part : {"/pore_F_r", "/pore_F_y", "/effective_F_r", "/effective_F_y"}) {
+          series(file, base + part, u.force);
+        }
+      }
     }
   }
   add_unit_resistances(file, spec, scene);
@@ -320,6 +326,13 @@ void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase,
       if (theta) {
         series_.at(base + "/F_theta").append(pair.surface_force[q][2]);
         series_.at(base + "/M_theta").append(pair.surface_torque[q]);
+      }
+      if (has_pore_water(scene)) {
+        const auto& pore = pair.surface_pore_force[q];
+        series_.at(base + "/pore_F_r").append(pore[0]);
+        series_.at(base + "/pore_F_y").append(pore[1]);
+        series_.at(base + "/effective_F_r").append(pair.surface_force[q][0] - pore[0]);
+        series_.at(base + "/effective_F_y").append(pair.surface_force[q][1] - pore[1]);
       }
     }
   }

@@ -78,6 +78,7 @@ void set_rigid_field(Grid& grid, const RigidBody& body, const std::array<double,
 
 struct SurfaceSums {
   std::array<double, 4 * max_surfaces> surface{}; // (F_r, F_y, F_theta, torque) per surface
+  std::array<double, 2 * max_surfaces> pore{};    // the pore pressure's (F_r, F_y) per surface
   std::array<double, 3> body{};                   // rigid DOF reactions: (F_r, F_y, moment)
 };
 
@@ -338,6 +339,9 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
     GridNode& s = nodes.soil[i];
     GridNode& k = nodes.structure[i];
     pair.node_force[i] = {0.0, 0.0, 0.0};
+    if (!pair.node_pore_force.empty()) {
+      pair.node_pore_force[i] = {0.0, 0.0};
+    }
     pair.node_dissipation[i] = 0.0;
     pair.state[i] = contact_free;
     if (s.mass <= step.mass_floor || k.mass <= step.mass_floor) {
@@ -378,6 +382,10 @@ void correct_nodes(PairNodes<mode>& nodes, ContactPair& pair, const SolverSettin
     }
     const SlipKept keep = correction.keep;
     pair.state[i] = keep.plane == 0.0 && keep.theta == 0.0 ? contact_stick : contact_slide;
+    if (!pair.node_pore_force.empty()) {
+      const double pressure = pore_impulse * beta_per_dt; // along n, onto the structure
+      pair.node_pore_force[i] = {pressure * n[0], pressure * n[1]};
+    }
     pair.contact_normal[i] = n;
   });
 }
@@ -400,6 +408,8 @@ void sum_surface_forces(Scene& scene, ContactPair& pair) {
           if (f[0] == 0.0 && f[1] == 0.0 && f[2] == 0.0) {
             return;
           }
+          const std::array<double, 2> pore =
+              pair.node_pore_force.empty() ? std::array<double, 2>{} : pair.node_pore_force[i];
           const double r = grid.node_r(static_cast<int>(i));
           const double y = grid.node_y(static_cast<int>(i));
           const double torque = r * f[2];
@@ -408,6 +418,8 @@ void sum_surface_forces(Scene& scene, ContactPair& pair) {
               sum.surface[4 * surface + d] += share * f[d];
             }
             sum.surface[4 * surface + 3] += share * torque;
+            sum.pore[2 * surface] += share * pore[0];
+            sum.pore[2 * surface + 1] += share * pore[1];
           };
           if (!pair.outline) {
             add(0, 1.0);
@@ -440,6 +452,16 @@ void sum_surface_forces(Scene& scene, ContactPair& pair) {
                 }
                 sum.surface[4 * surface[k] + 3] += share[k] * torque;
               }
+              if (pore[0] != 0.0 || pore[1] != 0.0) {
+                // The water's pressure, as one pressure over the surfaces' parts of the area.
+                split_over_surfaces({pore[0], pore[1], 0.0}, std::span(share).first(shared),
+                                    std::span<const std::array<double, 2>>(normal).first(shared),
+                                    std::span(part).first(shared));
+                for (std::size_t k = 0; k < shared; ++k) {
+                  sum.pore[2 * surface[k]] += part[k][0];
+                  sum.pore[2 * surface[k] + 1] += part[k][1];
+                }
+              }
             }
           } else {
             // Inside the outline: the surface of the edge whose normal the contact took.
@@ -459,6 +481,9 @@ void sum_surface_forces(Scene& scene, ContactPair& pair) {
         for (std::size_t q = 0; q < a.surface.size(); ++q) {
           a.surface[q] += b.surface[q];
         }
+        for (std::size_t q = 0; q < a.pore.size(); ++q) {
+          a.pore[q] += b.pore[q];
+        }
         for (std::size_t d = 0; d < 3; ++d) {
           a.body[d] += b.body[d];
         }
@@ -468,6 +493,7 @@ void sum_surface_forces(Scene& scene, ContactPair& pair) {
   for (std::size_t q = 0; q < surfaces; ++q) {
     pair.surface_force[q] = {sums.surface[4 * q], sums.surface[4 * q + 1], sums.surface[4 * q + 2]};
     pair.surface_torque[q] = sums.surface[4 * q + 3];
+    pair.surface_pore_force[q] = {sums.pore[2 * q], sums.pore[2 * q + 1]};
   }
   if (rigid) {
     scene.rigid_bodies[static_cast<std::size_t>(pair.rigid_body)].contact = sums.body;
@@ -501,6 +527,7 @@ void prepare_contact(Scene& scene) {
                                   std::to_string(max_surfaces) + " surfaces");
     }
     pair.allocate(scene.grid.node_count());
+    pair.node_pore_force.assign(has_pore_water(scene) ? scene.grid.node_count() : 0, {0.0, 0.0});
     if (!pair.outline) {
       auto& field = scene.grid.structure_fields[static_cast<std::size_t>(pair.field - 1)];
       field.mass_gradient.assign(scene.grid.node_count(), {0.0, 0.0});

@@ -119,7 +119,7 @@ ExplicitSolver::update_water_particle_velocities(const passes::StepParameters& s
   PassTimer timer(timings_.grid_to_particle);
   const passes::WaterParticleResult water = passes::update_water_particle_velocities<mode, shape>(
       scene_, bins_, liquid_phases_, settings_, step);
-  return {.external_work = water.external_work, .transfer = water.transfer};
+  return {.external_work = water.external_work, .transfer = water.transfer, .drag = water.drag};
 }
 
 template <GeometryMode mode, ShapeFunctions shape>
@@ -148,16 +148,15 @@ EnergyIncrement ExplicitSolver::balance_momentum(const passes::StepParameters& s
   // Absorbing faces' terms from the grid's coordinates this step, for both of their passes.
   const std::vector<passes::FaceNodeTerms> faces = passes::absorbing_face_terms(scene_);
   passes::apply_holding_tractions(scene_, faces, step);
-  if (!liquid_phases_.empty()) {
-    passes::couple_phases<mode>(scene_, step);
-  }
+  const double tied_drag = liquid_phases_.empty() ? 0.0 : passes::couple_phases<mode>(scene_, step);
   const passes::GridUpdateResult grid =
       passes::update_grid_velocities<mode>(scene_, settings_, step);
   const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, faces, settings_, step);
   stop_if_failed(StepFailure{.node_nonfinite = grid.node_nonfinite}, steps_ + 1, time_);
   return {.external_work = absorbed.holding,
           .damping = grid.damping_dissipation,
-          .radiated = absorbed.radiated};
+          .radiated = absorbed.radiated,
+          .drag = tied_drag};
 }
 
 template <GeometryMode mode>

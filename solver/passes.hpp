@@ -46,7 +46,8 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
                        const std::vector<const LiquidPhase*>& phases,
                        const SolverSettings& settings);
 /// ... the water's inertia and drag folded into field 0's nodes before their momentum balance ...
-template <GeometryMode mode> void couple_phases(Scene& scene, const StepParameters& step);
+/// Returns the kinetic energy the water tied to the skeleton at a structure's wall gives up.
+template <GeometryMode mode> double couple_phases(Scene& scene, const StepParameters& step);
 /// ... the water's velocities from the skeleton's final ones ...
 struct WaterVelocityResult {
   double drag = 0.0;         // taken by Darcy's drag over the step
@@ -58,6 +59,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
 struct WaterParticleResult {
   double external_work = 0.0; // gravity on the water's path beyond the skeleton's
   double transfer = 0.0;      // the water's kinetic energy a FLIP/PIC blend takes
+  double drag = 0.0;          // taken by the drag on the particles' own relative flow
 };
 template <GeometryMode mode, ShapeFunctions shape>
 WaterParticleResult update_water_particle_velocities(Scene& scene, const ParticleBins& bins,

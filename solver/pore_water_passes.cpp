@@ -25,6 +25,7 @@
 #include "solver/passes.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <vector>
 
 namespace mpile::passes {
@@ -130,49 +131,78 @@ inline EffectiveDof effective_dof(double skeleton_mass, double share, double wat
 
 } // namespace
 
-template <GeometryMode mode> void couple_phases(Scene& scene, const StepParameters& step) {
+template <GeometryMode mode> double couple_phases(Scene& scene, const StepParameters& step) {
   Grid& grid = scene.grid;
-  parallel_for(grid.liquid.size(), [&](std::size_t i) {
-    LiquidNode& water = grid.liquid[i];
-    if (!(water.mass > 0.0)) {
-      return;
-    }
-    GridNode& node = grid.nodes[i];
-    const double skeleton_mass = node.mass - water.share;
-    if (!(skeleton_mass > step.mass_floor)) {
-      // Every particle brings its grains with its water, so only round-off leaves a node here.
-      for (int d = 0; d < 3; ++d) {
-        water.velocity()[d] = 0.0;
-      }
-      return;
-    }
-    water.mixture_mass = node.mass;
-    water.mixture_inertia = node.inertia;
-    double mass = skeleton_mass;
-    for (int d = 0; d < 2; ++d) {
-      const double v = (node.momentum[d] - water.skeleton_momentum[d]) / skeleton_mass;
-      const double w = water.momentum[d] / water.mass;
-      const EffectiveDof dof = effective_dof(skeleton_mass, water.share, water.mass, water.drag,
-                                             node.force[d], water.force[d], v, w, step.dt);
-      mass = dof.mass; // the same for r and y
-      node.momentum[d] = dof.mass * v;
-      node.force[d] = dof.force;
-      water.velocity()[d] = w;
-    }
-    node.mass = mass;
-    if constexpr (has_theta(mode)) {
-      const double skeleton_inertia = node.inertia - water.share_inertia;
-      const double omega = (node.momentum[2] - water.skeleton_momentum[2]) / skeleton_inertia;
-      const double omega_w = water.momentum[2] / water.inertia;
-      const EffectiveDof dof =
-          effective_dof(skeleton_inertia, water.share_inertia, water.inertia, water.drag_inertia,
-                        node.force[2], water.force[2], omega, omega_w, step.dt);
-      node.inertia = dof.mass;
-      node.momentum[2] = dof.mass * omega;
-      node.force[2] = dof.force;
-      water.velocity()[2] = omega_w;
-    }
-  });
+  const bool structures = !grid.structure_fields.empty();
+  return parallel_reduce(
+      grid.liquid.size(), 0.0,
+      [&](std::size_t begin, std::size_t end, double merged) {
+        for (std::size_t i = begin; i < end; ++i) {
+          LiquidNode& water = grid.liquid[i];
+          if (!(water.mass > 0.0)) {
+            continue;
+          }
+          GridNode& node = grid.nodes[i];
+          const double skeleton_mass = node.mass - water.share;
+          if (!(skeleton_mass > step.mass_floor)) {
+            // Every particle brings its grains with its water, so only round-off leaves a node
+            // here.
+            for (int d = 0; d < 3; ++d) {
+              water.velocity()[d] = 0.0;
+            }
+            continue;
+          }
+          water.mixture_mass = node.mass;
+          water.mixture_inertia = node.inertia;
+          // At a structure's wall the water cannot flow into the wall, and the contact corrects
+          // the node as a whole: the phases move as one there (Darcy's drag taken as infinite),
+          // so that the contact sees the mixture's mass and total force, as in undrained soil,
+          // and the structure takes the water's pressure with the skeleton's. Tying them merges
+          // their momenta; the kinetic energy that takes is the drag's.
+          const bool tied = structures && grid.structure_occupies(i, step.mass_floor);
+          double mass = skeleton_mass;
+          for (int d = 0; d < 2; ++d) {
+            const double v = (node.momentum[d] - water.skeleton_momentum[d]) / skeleton_mass;
+            const double w = water.momentum[d] / water.mass;
+            water.velocity()[d] = w;
+            if (tied) {
+              mass = node.mass;
+              node.momentum[d] = mass * v;
+              node.force[d] += water.share * (w - v) / step.dt;
+              merged += 0.5 * skeleton_mass * water.share / mass * (w - v) * (w - v);
+              continue;
+            }
+            const EffectiveDof dof =
+                effective_dof(skeleton_mass, water.share, water.mass, water.drag, node.force[d],
+                              water.force[d], v, w, step.dt);
+            mass = dof.mass; // the same for r and y
+            node.momentum[d] = dof.mass * v;
+            node.force[d] = dof.force;
+          }
+          node.mass = mass;
+          if constexpr (has_theta(mode)) {
+            const double skeleton_inertia = node.inertia - water.share_inertia;
+            const double omega = (node.momentum[2] - water.skeleton_momentum[2]) / skeleton_inertia;
+            const double omega_w = water.momentum[2] / water.inertia;
+            water.velocity()[2] = omega_w;
+            if (tied) {
+              node.momentum[2] = node.inertia * omega;
+              node.force[2] += water.share_inertia * (omega_w - omega) / step.dt;
+              merged += 0.5 * skeleton_inertia * water.share_inertia / node.inertia *
+                        (omega_w - omega) * (omega_w - omega);
+              continue;
+            }
+            const EffectiveDof dof = effective_dof(skeleton_inertia, water.share_inertia,
+                                                   water.inertia, water.drag_inertia, node.force[2],
+                                                   water.force[2], omega, omega_w, step.dt);
+            node.inertia = dof.mass;
+            node.momentum[2] = dof.mass * omega;
+            node.force[2] = dof.force;
+          }
+        }
+        return merged;
+      },
+      std::plus<>(), true);
 }
 
 template <GeometryMode mode>
@@ -206,7 +236,9 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
         // booked the mixture's reaction as if the water had moved freely; held, the water's share
         // of the mixture's momentum, M_nw = n M_w, changes by M_nw (v - w_free) more, and the
         // face does that work too.
-        if (d < 2 && ((grid.constrained[i] & (1u << d)) != 0 || at_wall)) {
+        if (at_wall) {
+          w_new = v; // tied to the skeleton in couple_phases, its drag booked there
+        } else if (d < 2 && (grid.water_held[i] & (1u << d)) != 0) {
           result.support_work += porosity * mass[d] * (v - w_new) * v;
           w_new = v;
         }
@@ -238,7 +270,6 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
   const Grid& grid = scene.grid;
   Particles& p = scene.particles;
   const double flip = settings.flip_fraction;
-  const double pic = 1.0 - flip;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
   std::vector<WaterParticleResult> block_results(static_cast<std::size_t>(bins.block_count()));
@@ -264,16 +295,23 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
           double* w = state + phase.velocity_slot;
           const double w_flip[3] = {w[0] + increment[0], w[1] + increment[1],
                                     has_theta(mode) ? w[2] + r * increment[2] : 0.0};
-          const double w_new[3] = {flip * w_flip[0] + pic * velocity[0],
-                                   flip * w_flip[1] + pic * velocity[1],
-                                   flip * w_flip[2] + pic * r * velocity[2]};
+          // FLIP keeps the particle's velocity apart from the grid's field, w_flip - w_pic, which
+          // no nodal drag sees: left alone it would flow through the skeleton for ever (a water
+          // velocity frozen at a particle while its neighbours' drag has stopped theirs). Darcy's
+          // drag damps it as it damps the grid's relative flow, implicitly over the step.
+          const double w_pic[3] = {velocity[0], velocity[1], r * velocity[2]};
+          const double damped = flip / (1.0 + step.dt * phase.drag_per_mass);
           const double water_mass = phase.mass_fraction * p.mass[i];
-          double drop = 0.0;
+          double blend_drop = 0.0, drag_drop = 0.0;
           for (int d = 0; d < dofs; ++d) {
-            drop += w_flip[d] * w_flip[d] - w_new[d] * w_new[d];
-            w[d] = w_new[d];
+            const double w_blend = w_pic[d] + flip * (w_flip[d] - w_pic[d]);
+            const double w_new = w_pic[d] + damped * (w_flip[d] - w_pic[d]);
+            blend_drop += w_flip[d] * w_flip[d] - w_blend * w_blend;
+            drag_drop += w_blend * w_blend - w_new * w_new;
+            w[d] = w_new;
           }
-          out.transfer += 0.5 * water_mass * drop;
+          out.transfer += 0.5 * water_mass * blend_drop;
+          out.drag += 0.5 * water_mass * drag_drop;
           // Gravity on the water works along the water's path; the stress pass books the mixture's
           // weight along the skeleton's, so the difference is added here.
           out.external_work +=
@@ -286,6 +324,7 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
     const WaterParticleResult& out = block_results[static_cast<std::size_t>(block)];
     total.external_work += out.external_work;
     total.transfer += out.transfer;
+    total.drag += out.drag;
   }
   return total;
 }
@@ -346,7 +385,7 @@ void remap_water(Scene& scene, const ParticleBins& bins,
     for (int d = 0; d < dofs; ++d) {
       water.velocity()[d] = water.momentum[d] * inverse[d];
       // Impermeable where the skeleton is held or a structure is, as in update_water_velocities.
-      if (d < 2 && ((grid.constrained[i] & (1u << d)) != 0 || at_wall)) {
+      if (at_wall || (d < 2 && (grid.water_held[i] & (1u << d)) != 0)) {
         water.velocity()[d] = node.velocity()[d];
       }
     }
@@ -494,8 +533,8 @@ MPILE_WATER_PASSES(GeometryMode::plane_strain, ShapeFunctions::gimp)
 #undef MPILE_WATER_PASSES
 template void rescale_remapped_skeleton<GeometryMode::axisymmetric>(Scene&);
 template void rescale_remapped_skeleton<GeometryMode::plane_strain>(Scene&);
-template void couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
-template void couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&);
+template double couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
+template double couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&);
 template WaterVelocityResult
 update_water_velocities<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
 template WaterVelocityResult

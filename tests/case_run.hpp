@@ -79,13 +79,20 @@ struct CaseRun {
   }
   const ContactPair& pair() const { return scene->contacts.at(0); }
   double surface_force(const std::string& surface, int component) const {
+    return pair().surface_force[surface_index(surface)][static_cast<std::size_t>(component)];
+  }
+  /// The pore water's part of a surface's force (r or y), with pore water in the soil.
+  double surface_pore_force(const std::string& surface, int component) const {
+    return pair().surface_pore_force[surface_index(surface)][static_cast<std::size_t>(component)];
+  }
+  std::size_t surface_index(const std::string& surface) const {
     for (std::size_t q = 0; q < pair().surfaces.size(); ++q) {
       if (pair().surfaces[q] == surface) {
-        return pair().surface_force[q][static_cast<std::size_t>(component)];
+        return q;
       }
     }
     ADD_FAILURE() << "no surface " << surface;
-    return 0.0;
+    return 0;
   }
 };
 

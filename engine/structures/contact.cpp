@@ -142,6 +142,7 @@ void ContactPair::allocate(std::size_t node_count) {
   // Sums of the last step survive (a restart restores them before the solver sizes the rest).
   surface_force.resize(surfaces.size(), {0.0, 0.0, 0.0});
   surface_torque.resize(surfaces.size(), 0.0);
+  surface_pore_force.resize(surfaces.size(), {0.0, 0.0});
   outlined_nodes.clear();
 }
 

@@ -171,9 +171,15 @@ struct ContactPair {
   /// surface at the node itself.
   std::vector<SurfaceGap> surface_gap;
 
-  // Sums of the last step per surface: (F_r, F_y, F_theta) and the torque about the axis.
+  /// Per node, with pore water in the soil: the pore pressure's part of node_force, the pore
+  /// water's force along the contact normal (its pressure on the wall; empty without water).
+  std::vector<std::array<double, 2>> node_pore_force;
+
+  // Sums of the last step per surface: (F_r, F_y, F_theta) and the torque about the axis; with
+  // pore water, the pore pressure's part of (F_r, F_y) (the rest is the effective stress's).
   std::vector<std::array<double, 3>> surface_force;
   std::vector<double> surface_torque;
+  std::vector<std::array<double, 2>> surface_pore_force;
 
   std::size_t surface_count() const { return surfaces.size(); }
   /// Sizes the per-node arrays to the grid (once, before the first step).
