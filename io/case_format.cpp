@@ -3,8 +3,8 @@
 // constructed struct, so the number lives in one place.
 #include "io/case_format.hpp"
 
-#include "cases/monopile/monopile_geometry.hpp"
 #include "engine/materials/material_registry.hpp"
+#include "engine/monopile_geometry.hpp"
 #include "engine/particle_bins.hpp"
 #include "io/case_spec.hpp"
 #include "solver/solver_settings.hpp"
