@@ -3,6 +3,7 @@
 #include "engine/materials/undrained_soil.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
+#include "io/case_phases.hpp"
 #include "io/case_warnings.hpp"
 #include "io/monitor_points.hpp"
 #include "io/plausibility.hpp"
@@ -224,11 +225,12 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
       << " node sets, loads: " << scene->boundaries.loads.size() << "\n";
 
   RunLog log(&out);
-  apply_k0(*scene, spec, spec.phases.front());
-  print_pore_water(out, spec, *scene);
   try {
-    ExplicitSolver solver(*scene, phase_settings(spec, spec.phases.front()), log);
-    const double dt = solver.stable_time_step();
+    // The first phase set up as `mpile run` sets it up: the trial steps below are the run's.
+    RunProgress progress;
+    const std::unique_ptr<ExplicitSolver> solver = CasePhases(spec, *scene).start(progress, log);
+    print_pore_water(out, spec, *scene);
+    const double dt = solver->stable_time_step();
     refuse_implausible_run(spec, *scene, dt);
     const double steps = spec.end_time() / dt;
     // A short trial run on a copy of the particles measures this machine's step rate.
@@ -236,7 +238,7 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
     int trial = 0;
     while (trial < 20 &&
            std::chrono::steady_clock::now() - start < std::chrono::milliseconds(1500)) {
-      solver.step();
+      solver->step();
       ++trial;
     }
     const double per_step =

@@ -1,3 +1,14 @@
+// `mpile describe`: the case format's tables and material types in words, as the Markdown tables
+// of docs/case-format.md and as a JSON Schema, all from the one declaration in io/case_format.cpp.
+//
+// Outline:
+//   a key's kind, range, choices and default in words (kind_name, allowed, material_range, ...)
+//   a table or material type in words for the terminal (describe_table, describe_material)
+//   Markdown tables (cell, markdown_table, markdown_material)
+//   the JSON Schema's pieces (json_*, describe_key, schema_of_key, schema_of_table), table_list
+//   describe_tables and case_json_schema: what `mpile describe [TABLE]` and --json-schema print
+//   regenerate_doc: a doc's generated key tables written anew (--update-doc, --check-doc)
+//   describe_command: the command
 #include "app/describe_command.hpp"
 
 #include "app/run_command.hpp"

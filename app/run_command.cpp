@@ -4,6 +4,7 @@
 #include "app/run_observers.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
+#include "io/case_phases.hpp"
 #include "io/case_warnings.hpp"
 #include "io/checkpoint.hpp"
 #include "io/history_writer.hpp"
@@ -12,7 +13,6 @@
 #include "io/plausibility.hpp"
 #include "io/reserve_space.hpp"
 #include "io/vtk_writer.hpp"
-#include "solver/diagnostics.hpp"
 #include "solver/phase_runner.hpp"
 
 #include <unistd.h>
@@ -133,36 +133,13 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
 
   RunLog log(&out);
   RunProgress progress = restarting ? restored.progress : RunProgress{};
-  const std::vector<RunPhase> phases(spec.phases.begin(), spec.phases.end());
-  if (!restarting) {
-    begin_phase(progress, phases, *scene, 0, 0.0);
-    apply_k0(*scene, spec, spec.phases.front());
-  }
-  // A complete run continued into phases added to its case: the next phase begins now.
-  const bool begins_added_phase = progress.phase == progress.phase_starts.size();
-  if (begins_added_phase) {
-    begin_phase(progress, phases, *scene, progress.phase, restored.solver.time);
-  }
-  for (std::size_t p = 0; p < progress.phase_starts.size(); ++p) {
-    activate_phase_boundaries(*scene, spec, p, progress.phase_starts[p]);
-  }
-
+  const CasePhases phases(spec, *scene);
   std::unique_ptr<ExplicitSolver> solver;
   try {
-    const SolverSettings settings = phase_settings(spec, spec.phases[progress.phase]);
-    solver = restarting ? std::make_unique<ExplicitSolver>(*scene, settings, log, restored.solver)
-                        : std::make_unique<ExplicitSolver>(*scene, settings, log);
+    solver =
+        restarting ? phases.resume(progress, log, restored.solver) : phases.start(progress, log);
     if (!restarting) {
       refuse_implausible_run(spec, *scene, solver->stable_time_step());
-      switch_on_absorbing_faces(*solver, spec, 0);
-    }
-    if (begins_added_phase) {
-      const double elastic_before = elastic_energy(*scene);
-      apply_k0(*scene, spec, spec.phases[progress.phase]);
-      if (!spec.phases[progress.phase].k0.empty()) {
-        solver->account_for_stress_reset(elastic_before);
-      }
-      switch_on_absorbing_faces(*solver, spec, progress.phase);
     }
   } catch (const CaseError& e) {
     err << "mpile: " << e.what() << '\n';
@@ -260,7 +237,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       write_checkpoint(checkpoint_path, spec, *scene, solver->state(), progress);
     };
     ProgressReporter reporter(err, isatty(fileno(stderr)) != 0);
-    PhaseRunner runner(*solver, phases, schedule, progress, log);
+    PhaseRunner runner(*solver, phases.phases(), schedule, progress, log);
     HistoryObserver history_observer(history, *solver);
     SnapshotObserver snapshot_observer(snapshots, *scene);
     CheckpointObserver checkpoint_observer(save_state);
@@ -280,16 +257,6 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     } else {
       runner.start();
     }
-    const auto set_up_phase = [&](std::size_t p, double start) {
-      activate_phase_boundaries(*scene, spec, p, start);
-      const double elastic_before = elastic_energy(*scene);
-      apply_k0(*scene, spec, spec.phases[p]);
-      if (!spec.phases[p].k0.empty()) {
-        solver->account_for_stress_reset(elastic_before);
-      }
-      solver->change_settings(phase_settings(spec, spec.phases[p]));
-      switch_on_absorbing_faces(*solver, spec, p);
-    };
     const auto stop_due = [&](long steps_this_run) {
       return stop_requested != 0 ||
              (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps) ||
@@ -319,7 +286,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     };
     try {
       try {
-        if (runner.run(set_up_phase, stop_due) == PhaseRunner::Outcome::interrupted) {
+        if (runner.run(phases.set_up_on(*solver), stop_due) == PhaseRunner::Outcome::interrupted) {
           const double t = solver->time();
           reporter.finish();
           // The checkpoint lists the snapshots an uninterrupted run has by now; the one taken at

@@ -1,10 +1,19 @@
 // Every table and key of a case file, declared once. Defaults that the engine's own structs hold
 // (SolverSettings, MonopileParameters, the output and contact settings) are taken from a default-
 // constructed struct, so the number lives in one place.
+//
+// Outline:
+//   KeySpec's builders (needed, or_default, ranges, choices) and default_description
+//   a key of each kind (number, integer, boolean, string, numbers, time_function, tables, ...)
+//   keys shared by several tables: a rigid body's drive, grid zones, node lines, a material's own
+//   declare(): the tables in order: top level, grid, materials, bodies (region, velocity_profile,
+//     rigid), time_function, contact, monopile, moving_mesh, affine_motion, boundaries, solver,
+//     prescribed, loads, phases (k0, stop_at, drive), output (cpt, monitor)
+//   case_format, find_table_spec, table_heading: the declaration as the readers and describe see it
 #include "io/case_format.hpp"
 
-#include "cases/monopile/monopile_geometry.hpp"
 #include "engine/materials/material_registry.hpp"
+#include "engine/monopile_geometry.hpp"
 #include "engine/particle_bins.hpp"
 #include "io/case_spec.hpp"
 #include "solver/solver_settings.hpp"

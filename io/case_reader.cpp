@@ -1,5 +1,17 @@
 // The case file reader: TOML in, a validated CaseSpec out. Strict: unknown keys, missing required
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
+//
+// Outline:
+//   pieces read in several tables: grid zones, time functions, node lines on grid lines, a
+//     component's index, face conditions
+//   the tables, each by one function: read_materials, read_bodies (and their rigid drives),
+//     read_contacts, read_affine_motion, read_motions_and_loads, read_solver, read_phases
+//   refuse_past_memory_budget: a case too large for the machine refused before it is built
+//   read_cpt_output, read_output (monitors included)
+//   read_pore_water, read_material_table: a material's model, drainage and pore water
+//   CaseSpec::end_time
+//   read_case_text, read_case_tree (the tables in order, [monopile] or the tables it builds, and
+//     the checks across tables), read_case_file (bases and --set overrides)
 #include "engine/particle_bins.hpp"
 #include "engine/structures/contact.hpp"
 #include "io/absorbing_reader.hpp"

@@ -1,11 +1,10 @@
 // The [monopile] table: parameters in, the case's geometry, bodies, contact, boundaries and
-// moving mesh out (the geometry itself is built by cases/monopile/monopile_geometry).
+// moving mesh out (the geometry itself is built by engine/monopile_geometry).
 #include "io/monopile_reader.hpp"
 
+#include "engine/monopile_geometry.hpp"
 #include "io/absorbing_reader.hpp"
 #include "io/case_warnings.hpp"
-
-#include "cases/monopile/monopile_geometry.hpp"
 
 #include <algorithm>
 #include <stdexcept>

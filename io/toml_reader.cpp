@@ -1,3 +1,15 @@
+// TOML text parsed within bounds, and TomlTable: a table read key by key against its declaration
+// (io/case_format.cpp), every error naming the file, line and key.
+//
+// Outline:
+//   value helpers: type names for messages, edit_distance (suggestions), numbers
+//   check_toml_bounds: nesting depth, line length and dotted-key parts bounded before parsing
+//   key_excerpt, format_number, parse_toml
+//   TomlTable: the declaration's keys and child tables (declared, child_spec), range and choice
+//     checks, where a key was written and the errors that say so (line_of, fail, type_error,
+//     missing), typed reads with and without a default (number, integer, string, path, boolean,
+//     numbers), child tables (table, optional_table, tables, named_tables), finish (unknown keys
+//     refused with the table's known keys), positive
 #include "io/toml_reader.hpp"
 
 #include <algorithm>

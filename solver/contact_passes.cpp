@@ -3,6 +3,17 @@
 // that both occupy; writes each pair's per-node forces and per-surface sums, and the rigid
 // bodies' state. Every node is corrected independently, so the nodal loop runs in parallel; the
 // sums use a deterministic reduction, so results do not depend on the thread count.
+//
+// Outline:
+//   thresholds and node spacing; a rigid body's field set to its rigid motion
+//   NodeDofs and PairNodes: a pair's two fields at the nodes both occupy, measured and changed
+//   hold_contact_after_remap, sum_dissipation
+//   the outline's normal and area at a node (single_surface, outline normals)
+//   correct_nodes: the contact law at every node after the momentum balance
+//   sum_surface_forces: node forces summed per surface and on the rigid body
+//   resolve_pair: one pair's correction, forces and energy, after the balance and after the remap
+//   the passes: prepare_contact, predict_rigid_bodies, resolve_contact, finish_rigid_bodies,
+//     reset_rigid_fields, move_rigid_bodies
 #include "solver/contact_passes.hpp"
 
 #include "engine/parallel.hpp"

@@ -2,11 +2,13 @@
 
 #include "cases/verification/case_texts.hpp"
 #include "io/case_builder.hpp"
+#include "io/case_phases.hpp"
 
 #include <chrono>
 #include <limits>
 #include <regex>
 #include <stdexcept>
+#include <utility>
 
 namespace mpile::verification {
 
@@ -59,9 +61,9 @@ double travel_of(const TimeFunction& velocity, const CaseSpec& spec) {
 }
 
 CaseFileRun::CaseFileRun(std::string_view file, const Options& options, PoissonRatio poisson)
-    : spec_(read_verification_case(file, options, poisson)), scene_(build_scene(spec_)) {
-  settings_ = apply_options(phase_settings(spec_, spec_.phases[0]), options);
-}
+    : spec_(read_verification_case(file, options, poisson)), scene_(build_scene(spec_)),
+      solver_options_(
+          [options](SolverSettings s) { return apply_options(std::move(s), options); }) {}
 
 double CaseFileRun::parameter(std::string_view material, std::string_view key) const {
   for (const MaterialSpec& m : spec_.materials) {
@@ -78,23 +80,20 @@ double CaseFileRun::parameter(std::string_view material, std::string_view key) c
 
 Report CaseFileRun::run(std::string id, std::string title, const AfterStep& after_step) {
   const auto start = std::chrono::steady_clock::now();
-  // As `mpile run` begins a case: the first phase's K0 stresses and boundaries, then the solver.
-  const std::vector<RunPhase> phases(spec_.phases.begin(), spec_.phases.end());
+  // As `mpile run` begins a case, with the options' solver choices on the phase's settings.
+  const CasePhases phases(spec_, *scene_, solver_options_);
   RunProgress progress;
-  begin_phase(progress, phases, *scene_, 0, 0.0);
-  apply_k0(*scene_, spec_, spec_.phases[0]);
-  activate_phase_boundaries(*scene_, spec_, 0, 0.0);
-  ExplicitSolver solver(*scene_, settings_, log_);
-  switch_on_absorbing_faces(solver, spec_, 0);
+  const std::unique_ptr<ExplicitSolver> owned = phases.start(progress, log_);
+  ExplicitSolver& solver = *owned;
   solver_ = &solver;
   after_step_ = after_step;
 
   OutputSchedule no_rows;
   no_rows.history_interval = std::numeric_limits<double>::infinity();
-  PhaseRunner runner(solver, phases, no_rows, progress, log_);
+  PhaseRunner runner(solver, phases.phases(), no_rows, progress, log_);
   runner.add_observer(*this);
   runner.start();
-  runner.run([](std::size_t, double) {}, [](long) { return false; });
+  runner.run(phases.set_up_on(solver), [](long) { return false; });
   if (spec_.phases[0].equilibrium_tolerance) {
     rest_ = measure_equilibrium(solver, *spec_.phases[0].equilibrium_tolerance);
   }

@@ -63,7 +63,8 @@ public:
 private:
   CaseSpec spec_;
   std::unique_ptr<Scene> scene_;
-  SolverSettings settings_;
+  /// The options' solver choices, applied on the phase's settings.
+  std::function<SolverSettings(SolverSettings)> solver_options_;
   RunLog log_;
   const ExplicitSolver* solver_ = nullptr;
   AfterStep after_step_;

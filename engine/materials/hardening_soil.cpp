@@ -1,3 +1,18 @@
+// The Hardening Soil model (docs/hardening-soil.md): stiffness that grows with confinement, a shear
+// surface that hardens with plastic shear strain and a cap that hardens with compaction.
+//
+// Outline:
+//   helpers: root finders (decreasing_root, root_from_zero), surface_tolerance, the elastic
+//     constants of a (sub)step, the mechanisms (three shear planes and the cap), ReturnState
+//   HardeningSoil: the constructor (parameters checked), moduli and surfaces (stress ratio, E_ur,
+//     E_50, E_oed, q_f, the yield hyperbola and its slopes, the hardening function, the cap),
+//     derive_cap, the state's start, the elastic moduli and energy, update_stress (a batch)
+//   HardeningSoilReturn: one implicit return with frozen moduli and directions: residuals, shear
+//     multipliers split over planes and corners, linearised states, Newton's method on a shear
+//     plane or corner, on the cap and on both, and the bracketed returns behind them
+//   the choice of return: shear_alone_can_hold, ordered, substep_count, mobilised_dilatancy,
+//     return_to_surfaces (the last active set, then every set in order, then alternation)
+//   HardeningSoil::update_point and substep: one point's update, split into substeps
 #include "engine/materials/hardening_soil.hpp"
 
 #include "engine/materials/principal_stress.hpp"

@@ -1,4 +1,4 @@
-#include "cases/monopile/monopile_geometry.hpp"
+#include "engine/monopile_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
