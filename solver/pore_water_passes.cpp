@@ -279,7 +279,7 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
         particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, double* state) {
           const auto weights = particle_weights<shape>(grid, p, i);
           double velocity[3] = {0.0, 0.0, 0.0}, increment[3] = {0.0, 0.0, 0.0};
-          double skeleton[2] = {0.0, 0.0};
+          double skeleton[3] = {0.0, 0.0, 0.0};
           constexpr int dofs = has_theta(mode) ? 3 : 2;
           for (int a = 0; a < weights.size; ++a) {
             const auto node = static_cast<std::size_t>(weights.node[a]);
@@ -288,24 +288,31 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
               velocity[d] += weights.N[a] * water.velocity()[d];
               increment[d] += weights.N[a] * water.velocity_increment()[d];
             }
-            skeleton[0] += weights.N[a] * grid.nodes[node].velocity()[0];
-            skeleton[1] += weights.N[a] * grid.nodes[node].velocity()[1];
+            for (int d = 0; d < dofs; ++d) {
+              skeleton[d] += weights.N[a] * grid.nodes[node].velocity()[d];
+            }
           }
           const double r = has_theta(mode) ? p.r[i] : 0.0;
           double* w = state + phase.velocity_slot;
           const double w_flip[3] = {w[0] + increment[0], w[1] + increment[1],
                                     has_theta(mode) ? w[2] + r * increment[2] : 0.0};
-          // FLIP keeps the particle's velocity apart from the grid's field, w_flip - w_pic, which
-          // no nodal drag sees: left alone it would flow through the skeleton for ever (a water
-          // velocity frozen at a particle while its neighbours' drag has stopped theirs). Darcy's
-          // drag damps it as it damps the grid's relative flow, implicitly over the step.
+          // FLIP keeps each phase's particle velocity apart from its grid field (w_flip - w_pic,
+          // and the skeleton's v_p - v_grid, already updated), and no nodal drag sees the
+          // difference between the two: left alone a particle's water would flow through its
+          // skeleton for ever (a water velocity frozen at a particle beside a pile tip while its
+          // neighbours' drag had stopped theirs). Darcy's drag damps it as it damps the grid's
+          // relative flow, implicitly over the step: the water's deviation relaxes towards the
+          // skeleton's (k -> 0: the water keeps to its particle's skeleton; k -> infinity: FLIP).
           const double w_pic[3] = {velocity[0], velocity[1], r * velocity[2]};
-          const double damped = flip / (1.0 + step.dt * phase.drag_per_mass);
+          const double v_off[3] = {p.v_r[i] - skeleton[0], p.v_y[i] - skeleton[1],
+                                   has_theta(mode) ? p.v_theta[i] - r * skeleton[2] : 0.0};
+          const double decay = 1.0 / (1.0 + step.dt * phase.drag_per_mass);
           const double water_mass = phase.mass_fraction * p.mass[i];
           double blend_drop = 0.0, drag_drop = 0.0;
           for (int d = 0; d < dofs; ++d) {
-            const double w_blend = w_pic[d] + flip * (w_flip[d] - w_pic[d]);
-            const double w_new = w_pic[d] + damped * (w_flip[d] - w_pic[d]);
+            const double w_off = flip * (w_flip[d] - w_pic[d]);
+            const double w_blend = w_pic[d] + w_off;
+            const double w_new = w_pic[d] + v_off[d] + decay * (w_off - v_off[d]);
             blend_drop += w_flip[d] * w_flip[d] - w_blend * w_blend;
             drag_drop += w_blend * w_blend - w_new * w_new;
             w[d] = w_new;
