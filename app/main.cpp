@@ -4,6 +4,7 @@
 #include "app/run_command.hpp"
 #include "app/sweep_command.hpp"
 #include "app/verify_command.hpp"
+#include "io/source_commit.hpp"
 #include "solver/solver_settings.hpp"
 
 #include <CLI/CLI.hpp>
@@ -51,7 +52,8 @@ CLI::Validator finite_within(double low, double high) {
 
 int main(int argc, char** argv) {
   CLI::App app{"mpile: axisymmetric explicit MPM with a rotational DOF, for monopile installation"};
-  app.set_version_flag("--version", std::string("mpile ") + MPILE_VERSION);
+  app.set_version_flag("--version",
+                       std::string("mpile ") + MPILE_VERSION + " (" + mpile::source_commit() + ")");
   app.require_subcommand(1);
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (default: all cores)")

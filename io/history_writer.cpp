@@ -3,6 +3,7 @@
 #include "io/case_composition.hpp"
 #include "io/monitor_points.hpp"
 #include "io/reserve_space.hpp"
+#include "io/source_commit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +45,7 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
     file.set_attribute("/", "case_file", spec.file);
     file.set_attribute("/", "title", spec.title);
     file.set_attribute("/", "program", std::string("mpile ") + MPILE_VERSION);
+    file.set_attribute("/", "commit", std::string(source_commit()));
     file.set_attribute("/", "geometry",
                        spec.mode == GeometryMode::axisymmetric
                            ? "axisymmetric: extensive quantities per radian"

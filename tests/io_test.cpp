@@ -7,6 +7,7 @@
 #include "engine/particle_fill.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/output_directory.hpp"
+#include "io/source_commit.hpp"
 #include "io/vtk_writer.hpp"
 #include "tests/case_run.hpp"
 
@@ -24,6 +25,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -319,6 +321,18 @@ TEST(RunCommand, EndToEndRunWritesHistorySnapshotsAndCheckpoint) {
   EXPECT_EQ(history.string_attribute("/phases/1", "ended"), "after its duration");
   EXPECT_EQ(history.string_attribute("/boundaries/base/M_theta", "units"), "N m/rad");
   EXPECT_NE(history.string_attribute("/", "case_text").find("shaking column"), std::string::npos);
+  // The commit the program was built from, so a table of results can name its runs' commit: in a
+  // git checkout, HEAD's short id (with "-dirty" while files outside docs/ differ from it).
+  EXPECT_EQ(history.string_attribute("/", "commit"), source_commit());
+  if (FILE* git = popen(
+          ("git -C " + source.string() + " rev-parse --short=7 HEAD 2>/dev/null").c_str(), "r")) {
+    char head[64] = {};
+    const bool read = std::fgets(head, sizeof head, git) != nullptr;
+    if (pclose(git) == 0 && read) {
+      EXPECT_EQ(std::string(source_commit()).rfind(std::string(head, 7), 0), 0u)
+          << source_commit() << " against HEAD " << head;
+    }
+  }
   const auto time = history.read_doubles("/time");
   const auto phase = history.read_doubles("/phase");
   ASSERT_GT(time.size(), 10u);

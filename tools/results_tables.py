@@ -8,9 +8,9 @@
 
 `run` runs cases/monopile/{jacked,impact,gdp,gdp829}_quick.toml with build/release/bin/mpile into
 out/<case>/ and writes out/<case>/source_commit: the commit checked out when the run was made (git
-describe of HEAD, "-dirty" if files outside docs/ differ from it). history.h5 names the program's
-version (its `program` attribute, "mpile 0.1.0") but not its commit, so the commit comes from
-that file, from a `commit` attribute of history.h5 if a later version writes one, or from --commit.
+describe of HEAD, "-dirty" if files outside docs/ differ from it). A run's commit is --commit if
+given, else history.h5's `commit` attribute (the commit the program was built from, written since
+mpile records it; `mpile --version` prints it too), else that file.
 
 `write` replaces the text between each pair of marker comments in the page,
 
