@@ -1,5 +1,6 @@
 #include "io/case_builder.hpp"
 
+#include "engine/materials/pore_water.hpp"
 #include "io/case_error.hpp"
 
 #include <algorithm>
@@ -282,6 +283,16 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
       p.v_y[i] = v[1];
       if (has_theta(spec.mode)) {
         p.v_theta[i] = v[2];
+      }
+    }
+    if (const LiquidPhase* water = scene->materials[material]->liquid_phase()) {
+      // A body set moving moves whole: its pore water with its grains.
+      for (std::size_t i = first; i < p.size(); ++i) {
+        double* w =
+            p.state.data() + i * static_cast<std::size_t>(p.state_stride) + water->velocity_slot;
+        w[0] = p.v_r[i];
+        w[1] = p.v_y[i];
+        w[2] = has_theta(spec.mode) ? p.v_theta[i] : 0.0;
       }
     }
   }

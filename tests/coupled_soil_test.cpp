@@ -4,6 +4,7 @@
 // ledger closing with the drag and the water's energies, the same bits on one, two and three
 // threads, and the water's keys refused where they make no sense.
 #include "cases/verification/verification_cases.hpp"
+#include "engine/materials/pore_water.hpp"
 #include "io/case_error.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
@@ -173,6 +174,47 @@ TEST(CoupledSoil, ADrainedBaseHalvesTheDrainagePath) {
     }
   }
   EXPECT_LT(worst, 0.02 * q);
+}
+
+// A body given an initial velocity moves whole, its pore water with its grains: a saturated block
+// thrown through empty space (no gravity, no support) keeps its momentum and kinetic energy, and
+// Darcy's drag takes nothing (its water used to start at rest, and the drag then took part of the
+// grains' momentum and energy).
+TEST(CoupledSoil, ABodySetMovingMovesWithItsWater) {
+  CaseRun run(R"(title = "thrown block"
+geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 0.5, cells = 5 }]
+y = [{ start = 0.0, end = 2.0, cells = 20 }]
+[materials.sand]
+type = "linear_elastic"
+young_modulus = 100e6
+poisson_ratio = 0.25
+density = 1600.0
+drainage = "coupled"
+hydraulic_conductivity = 1e-5
+[[bodies]]
+name = "block"
+material = "sand"
+region = { r = [0.0, 0.4], y = [0.5, 1.0] }
+velocity = [0.0, 1.0, 0.0]
+[[phases]]
+name = "flight"
+duration = 0.002
+gravity = false
+)");
+  const Particles& p = run.scene->particles;
+  const LiquidPhase& water = *run.scene->materials.at(0)->liquid_phase();
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    ASSERT_EQ(p.state[i * stride + static_cast<std::size_t>(water.velocity_slot) + 1], 1.0);
+  }
+  const double start = run.solver->energy_balance().kinetic;
+  run.solver->advance_to(0.002);
+  const EnergyBalance end = run.solver->energy_balance();
+  // A rigid translation strains nothing and the phases move together: round-off only.
+  EXPECT_NEAR(end.kinetic, start, 1e-9 * start);
+  EXPECT_LT(std::abs(end.drag), 1e-9 * start);
 }
 
 // Each refusal names the file, the line and the key.
