@@ -144,6 +144,18 @@ void Boundaries::mark_constrained_dofs(Grid& grid) const {
       }
     }
   }
+  // An absorbing face holds the pore water of coupled soil to the skeleton along its normal: its
+  // dashpot, of the undrained impedance, then takes the mixture's wave (at a small k the phases
+  // move as one), and no water leaves through it unbooked.
+  for (const AbsorbingFace& face : absorbing) {
+    if (!face.active) {
+      continue;
+    }
+    const auto normal = static_cast<std::uint8_t>(1u << face_normal(face.face));
+    for (const int node : face.nodes) {
+      grid.water_held[static_cast<std::size_t>(node)] |= normal;
+    }
+  }
 }
 
 const NodeConstraint& Boundaries::constraint(const std::string& name) const {
