@@ -9,10 +9,11 @@
 //   map_water_to_grid       reads the coupled particles' water state; writes Grid::liquid
 //   couple_phases           field 0's node becomes the skeleton's, with the water's inertia and
 //                           drag folded into an effective mass and force (the drag implicit, so
-//                           it sets no time step)
+//                           it sets no time step); at a structure's wall the phases are tied
 //   update_water_velocities after the skeleton's supports and contact: w^{n+1} from the skeleton's
 //                           v^{n+1}, the drag again implicit
-//   update_water_particle_velocities  the particles' w (FLIP/PIC, as the skeleton's v)
+//   update_water_particle_velocities  the particles' w (FLIP/PIC, as the skeleton's v; their own
+//                           relative flow relaxed by the drag)
 //   rescale_remapped_skeleton, remap_water  MUSL: both phases' nodal velocities from the
 //                           particles' (the skeleton's remap weighted by the mixture's masses)
 //   pore_pressure_from_flow the pore pressure's share from div w, from the velocities the
