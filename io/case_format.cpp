@@ -512,6 +512,10 @@ std::vector<TableSpec> declare() {
             .at_least(0)
             .at_most(SolverSettings::max_xpic_order),
         boolean("bbar", "B-bar: cell-mean volumetric strain increment").or_default(solver.bbar),
+        boolean("cell_mean_pore_pressure",
+                "each cell's saturated particles share their volume-weighted mean excess pore "
+                "pressure after every stress update")
+            .or_default(solver.cell_mean_pore_pressure),
         string("scheme", "\"musl\" (strains from remapped velocities) or \"usl\"")
             .or_default(std::string(solver.musl ? "musl" : "usl"))
             .one_of({"musl", "usl"}),

@@ -619,6 +619,7 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   s.flip_fraction = table->number("flip_fraction");
   s.xpic_order = static_cast<int>(table->integer("xpic_order"));
   s.bbar = table->boolean("bbar");
+  s.cell_mean_pore_pressure = table->boolean("cell_mean_pore_pressure");
   s.musl = table->string("scheme") == "musl";
   s.jaumann_rate = table->boolean("jaumann_rate");
   s.split_particles = table->boolean("split_particles");

@@ -55,6 +55,10 @@ struct WaterVelocityResult {
 };
 template <GeometryMode mode>
 WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step);
+/// With cell_mean_pore_pressure: each cell's saturated particles take their volume-weighted mean
+/// excess pore pressure (the total stress following, the effective stress kept); the stored energy
+/// this changes is the ledger's plastic term (solver/pore_pressure_to_grid.cpp).
+void smooth_excess_pore_pressure(Scene& scene, const ParticleBins& bins);
 /// ... the particles' water velocity ...
 struct WaterParticleResult {
   double external_work = 0.0; // gravity on the water's path beyond the skeleton's

@@ -4,7 +4,8 @@
 // hoop term -sum V p N / r on the r row in axisymmetry) by a colored scatter: the same sum the
 // particle-to-grid pass makes of the total stress, taken of p 1 alone, so that the water's share of
 // a node's normal force is what the grid gives it, not a pressure times an area. The solver runs it
-// only in a scene with contact and undrained soil; otherwise the field stays empty.
+// only in a scene with contact and undrained soil; otherwise the field stays empty. Also here, the
+// other pass on the particles' pore pressures alone: smooth_excess_pore_pressure.
 #include "engine/shape_functions.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
@@ -42,6 +43,53 @@ void map_pore_force(Scene& scene, const ParticleBins& bins) {
         f[0] -= w.dN_dr[k] * weighted + w.N[k] * hoop;
         f[1] -= w.dN_dy[k] * weighted;
       }
+    }
+  });
+}
+
+void smooth_excess_pore_pressure(Scene& scene, const ParticleBins& bins) {
+  Particles& p = scene.particles;
+  const std::vector<int> slots = pore_pressure_slots(scene);
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  // A block holds every particle of its cells, so each cell's mean is the block's own work and
+  // the result is the same for any thread count.
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    thread_local std::vector<std::array<double, 2>> cell_sum;
+    const auto [cr0, cy0] = bins.block_origin(block);
+    const int block_cells = bins.block_cells();
+    cell_sum.assign(static_cast<std::size_t>(block_cells * block_cells), {0.0, 0.0});
+    const auto cell_of = [&](std::size_t i) {
+      return static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
+    };
+    // A particle made stress-free inside a rigid body (no stress, no pore pressure) is left out.
+    const auto saturated = [&](std::size_t i, int slot) {
+      return slot >= 0 && !(p.stress[i] == Stress{} &&
+                            p.state[i * stride + static_cast<std::size_t>(slot)] == 0.0);
+    };
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const int slot = slots[p.material[i]];
+      if (saturated(i, slot)) {
+        auto& sum = cell_sum[cell_of(i)];
+        sum[0] += p.volume[i] * p.state[i * stride + static_cast<std::size_t>(slot) + 1];
+        sum[1] += p.volume[i];
+      }
+    }
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const int slot = slots[p.material[i]];
+      if (!saturated(i, slot)) {
+        continue;
+      }
+      const auto& sum = cell_sum[cell_of(i)];
+      double* pore = p.state.data() + i * stride + static_cast<std::size_t>(slot);
+      const double change = sum[0] / sum[1] - pore[1];
+      pore[0] += change;
+      pore[1] += change;
+      Stress& s = p.stress[i];
+      s[RR] += change;
+      s[YY] += change;
+      s[TT] += change;
     }
   });
 }

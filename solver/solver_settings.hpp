@@ -27,6 +27,10 @@ struct SolverSettings {
   bool musl = true;
   /// Replace each particle's volumetric strain increment by its cell's volume-weighted mean.
   bool bbar = true;
+  /// Replace the excess pore pressure of each cell's saturated particles (undrained or coupled) by
+  /// their volume-weighted mean after every stress update: the pore pressure as one value per cell,
+  /// against the per-particle checkerboard of nearly incompressible soil.
+  bool cell_mean_pore_pressure = false;
   /// Co-rotate stress with the in-plane spin (Jaumann rate) for large rotations.
   bool jaumann_rate = true;
   /// Local (Cundall) damping coefficient alpha: f_damp = -alpha |f_unbalanced| sign(v).

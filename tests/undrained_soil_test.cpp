@@ -20,6 +20,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <tuple>
@@ -288,6 +289,90 @@ TEST(UndrainedSoil, CheckPrintsSkemptonsBAndTheUndrainedPoissonRatio) {
                                                                << out.str();
   EXPECT_NEAR(r.skempton_b, 0.7518, 5e-5); // by hand: K_u = 67.14 MPa
   EXPECT_NEAR(r.poisson_ratio, 0.4448, 5e-5);
+}
+
+// cell_mean_pore_pressure: each cell's saturated particles share their volume-weighted mean excess
+// pore pressure after the stress update, the total stress following it (the effective stress
+// kept). A K0 column has no excess: smoothed, it stays exactly at rest as without (the hydrostatic
+// pressure varies within a cell and is not smoothed).
+TEST(UndrainedSoil, CellMeanPorePressureLeavesTheHydrostaticColumnAtRest) {
+  std::string text = saturated_column(
+      10.0, 40, 0.05,
+      "type = \"mohr_coulomb\"\ndrainage = \"undrained\"\nyoung_modulus = 50e6\n"
+      "poisson_ratio = 0.3\ndensity = 1600.0\ncohesion = 0.0\nfriction_angle = 35.0\n");
+  text = replaced(text, "[solver]\n", "[solver]\ncell_mean_pore_pressure = true\n");
+  CaseRun run(text);
+  ASSERT_TRUE(run.spec.solver.cell_mean_pore_pressure);
+  apply_k0(*run.scene, run.spec, run.spec.phases[0]);
+  run.solver = std::make_unique<ExplicitSolver>(
+      *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+  run.solver->advance_to(0.05);
+  const Particles& p = run.scene->particles;
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    fastest = std::max(fastest, std::hypot(p.v_r[i], p.v_y[i]));
+  }
+  EXPECT_LT(fastest, 1e-12); // as the test above, without the smoothing
+}
+
+// A checkerboard of excess pore pressure (+-100 kPa between the particles of each cell, on a mean
+// that differs from cell to cell), one step with and one without cell_mean_pore_pressure: the
+// smoothing comes last in the step, so the smoothed run's particles all carry their cell's
+// volume-weighted mean of the unsmoothed run's excess, and each particle's effective stress is
+// the unsmoothed run's, both to round-off; the same bits on one and two threads.
+TEST(UndrainedSoil, CellMeanPorePressureTakesACheckerboardToEachCellsMean) {
+  const std::string plain = replaced(saturated_wave_column("drainage = \"undrained\""),
+                                     "velocity_y = 0.01", "velocity_y = 0.0");
+  const std::string smoothed =
+      replaced(plain, "[[phases]]", "[solver]\ncell_mean_pore_pressure = true\n[[phases]]");
+  const auto one_step = [](const std::string& text) {
+    CaseRun run(text);
+    Particles& p = run.scene->particles;
+    const auto slot = static_cast<std::size_t>(run.scene->materials[0]->pore_pressure_index());
+    const auto stride = static_cast<std::size_t>(p.state_stride);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double e = 1e3 * p.cell_y[i] + ((i % 2 == 0) ? 1e5 : -1e5) * (1.0 + 0.1 * p.cell_r[i]);
+      p.state[i * stride + slot] += e;
+      p.state[i * stride + slot + 1] += e;
+      p.stress[i][RR] += e;
+      p.stress[i][YY] += e;
+      p.stress[i][TT] += e;
+    }
+    run.solver = std::make_unique<ExplicitSolver>(
+        *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+    run.solver->step();
+    return p;
+  };
+  const Particles a = one_step(plain);
+  std::vector<Particles> runs;
+  for (const int threads : {1, 2}) {
+    with_threads(threads, [&] { runs.push_back(one_step(smoothed)); });
+  }
+  const Particles& b = runs[0];
+  const auto stride = static_cast<std::size_t>(a.state_stride);
+  // UndrainedSoil's pore pressure, then its excess.
+  const auto slot =
+      static_cast<std::size_t>(CaseRun(plain).scene->materials[0]->pore_pressure_index());
+  std::map<std::pair<int, int>, std::pair<double, double>> cells; // (sum V e, sum V)
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    auto& cell = cells[{a.cell_r[i], a.cell_y[i]}];
+    cell.first += a.volume[i] * a.state[i * stride + slot + 1];
+    cell.second += a.volume[i];
+  }
+  ASSERT_EQ(a.size(), b.size());
+  double swing = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const auto& cell = cells[{a.cell_r[i], a.cell_y[i]}];
+    const double mean = cell.first / cell.second;
+    swing = std::max(swing, std::abs(a.state[i * stride + slot + 1] - mean));
+    EXPECT_NEAR(b.state[i * stride + slot + 1], mean, 1e-9 * 1e5) << i;
+    EXPECT_NEAR(b.stress[i][YY] - b.state[i * stride + slot],
+                a.stress[i][YY] - a.state[i * stride + slot], 1e-9 * 1e5)
+        << i;
+  }
+  EXPECT_GT(swing, 5e4); // the unsmoothed run still carries the checkerboard
+  expect_particles_identical(runs[0], runs[1]);
+  EXPECT_TRUE(bitwise_equal(runs[0].state, runs[1].state));
 }
 
 /// The seed's torsion check (V9) with friction 0.4 instead of adhesion, in saturated soil (n =
