@@ -115,12 +115,30 @@ void print_pore_water(std::ostream& out, const CaseSpec& spec, const Scene& scen
     if (soil->drainage() == Drainage::coupled) {
       out << ", k " << water.hydraulic_conductivity << " m/s";
     }
+    if (std::isfinite(water.cavitation_stress)) {
+      out << ", cavitates at " << water.cavitation_stress << " Pa of tension";
+    }
     out << "\n";
     if (b_high >= b_low) {
       out << "  at the first phase's initial stresses: Skempton B " << b_low << " to " << b_high
           << ", undrained Poisson ratio " << nu_low << " to " << nu_high << "\n";
     }
   }
+}
+
+/// The sea: its pressure on the seabed and what it lifts each rigid body through the seabed by.
+void print_sea(std::ostream& out, const CaseSpec& spec, const Scene& scene) {
+  if (!spec.water) {
+    return;
+  }
+  out << std::defaultfloat << std::setprecision(4) << "sea: level " << spec.water->level
+      << " m over the seabed at " << spec.water->seabed << " m, its pressure there "
+      << spec.water->column_pressure << " Pa (outputs add it to the pore pressures)";
+  for (const RigidBody& body : scene.rigid_bodies) {
+    out << "; uplift on " << body.name << " " << body.water_load[RIGID_Y]
+        << (spec.mode == GeometryMode::axisymmetric ? " N/rad" : " N/m");
+  }
+  out << "\n";
 }
 
 /// Runs the case for options.pilot_seconds of wall time in a temporary directory (the run's own
@@ -230,6 +248,7 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
     RunProgress progress;
     const std::unique_ptr<ExplicitSolver> solver = CasePhases(spec, *scene).start(progress, log);
     print_pore_water(out, spec, *scene);
+    print_sea(out, spec, *scene);
     const double dt = solver->stable_time_step();
     refuse_implausible_run(spec, *scene, dt);
     const double steps = spec.end_time() / dt;

@@ -104,4 +104,14 @@ std::size_t Particles::bytes() const {
   return total;
 }
 
+double cross_section(const Particles& p, std::uint16_t body, double at) {
+  double area = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] == body && p.y[i] - p.half_y[i] <= at && at < p.y[i] + p.half_y[i]) {
+      area += p.volume[i] / (2.0 * p.half_y[i]);
+    }
+  }
+  return area;
+}
+
 } // namespace mpile

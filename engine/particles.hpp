@@ -61,4 +61,9 @@ struct Particles {
   std::size_t bytes() const;
 };
 
+/// The area a body's particles cut on the line y = at (per radian in axisymmetry, the integral of
+/// r dr; per metre in plane strain, the width): each particle whose extent [y - h_y, y + h_y)
+/// spans the line gives its volume over its height, exactly a row of particles' cross-section.
+double cross_section(const Particles& p, std::uint16_t body, double at);
+
 } // namespace mpile

@@ -319,6 +319,16 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     }
   }
 
+  if (spec.water) {
+    // The sea's pressure on the seabed acts on a structure through it as on the soil, but the
+    // pore pressures the contact sees are relative to it: the uplift on the structure's
+    // cross-section at the seabed is what they leave out (physics.md section 9c).
+    for (RigidBody& rigid : scene->rigid_bodies) {
+      rigid.water_load[RIGID_Y] = spec.water->column_pressure *
+                                  cross_section(scene->particles, rigid.body, spec.water->seabed);
+    }
+  }
+
   if (scene->moving_mesh) {
     for (std::size_t k = 0; k < scene->rigid_bodies.size(); ++k) {
       if (scene->rigid_bodies[k].name == spec.moving_mesh->body) {

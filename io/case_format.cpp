@@ -228,7 +228,26 @@ std::vector<TableSpec> declare() {
         table("affine_motion", "a velocity linear in position on every node (patch tests)"),
         tables("loads", "distributed tractions on a grid line"),
         tables("phases", "the phases, run in order").needed(),
+        table("water", "the sea above a saturated seabed; the pore water's cavitation"),
         table("output", "what is written, and when")},
+       false});
+  t.push_back(
+      {"water",
+       "The sea above the seabed and the pore water's cavitation, for saturated (undrained or "
+       "coupled) soil (physics.md section 9c). The sea is its pressure: p_s = rho_w g (level - "
+       "seabed) on the seabed and on the soil inside an open pile, in every pore below, and, "
+       "through the seabed, on a rigid body's cross-section there (its uplift).",
+       {number("level", "m",
+               "y of the sea's free surface, at or above the seabed (the K0 surface of the "
+               "saturated bodies); the pore pressures and total stresses written are then "
+               "relative to the atmosphere")
+            .or_computed("the seabed: no sea above it"),
+        number("cavitation_stress", "Pa",
+               "the tension, relative to the atmosphere, at which the pore water cavitates: its "
+               "pressure rises no further (100e3: the atmosphere's pressure, water's vapour "
+               "pressure neglected)")
+            .at_least(0.0)
+            .or_computed("no cut-off")},
        false});
   t.push_back({"grid",
                "The grid: zones of uniform cells along r (x in plane strain) and y, contiguous.",

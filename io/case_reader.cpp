@@ -24,6 +24,7 @@
 #include "io/monopile_reader.hpp"
 #include "io/region_reader.hpp"
 #include "io/toml_reader.hpp"
+#include "io/water_reader.hpp"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -1230,6 +1231,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     }
   }
   read_phases(top, spec, declared_rigid);
+  read_water(top, spec, axes.y.start());
   if (absorbing_table) {
     check_absorbing_phase(*absorbing_table, spec);
   }

@@ -179,6 +179,14 @@ struct CaseWarning {
   std::string text;
 };
 
+/// [water]: the sea's free surface above a horizontal seabed (physics.md section 9c).
+struct WaterSpec {
+  double level = 0.0;           // m: y of the sea's free surface
+  double seabed = 0.0;          // m: the saturated bodies' K0 surface
+  double water_density = 0.0;   // kg/m^3: the saturated materials' pore water
+  double column_pressure = 0.0; // Pa: rho_w g (level - seabed)
+};
+
 struct CaseSpec {
   std::string file;
   std::string text;     // the case file's own text
@@ -212,6 +220,7 @@ struct CaseSpec {
   SolverSettings solver;
   std::vector<PhaseSpec> phases;
   OutputSpec output;
+  std::optional<WaterSpec> water; // none: no sea above the seabed
   /// What the reader found implausible but readable, in the order read.
   std::vector<CaseWarning> warnings;
 

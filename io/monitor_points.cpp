@@ -93,17 +93,20 @@ std::vector<double> monitor_values(const Scene& scene, std::int32_t id, std::uin
     v.push_back(p.u_theta[i]);
     v.push_back(p.v_theta[i]);
   }
+  const Material& model = *scene.materials[material];
+  const Stress stress = model.reported_stress(p.stress[i]);
   for (int c = 0; c < (theta ? 6 : 4); ++c) {
-    v.push_back(p.stress[i][static_cast<std::size_t>(c)]);
+    v.push_back(stress[static_cast<std::size_t>(c)]);
   }
-  v.push_back(mean_pressure(p.stress[i]));
-  v.push_back(deviatoric_stress(p.stress[i]));
+  v.push_back(mean_pressure(stress));
+  v.push_back(deviatoric_stress(stress));
   // The initial volume is the mass over the material's density (both per radian in axisymmetry).
   const double initial_volume = p.mass[i] / scene.materials[material]->density();
   v.push_back(p.volume[i] / initial_volume - 1.0);
-  const std::size_t states = scene.materials[material]->state_size();
+  const std::size_t states = model.state_size();
   for (std::size_t s = 0; s < states; ++s) {
-    v.push_back(p.state[i * static_cast<std::size_t>(p.state_stride) + s]);
+    v.push_back(model.reported_state(static_cast<int>(s),
+                                     p.state[i * static_cast<std::size_t>(p.state_stride) + s]));
   }
   return v;
 }

@@ -89,7 +89,8 @@ void write_particles_vtu(const Scene& scene, const std::string& path) {
   for (std::size_t c = 0; c < 6; ++c) {
     auto array = scalar_array(stress_names[c], n);
     for (vtkIdType i = 0; i < n; ++i) {
-      array->SetValue(i, p.stress[static_cast<std::size_t>(i)][c]);
+      const auto k = static_cast<std::size_t>(i);
+      array->SetValue(i, scene.materials[p.material[k]]->reported_stress(p.stress[k])[c]);
     }
     grid->GetPointData()->AddArray(array);
   }
@@ -109,8 +110,9 @@ void write_particles_vtu(const Scene& scene, const std::string& path) {
   material->SetNumberOfTuples(n);
   for (vtkIdType k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(k);
-    mean->SetValue(k, mean_pressure(p.stress[i]));
-    deviatoric->SetValue(k, deviatoric_stress(p.stress[i]));
+    const Stress stress = scene.materials[p.material[i]]->reported_stress(p.stress[i]);
+    mean->SetValue(k, mean_pressure(stress));
+    deviatoric->SetValue(k, deviatoric_stress(stress));
     density->SetValue(k, p.mass[i] / p.volume[i]);
     velocity->SetTuple3(k, p.v_r[i], p.v_y[i], theta ? p.v_theta[i] : 0.0);
     displacement->SetTuple3(k, p.r[i] - p.r0[i], p.y[i] - p.y0[i], theta ? p.u_theta[i] : 0.0);
@@ -147,11 +149,10 @@ void write_particles_vtu(const Scene& scene, const std::string& path) {
       const auto i = static_cast<std::size_t>(k);
       const std::vector<int>& of = slot[p.material[i]];
       const int s = name < of.size() ? of[name] : -1;
-      array->SetValue(
-          k,
-          s >= 0
-              ? p.state[i * static_cast<std::size_t>(p.state_stride) + static_cast<std::size_t>(s)]
-              : 0.0);
+      const double* state = p.state.data() + i * static_cast<std::size_t>(p.state_stride);
+      array->SetValue(k, s >= 0 ? scene.materials[p.material[i]]->reported_state(
+                                      s, state[static_cast<std::size_t>(s)])
+                                : 0.0);
     }
     grid->GetPointData()->AddArray(array);
   }

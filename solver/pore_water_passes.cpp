@@ -497,15 +497,18 @@ double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
           // neither half step may be dropped.
           const double skeleton_mean = 0.5 * (change.pore_before + pore); // p^n + dp_s / 2
           const double storage = (1.0 - n) * change.skeleton_strain + n * change.water_strain;
+          // No further than the cavitation stress (infinite without a cut-off): what the water's
+          // volume gains beyond it is vapour, and the work on it is dissipated.
+          const double pressure = std::min(change.pressure, phase.pore_limit - pore);
           work +=
               p.volume[i] * (n * skeleton_mean * (change.water_strain - change.skeleton_strain) +
-                             0.5 * change.pressure * storage);
-          pore += change.pressure;
-          state[phase.pore_slot + 1] += change.pressure;
+                             0.5 * pressure * storage);
+          pore += pressure;
+          state[phase.pore_slot + 1] += pressure;
           Stress& s = p.stress[i];
-          s[RR] += change.pressure;
-          s[YY] += change.pressure;
-          s[TT] += change.pressure;
+          s[RR] += pressure;
+          s[YY] += pressure;
+          s[TT] += pressure;
         });
     block_work[static_cast<std::size_t>(block)] = work;
   });

@@ -1,8 +1,9 @@
 #pragma once
 
-// The saturated column the undrained and coupled tests drive with a velocity step at its base
-// (uniaxial strain, no gravity): 30 m of linear elastic sand (E = 100 MPa, nu = 0.25, dry density
-// 1600 kg/m^3) in 0.05 m cells, its water's keys given by the test.
+// The saturated columns of the undrained, coupled and sea tests: one driven by a velocity step at
+// its base (uniaxial strain, no gravity): 30 m of linear elastic sand (E = 100 MPa, nu = 0.25, dry
+// density 1600 kg/m^3) in 0.05 m cells, its water's keys given by the test; one at rest under
+// gravity after the K0 procedure.
 
 #include "engine/particles.hpp"
 #include "tests/case_run.hpp"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace mpile {
@@ -43,6 +45,22 @@ name = "wave"
 duration = 0.015
 gravity = false
 )";
+}
+
+/// A saturated column `height` m tall in `cells` cells (0.5 m wide, rollers at r_max, fixed at its
+/// base, gravity 9.81) of material `material` (its keys), K0 = 0.5 from its top in one phase.
+inline std::string saturated_column(double height, int cells, double duration,
+                                    const std::string& material) {
+  std::ostringstream s;
+  s << "title = \"saturated column\"\n[grid]\nr = [{ start = 0.0, end = 0.5, cells = 2 }]\n"
+    << "y = [{ start = 0.0, end = " << height << ", cells = " << cells << " }]\n"
+    << "[materials.sand]\n"
+    << material << "[[bodies]]\nname = \"column\"\nmaterial = \"sand\"\n"
+    << "region = { r = [0.0, 0.5], y = [0.0, " << height << "] }\n"
+    << "[boundaries]\nr_max = \"roller\"\ny_min = \"fixed\"\n[solver]\ngravity = [0.0, -9.81]\n"
+    << "[[phases]]\nname = \"rest\"\nduration = " << duration << "\n"
+    << "k0 = [{ body = \"column\", surface = " << height << ", k0 = 0.5 }]\n";
+  return s.str();
 }
 
 /// The highest particle moving at half the piston's velocity or more: the front.

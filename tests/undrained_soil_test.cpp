@@ -201,22 +201,6 @@ TEST(UndrainedSoil, DenseSandHoldsItsMeanEffectiveStressUntilTheCriticalStateAng
   EXPECT_GT(t.rows.back()[t.column("pore_pressure")], 0.0);
 }
 
-/// A column of soil 0.5 m wide and `height` tall in `cells` rows, on a fixed base with a roller
-/// outside, under gravity, whose one phase starts with the K0 procedure (K0 = 0.5) from its top.
-std::string saturated_column(double height, int cells, double duration,
-                             const std::string& material) {
-  std::ostringstream s;
-  s << "title = \"saturated column\"\n[grid]\nr = [{ start = 0.0, end = 0.5, cells = 2 }]\n"
-    << "y = [{ start = 0.0, end = " << height << ", cells = " << cells << " }]\n"
-    << "[materials.sand]\n"
-    << material << "[[bodies]]\nname = \"column\"\nmaterial = \"sand\"\n"
-    << "region = { r = [0.0, 0.5], y = [0.0, " << height << "] }\n"
-    << "[boundaries]\nr_max = \"roller\"\ny_min = \"fixed\"\n[solver]\ngravity = [0.0, -9.81]\n"
-    << "[[phases]]\nname = \"rest\"\nduration = " << duration << "\n"
-    << "k0 = [{ body = \"column\", surface = " << height << ", k0 = 0.5 }]\n";
-  return s.str();
-}
-
 // The K0 procedure on a saturated body: the water hydrostatic from the surface, the skeleton under
 // the buoyant weight, K0 on the effective stress; the total vertical stress is the saturated
 // weight. Held by rollers, the column then stays at rest (the state is in equilibrium).

@@ -43,6 +43,21 @@ public:
   /// Where the pore pressure is kept in the state of a saturated, undrained material (the
   /// particle's stress is then total: sigma' + p 1); -1 for a dry or drained one.
   virtual int pore_pressure_index() const { return -1; }
+  /// The sea's pressure on the seabed (Pa) that a saturated material's pore pressure and total
+  /// stress are kept relative to (physics.md section 9c); outputs add it back. 0 for every other.
+  virtual double water_column_pressure() const { return 0.0; }
+  /// A particle's total stress as outputs report it, the sea's pressure added back.
+  Stress reported_stress(Stress stress) const {
+    const double column = water_column_pressure();
+    stress[RR] -= column;
+    stress[YY] -= column;
+    stress[TT] -= column;
+    return stress;
+  }
+  /// A state variable as outputs report it: the pore pressure relative to the atmosphere.
+  double reported_state(int slot, double value) const {
+    return slot == pore_pressure_index() ? value - water_column_pressure() : value;
+  }
   /// A saturated material whose water flows (drainage = "coupled"): where its particles keep the
   /// water's state and the constants of its two phases; null for every other.
   virtual const LiquidPhase* liquid_phase() const { return nullptr; }

@@ -8,6 +8,7 @@
 
 #include "engine/parameter_range.hpp"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,13 @@ struct PoreWater {
   /// k (m/s), coupled only: Darcy's hydraulic conductivity, the discharge per unit hydraulic
   /// gradient; 0 when not given (a coupled material must give it).
   double hydraulic_conductivity = 0.0;
+  /// The sea's: not a material key, set from the case's [water] table. The water column's
+  /// pressure on the seabed, rho_w g (level - seabed) (Pa): the particle's pore pressure is kept
+  /// relative to it (physics.md section 9c), so that the seabed stays a traction-free surface.
+  double column_pressure = 0.0;
+  /// The tension (Pa, relative to the atmosphere) at which the pore water cavitates: its pore
+  /// pressure rises no further (PLAXIS's cavitation cut-off). Infinite: no cut-off.
+  double cavitation_stress = std::numeric_limits<double>::infinity();
 };
 
 /// Standard gravity (m/s^2): a hydraulic conductivity is measured under it, k = kappa rho_w g / mu,
@@ -47,6 +55,9 @@ struct LiquidPhase {
   double mass_fraction = 0.0; // n0 rho_w / rho_sat
   double drag_per_mass = 0.0; // g / k (1/s): Darcy's drag n rho_w g / k per unit water mass
   double bulk_modulus = 0.0;  // K_w (Pa)
+  /// The highest p the water may reach before it cavitates (column_pressure +
+  /// cavitation_stress; infinite without a cut-off).
+  double pore_limit = std::numeric_limits<double>::infinity();
 };
 
 /// A water parameter as the case layer sees it: its key, unit, meaning, default and range, bound

@@ -1,5 +1,6 @@
 #include "engine/materials/undrained_soil.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mpile {
@@ -15,7 +16,13 @@ UndrainedSoil::UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater
                                 "water: the porosity 1 - density / grain_density is " +
                                 std::to_string(porosity_));
   }
+  if (!(water.column_pressure >= 0.0) || !(water.cavitation_stress >= 0.0)) {
+    throw std::invalid_argument("the water column's pressure and the cavitation stress must be "
+                                ">= 0 Pa");
+  }
   water_stiffness_ = water.bulk_modulus / porosity_;
+  column_pressure_ = water.column_pressure;
+  pore_limit_ = water.column_pressure + water.cavitation_stress;
   density_ = skeleton_->density() + porosity_ * water.density;
   water_density_ = water.density;
   const auto names = skeleton_->state_names();
@@ -39,6 +46,7 @@ UndrainedSoil::UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater
     liquid_.mass_fraction = porosity_ * water.density / density_;
     liquid_.drag_per_mass = standard_gravity / water.hydraulic_conductivity;
     liquid_.bulk_modulus = water.bulk_modulus;
+    liquid_.pore_limit = pore_limit_;
   }
 }
 
@@ -96,6 +104,9 @@ void UndrainedSoil::update_stress(const StressUpdateBatch& batch) const {
     } else {
       dp = water_stiffness_ * volumetric;
     }
+    // Beyond the cavitation stress the water boils out of solution and carries no more tension:
+    // the skeleton alone takes the rest of the dilation (its work is then dissipated).
+    dp = std::min(dp, pore_limit_ - water[0]);
     water[0] += dp;
     water[1] += dp;
     Stress& s = batch.stress[i];

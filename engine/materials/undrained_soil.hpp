@@ -48,6 +48,9 @@ public:
   /// K_w / n0 (Pa).
   double water_stiffness() const { return water_stiffness_; }
   double water_density() const { return water_density_; }
+  double water_column_pressure() const override { return column_pressure_; }
+  /// The highest pore pressure (tension positive, relative to the column's) before cavitation.
+  double pore_pressure_limit() const { return pore_limit_; }
   Drainage drainage() const { return coupled_ ? Drainage::coupled : Drainage::undrained; }
 
 private:
@@ -62,6 +65,8 @@ private:
   double water_stiffness_ = 0.0;
   double density_ = 0.0;
   double water_density_ = 0.0;
+  double column_pressure_ = 0.0;
+  double pore_limit_ = 0.0;
   int pore_index_ = 0; // state[pore_index_] is p, state[pore_index_ + 1] its change since the start
   bool coupled_ = false;
   LiquidPhase liquid_;

@@ -4,8 +4,13 @@ namespace mpile {
 
 namespace {
 
+/// The loads that act whatever the drives: gravity on the body's mass and the sea's uplift.
 double gravity_on(const RigidBody& body, int dof, const std::array<double, 2>& gravity) {
-  return dof == RIGID_ROTATION ? 0.0 : body.mass * gravity[static_cast<std::size_t>(dof)];
+  if (dof == RIGID_ROTATION) {
+    return 0.0;
+  }
+  const auto d = static_cast<std::size_t>(dof);
+  return body.mass * gravity[d] + body.water_load[d];
 }
 
 } // namespace

@@ -10,8 +10,8 @@
 namespace mpile {
 
 /// How one degree of freedom of a rigid body is driven: a prescribed velocity (the force it takes
-/// is recorded), or a prescribed force (a zero force leaves the DOF free). Gravity acts on the
-/// body's mass in either case.
+/// is recorded), or a prescribed force (a zero force leaves the DOF free). Gravity (and the sea's
+/// uplift) act on the body in either case.
 struct RigidDrive {
   enum class Kind { velocity, force };
   Kind kind = Kind::force;
@@ -34,6 +34,10 @@ struct RigidBody {
   double mass = 0.0;    // kg (per radian in axisymmetric mode)
   double inertia = 0.0; // polar about the axis, or in-plane about the centre (kg m^2 [/rad])
   std::array<RigidDrive, 3> drive;
+  /// The sea's uplift on the part of the body the soil's pore pressure leaves out (N [/rad]; r and
+  /// y): the water column's pressure on the seabed times the body's cross-section there
+  /// (physics.md section 9c). Acts, as gravity, whatever the drives.
+  std::array<double, 2> water_load{0.0, 0.0};
 
   // State at the end of the last step.
   std::array<double, 3> velocity{0.0, 0.0, 0.0};     // (V_x, V_y, omega)

@@ -1,0 +1,121 @@
+// [water]: the sea above the seabed and the pore water's cavitation (physics.md section 9c). The
+// sea is not modelled as particles: its column's pressure on the seabed p_s = rho_w g (level -
+// seabed) is uniform over every saturated body and its free surfaces, so it only adds to the pore
+// pressure and total stress the outputs report and to the uplift on a structure through the
+// seabed; the materials keep their pore pressure relative to it.
+#include "io/water_reader.hpp"
+
+#include "io/case_error.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace mpile {
+
+namespace {
+
+bool saturated(const MaterialSpec& m) {
+  return m.water.drainage != Drainage::drained;
+}
+
+const MaterialSpec& material_named(const CaseSpec& spec, const std::string& name) {
+  for (const MaterialSpec& m : spec.materials) {
+    if (m.name == name) {
+      return m;
+    }
+  }
+  throw std::logic_error("body of an unknown material " + name);
+}
+
+/// The seabed: the K0 surface of the first K0 procedure each saturated body gets. Every saturated
+/// body must get one, on the same surface.
+double seabed_of(const TomlTable& table, const CaseSpec& spec) {
+  bool found = false;
+  double seabed = 0.0;
+  for (const BodySpec& body : spec.bodies) {
+    if (!saturated(material_named(spec, body.material))) {
+      continue;
+    }
+    const K0Spec* first = nullptr;
+    for (const PhaseSpec& phase : spec.phases) {
+      for (const K0Spec& k0 : phase.k0) {
+        if (first == nullptr && k0.body == body.name) {
+          first = &k0;
+        }
+      }
+    }
+    if (first == nullptr) {
+      table.fail("level", "body '" + body.name +
+                              "' holds pore water but no phase gives it a K0 procedure, whose "
+                              "surface is the seabed the sea stands on");
+    }
+    if (found && first->surface != seabed) {
+      table.fail("level", "the saturated bodies' K0 surfaces differ (" + format_number(seabed) +
+                              " and " + format_number(first->surface) +
+                              " m): the sea stands on one horizontal seabed");
+    }
+    seabed = first->surface;
+    found = true;
+  }
+  return seabed;
+}
+
+} // namespace
+
+void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
+  std::optional<TomlTable> table = top.optional_table("water");
+  if (!table) {
+    return;
+  }
+  double water_density = 0.0;
+  for (const MaterialSpec& m : spec.materials) {
+    if (!saturated(m)) {
+      continue;
+    }
+    if (water_density != 0.0 && m.water.density != water_density) {
+      table->fail(table->has("level") ? "level" : "cavitation_stress",
+                  "the saturated materials' water_density differ: one sea fills their pores");
+    }
+    water_density = m.water.density;
+  }
+  if (water_density == 0.0) {
+    table->fail(table->has("level") ? "level" : "cavitation_stress",
+                "no material holds pore water (drainage = \"undrained\" or \"coupled\")");
+  }
+  double column_pressure = 0.0;
+  if (table->has("level")) {
+    WaterSpec water;
+    water.level = table->number("level");
+    if (!(water.level >= grid_bottom)) {
+      table->fail("level", format_number(water.level) + " m lies below the grid (its bottom is " +
+                               format_number(grid_bottom) + " m)");
+    }
+    water.seabed = seabed_of(*table, spec);
+    if (water.level < water.seabed) {
+      table->fail("level", format_number(water.level) +
+                               " m lies below the seabed (the K0 surface, " +
+                               format_number(water.seabed) +
+                               " m): a phreatic level inside the soil, dry soil above it, is not "
+                               "modelled");
+    }
+    const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
+    water.water_density = water_density;
+    water.column_pressure = water_density * g * (water.level - water.seabed);
+    column_pressure = water.column_pressure;
+    spec.water = water;
+  }
+  const std::optional<double> cavitation = table->has("cavitation_stress")
+                                               ? std::optional(table->number("cavitation_stress"))
+                                               : std::nullopt;
+  table->finish();
+  for (MaterialSpec& m : spec.materials) {
+    if (saturated(m)) {
+      m.water.column_pressure = column_pressure;
+      if (cavitation) {
+        m.water.cavitation_stress = *cavitation;
+      }
+    }
+  }
+}
+
+} // namespace mpile

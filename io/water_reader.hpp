@@ -1,0 +1,14 @@
+#pragma once
+
+#include "io/case_spec.hpp"
+#include "io/toml_reader.hpp"
+
+namespace mpile {
+
+/// [water]: the sea above a saturated seabed and the pore water's cavitation. Sets each saturated
+/// material's column pressure and cavitation stress and the case's WaterSpec; refuses, at the key's
+/// line, a table without saturated soil, a level below the grid's bottom or below the seabed, and a
+/// seabed that is not one surface. Needs the phases read (the K0 procedures give the seabed).
+void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom);
+
+} // namespace mpile
