@@ -180,8 +180,20 @@ TEST(CoupledSoil, ADrainedBaseHalvesTheDrainagePath) {
 // thrown through empty space (no gravity, no support) keeps its momentum and kinetic energy, and
 // Darcy's drag takes nothing (its water used to start at rest, and the drag then took part of the
 // grains' momentum and energy).
+void thrown_block(const std::string& solver);
+
 TEST(CoupledSoil, ABodySetMovingMovesWithItsWater) {
-  CaseRun run(R"(title = "thrown block"
+  // With XPIC(2) too: its projection weighs the particles' masses, and must divide by the
+  // mixture's node mass, not the skeleton's effective mass the node holds after the phases are
+  // coupled (with that, the block lost 60 % of its kinetic energy in the 2 ms).
+  for (const char* solver : {"", "[solver]\nxpic_order = 2\n"}) {
+    SCOPED_TRACE(solver);
+    thrown_block(solver);
+  }
+}
+
+void thrown_block(const std::string& solver) {
+  CaseRun run(std::string(R"(title = "thrown block"
 geometry = "axisymmetric"
 [grid]
 r = [{ start = 0.0, end = 0.5, cells = 5 }]
@@ -202,7 +214,7 @@ velocity = [0.0, 1.0, 0.0]
 name = "flight"
 duration = 0.002
 gravity = false
-)");
+)") + solver);
   const Particles& p = run.scene->particles;
   const LiquidPhase& water = *run.scene->materials.at(0)->liquid_phase();
   const auto stride = static_cast<std::size_t>(p.state_stride);
@@ -231,6 +243,27 @@ TEST(CoupledSoil, AnAbsorbingFaceLetsTheSaturatedPulseOut) {
   const EnergyBalance end = run.solver->energy_balance();
   EXPECT_LT(end.kinetic + end.elastic, 0.01 * start);
   EXPECT_LT(std::abs(end.relative_residual), 0.02);
+}
+
+// Nearly incompressible soil (undrained, or coupled with so small a k that its water cannot move
+// against the skeleton) under pure FLIP lets a mode the grid does not see grow after the pulse has
+// left the same column: 1.9 % of the pulse is back by 0.049 s, the ledger 4.7 % off, and less so
+// the smaller the step (Courant 0.25: none). XPIC(2), which the saturated installation cases use,
+// filters it: under 0.01 % left, the dashpots 99.1 %, the ledger within 0.4 % (measured), both
+// drainages. 2 %: the ledger's target; 0.1 % left against FLIP's 1.9 %.
+TEST(CoupledSoil, XpicLetsTheNearlyIncompressiblePulseOut) {
+  for (const std::string water :
+       {"drainage = \"undrained\"", "drainage = \"coupled\"\nhydraulic_conductivity = 1e-9"}) {
+    SCOPED_TRACE(water);
+    CaseRun run(replaced(read_text(source / "cases/verification/absorbing_column.toml"),
+                         "density = 2000.0", "density = 2000.0\n" + water) +
+                "[solver]\nxpic_order = 2\n");
+    const double start = run.solver->energy_balance().kinetic;
+    run.run([] {});
+    const EnergyBalance end = run.solver->energy_balance();
+    EXPECT_LT(end.kinetic + end.elastic, 0.001 * start);
+    EXPECT_LT(std::abs(end.relative_residual), 0.02);
+  }
 }
 
 // Each refusal names the file, the line and the key.
