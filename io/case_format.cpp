@@ -22,6 +22,8 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 namespace mpile {
 
@@ -189,6 +191,65 @@ std::vector<KeySpec> material_keys(const std::vector<std::string>& material_name
             : number(w.name, w.unit, w.meaning + "; saturated only").or_default(defaults.*w.member);
     key.range = w.range;
     keys.push_back(std::move(key));
+  }
+  return keys;
+}
+
+/// A setting's key from its declaration (solver/solver_settings.cpp): kind, unit, meaning, range,
+/// and the default SolverSettings gives it (or the text of the default the solver computes).
+KeySpec solver_key(const SolverParameter& p, const SolverSettings& defaults) {
+  KeySpec key = std::visit(
+      [&](auto member) {
+        using Value = std::remove_cvref_t<decltype(defaults.*member)>;
+        if constexpr (std::is_same_v<Value, bool>) {
+          return boolean(p.name, p.meaning).or_default(defaults.*member);
+        } else if constexpr (std::is_same_v<Value, int>) {
+          return integer(p.name, p.meaning).or_default(static_cast<long>(defaults.*member));
+        } else {
+          KeySpec k = number(p.name, p.unit, p.meaning);
+          return p.computed_default.empty() ? std::move(k).or_default(defaults.*member)
+                                            : std::move(k).or_computed(p.computed_default);
+        }
+      },
+      p.member);
+  key.range = p.range;
+  return key;
+}
+
+/// A phase's override of a [solver] setting: the setting's kind and range, no default of its own.
+KeySpec phase_override(std::string_view name) {
+  const SolverParameter& p = solver_parameter(name);
+  KeySpec key = std::holds_alternative<int SolverSettings::*>(p.member)
+                    ? integer(p.name, "override of [solver]")
+                    : number(p.name, p.unit, "override of [solver]");
+  key.range = p.range;
+  return std::move(key).or_computed("[solver] value");
+}
+
+/// [solver]: the declared settings, with the keys that are not a plain member between them.
+std::vector<KeySpec> solver_keys() {
+  const SolverSettings solver;
+  std::vector<KeySpec> keys;
+  for (const SolverParameter& p : solver_parameters()) {
+    if (p.per_phase) {
+      continue;
+    }
+    keys.push_back(solver_key(p, solver));
+    if (p.name == "cell_mean_pore_pressure") {
+      keys.push_back(string("scheme", "\"musl\" (strains from remapped velocities) or \"usl\"")
+                         .or_default(std::string(solver.musl ? "musl" : "usl"))
+                         .one_of({"musl", "usl"}));
+    } else if (p.name == "mass_scaling") {
+      keys.push_back(
+          numbers("gravity", "m/s^2", "gravitational acceleration (r, y), e.g. [0, -9.81]")
+              .length(2)
+              .or_computed("[0, 0]"));
+    } else if (p.name == "block_cells") {
+      keys.push_back(
+          string("shape_functions", "\"linear\" or \"gimp\" (averaged over the particle's domain)")
+              .one_of({"linear", "gimp"})
+              .or_computed("\"linear\", \"gimp\" with a moving mesh"));
+    }
   }
   return keys;
 }
@@ -514,63 +575,7 @@ std::vector<TableSpec> declare() {
                        .or_computed(first_phase));
     t.push_back({"boundaries", "Conditions on the grid's faces.", keys, false});
   }
-  t.push_back(
-      {"solver",
-       "Numerical choices.",
-       {number("courant_number", "-", "dt = C min over particles of h_cell / (c_p + |v_p|)")
-            .or_default(solver.courant_number)
-            .above(0.0)
-            .at_most(2.0),
-        number("max_time_step", "s", "upper bound on dt").above(0.0).or_computed("none"),
-        number("flip_fraction", "-", "particle velocity update: 1 = FLIP, 0 = PIC, between: blend")
-            .or_default(solver.flip_fraction)
-            .at_least(0.0)
-            .at_most(1.0),
-        integer("xpic_order", "0: the FLIP/PIC blend; m >= 1: XPIC(m); excludes flip_fraction < 1")
-            .or_default(static_cast<long>(solver.xpic_order))
-            .at_least(0)
-            .at_most(SolverSettings::max_xpic_order),
-        boolean("bbar", "B-bar: cell-mean volumetric strain increment").or_default(solver.bbar),
-        boolean("cell_mean_pore_pressure",
-                "each cell's saturated particles share their volume-weighted mean excess pore "
-                "pressure after every stress update")
-            .or_default(solver.cell_mean_pore_pressure),
-        string("scheme", "\"musl\" (strains from remapped velocities) or \"usl\"")
-            .or_default(std::string(solver.musl ? "musl" : "usl"))
-            .one_of({"musl", "usl"}),
-        boolean("jaumann_rate", "co-rotate stress with the in-plane spin")
-            .or_default(solver.jaumann_rate),
-        boolean("split_particles", "split a particle grown longer than its cell into halves")
-            .or_default(solver.split_particles),
-        boolean("stress_free_inside_rigid",
-                "soil stretched below half its density inside a rigid body carries no stress "
-                "and sets no step")
-            .or_default(solver.stress_free_inside_rigid),
-        number("mass_scaling", "-", "inertia multiplier for quasi-static work")
-            .or_default(solver.mass_scaling)
-            .at_least(1.0),
-        numbers("gravity", "m/s^2", "gravitational acceleration (r, y), e.g. [0, -9.81]")
-            .length(2)
-            .or_computed("[0, 0]"),
-        integer("block_cells", "cells per side of a scatter block; at least 3 with GIMP")
-            .or_default(static_cast<long>(solver.block_cells))
-            .at_least(1)
-            .at_most(ParticleBins::max_block_cells),
-        string("shape_functions", "\"linear\" or \"gimp\" (averaged over the particle's domain)")
-            .one_of({"linear", "gimp"})
-            .or_computed("\"linear\", \"gimp\" with a moving mesh"),
-        number("min_time_step", "s", "a run whose stable step falls below it stops as collapsed")
-            .above(0.0)
-            .or_computed("a thousandth of the first step"),
-        number("energy_residual_warning", "-",
-               "the log warns when the energy residual exceeds this fraction of the energy in play")
-            .or_default(solver.energy_residual_warning)
-            .above(0.0),
-        number("energy_residual_limit", "-",
-               "past this fraction for 100 steps the run stops as unstable; above the warning")
-            .or_default(solver.energy_residual_limit)
-            .above(0.0)},
-       false});
+  t.push_back({"solver", "Numerical choices.", solver_keys(), false});
   t.push_back(
       {"prescribed",
        "Prescribed velocities on a grid line; the reaction goes to /boundaries/<name>/.",
@@ -601,31 +606,15 @@ std::vector<TableSpec> declare() {
        "A phase of the run; each starts where the previous ended.",
        {string("name", "unique").needed(),
         number("duration", "s", "the longest the phase can last").needed().above(0.0),
-        number("local_damping", "-", "Cundall damping alpha (about 0.7 for quasi-static phases)")
-            .or_default(0.0)
-            .at_least(0.0)
-            .below(1.0),
+        solver_key(solver_parameter("local_damping"), SolverSettings{}),
         boolean("gravity", "whether [solver] gravity acts").or_default(true),
         number("equilibrium_tolerance", "-",
                "end early once out-of-balance force and kinetic energy fall below this fraction of "
                "the forces holding the state and of the external work")
             .above(0.0)
             .or_computed("none"),
-        number("flip_fraction", "-", "override of [solver]")
-            .at_least(0.0)
-            .at_most(1.0)
-            .or_computed("[solver] value"),
-        integer("xpic_order", "override of [solver]")
-            .at_least(0)
-            .at_most(SolverSettings::max_xpic_order)
-            .or_computed("[solver] value"),
-        number("mass_scaling", "-", "override of [solver]")
-            .at_least(1.0)
-            .or_computed("[solver] value"),
-        number("courant_number", "-", "override of [solver]")
-            .above(0.0)
-            .at_most(2.0)
-            .or_computed("[solver] value"),
+        phase_override("flip_fraction"), phase_override("xpic_order"),
+        phase_override("mass_scaling"), phase_override("courant_number"),
         tables("k0", "K0 procedures at the phase start"),
         table("stop_at", "end the phase once a rigid body has penetrated"),
         table("drive", "a rigid body's drives from this phase's start")},

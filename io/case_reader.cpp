@@ -41,6 +41,8 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 namespace mpile {
 
@@ -613,25 +615,31 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   if (!table) {
     return;
   }
-  s.courant_number = table->number("courant_number");
-  if (table->has("max_time_step")) {
-    s.max_time_step = table->number("max_time_step");
+  // Each declared setting through its declaration (solver/solver_settings.cpp), its range checked
+  // as it is read; an absent one keeps SolverSettings' default, which the declaration documents.
+  for (const SolverParameter& parameter : solver_parameters()) {
+    if (parameter.per_phase || !table->has(parameter.name)) {
+      continue;
+    }
+    std::visit(
+        [&](auto member) {
+          using Value = std::remove_cvref_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<Value, bool>) {
+            s.*member = table->boolean(parameter.name);
+          } else if constexpr (std::is_same_v<Value, int>) {
+            s.*member = static_cast<int>(table->integer(parameter.name));
+          } else {
+            s.*member = table->number(parameter.name);
+          }
+        },
+        parameter.member);
   }
-  s.flip_fraction = table->number("flip_fraction");
-  s.xpic_order = static_cast<int>(table->integer("xpic_order"));
-  s.bbar = table->boolean("bbar");
-  s.cell_mean_pore_pressure = table->boolean("cell_mean_pore_pressure");
   s.musl = table->string("scheme") == "musl";
-  s.jaumann_rate = table->boolean("jaumann_rate");
-  s.split_particles = table->boolean("split_particles");
-  s.stress_free_inside_rigid = table->boolean("stress_free_inside_rigid");
-  s.mass_scaling = table->number("mass_scaling");
   if (table->has("gravity")) {
     const auto g = table->numbers("gravity", 2);
     s.gravity = {g[0], g[1]};
     warn_implausible_gravity(*table, {g[0], g[1]}, spec.warnings);
   }
-  s.block_cells = static_cast<int>(table->integer("block_cells"));
   if (table->has("shape_functions")) {
     const std::string shape = table->string("shape_functions");
     s.shape_functions = shape == "gimp" ? ShapeFunctions::gimp : ShapeFunctions::linear;
@@ -640,15 +648,6 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
       table->fail("shape_functions", "GIMP needs at least 2 cells along r and along y (a "
                                      "particle's domain may reach into the next cell)");
     }
-  }
-  if (table->has("min_time_step")) {
-    s.min_time_step = table->number("min_time_step");
-  }
-  if (table->has("energy_residual_warning")) {
-    s.energy_residual_warning = table->number("energy_residual_warning");
-  }
-  if (table->has("energy_residual_limit")) {
-    s.energy_residual_limit = table->number("energy_residual_limit");
   }
   // The checks between keys; each key's own range was checked as it was read.
   if (s.xpic_order > 0 && s.flip_fraction != 1.0) {

@@ -1,9 +1,14 @@
 #pragma once
 
+#include "engine/parameter_range.hpp"
 #include "engine/shape_functions.hpp"
 
 #include <array>
 #include <limits>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
 
 namespace mpile {
 
@@ -61,8 +66,27 @@ struct SolverSettings {
   /// How particles reach the grid: bilinear at their centre, or GIMP over their domain.
   ShapeFunctions shape_functions = ShapeFunctions::linear;
 
-  /// Throws std::invalid_argument naming the setting that is out of range.
+  /// Throws std::invalid_argument naming the setting that is out of range (its declared range,
+  /// solver_parameters()) or that contradicts another.
   void validate() const;
 };
+
+/// A numerical setting as a case file names it: key, unit, meaning, range and the member it sets.
+/// Declared once (solver_settings.cpp): the case format's [solver] and [[phases]] keys are built
+/// from it, the reader stores each value through it, and validate() checks its range.
+struct SolverParameter {
+  std::string name;
+  std::string unit; // "-" for a ratio, "s" for a time, "" for a count or a switch
+  std::string meaning;
+  std::variant<double SolverSettings::*, int SolverSettings::*, bool SolverSettings::*> member;
+  ParameterRange range;
+  /// Not empty: the member's default is a sentinel the solver replaces by this (documentation).
+  std::string computed_default;
+  /// Set by each phase ([[phases]]), not by [solver].
+  bool per_phase = false;
+};
+const std::vector<SolverParameter>& solver_parameters();
+/// The declaration of one setting; throws std::logic_error for a name not declared.
+const SolverParameter& solver_parameter(std::string_view name);
 
 } // namespace mpile

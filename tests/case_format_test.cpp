@@ -6,12 +6,16 @@
 #include "io/case_format.hpp"
 #include "io/case_spec.hpp"
 #include "io/toml_reader.hpp"
+#include "solver/solver_settings.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 namespace mpile {
 namespace {
@@ -107,6 +111,71 @@ TEST(CaseFormat, TheReaderTakesTheDeclaredDefaults) {
   EXPECT_EQ(spec.bodies.at(0).particles_per_direction, 2);
   EXPECT_EQ(spec.phases.at(0).local_damping, 0.0);
   EXPECT_TRUE(spec.phases.at(0).gravity);
+}
+
+// Each numerical setting is declared once (solver/solver_settings.cpp): its [solver] key (or its
+// [[phases]] key, and every phase override of it) has the declaration's range and
+// SolverSettings' default, a value set in a case reaches its member, and SolverSettings::validate
+// refuses a value outside that same range, naming it.
+TEST(CaseFormat, EachSolverSettingIsDeclaredOnceAndBoundToItsMember) {
+  const SolverSettings defaults;
+  const TableSpec& solver = *find_table_spec("solver");
+  const TableSpec& phases = *find_table_spec("phases");
+  for (const SolverParameter& p : solver_parameters()) {
+    SCOPED_TRACE(p.name);
+    const KeySpec* key = (p.per_phase ? phases : solver).key(p.name);
+    ASSERT_NE(key, nullptr);
+    EXPECT_EQ(key->range.text(), p.range.text());
+    if (const KeySpec* override_key = phases.key(p.name); !p.per_phase && override_key) {
+      EXPECT_EQ(override_key->range.text(), p.range.text());
+    }
+    std::visit(
+        [&](auto member) {
+          const double value = static_cast<double>(defaults.*member);
+          if (p.computed_default.empty()) {
+            const double declared = std::visit(
+                [](auto x) -> double {
+                  if constexpr (std::is_arithmetic_v<decltype(x)>) {
+                    return static_cast<double>(x);
+                  } else {
+                    return std::nan("");
+                  }
+                },
+                key->fallback);
+            EXPECT_EQ(declared, value);
+          }
+          if (p.per_phase) {
+            return;
+          }
+          // A value other than the default, read from a case, lands in the member.
+          const bool integer = std::is_same_v<decltype(member), int SolverSettings::*>;
+          const bool flag = std::is_same_v<decltype(member), bool SolverSettings::*>;
+          const std::string written =
+              flag ? (value != 0.0 ? "false" : "true")
+                   : format_bound(p.range.upper && p.range.upper->inclusive
+                                      ? p.range.upper->value
+                                      : (p.range.lower ? p.range.lower->value : 0.0) + 1.0);
+          std::string text = block + "[solver]\n" + p.name + " = " + written + "\n";
+          if (p.name == "energy_residual_warning") {
+            text += "energy_residual_limit = 5.0\n";
+          }
+          const CaseSpec spec = read_case_text(text, "case.toml");
+          const double read = static_cast<double>(spec.solver.*member);
+          EXPECT_EQ(read, flag ? (value != 0.0 ? 0.0 : 1.0) : std::stod(written)) << written;
+          if (!flag && p.range.lower) {
+            SolverSettings bad;
+            bad.*member = static_cast<std::remove_reference_t<decltype(bad.*member)>>(
+                p.range.lower->value - (integer ? 1.0 : 0.5));
+            try {
+              bad.validate();
+              ADD_FAILURE() << "validate() let " << p.name << " below its range through";
+            } catch (const std::invalid_argument& e) {
+              EXPECT_NE(std::string(e.what()).find(p.name), std::string::npos) << e.what();
+            }
+          }
+        },
+        p.member);
+  }
 }
 
 TEST(CaseFormat, ARangeOrChoiceOutsideTheDeclarationNamesFileLineKeyAndBound) {
