@@ -25,6 +25,17 @@ struct ParameterRange {
   std::string requirement(bool integer = false) const;
 };
 
+/// The ranges declarations are written with: x < value, x >= value, and between two bounds.
+inline ParameterRange above(double x) {
+  return {Bound{x, false}, std::nullopt};
+}
+inline ParameterRange at_least(double x) {
+  return {Bound{x, true}, std::nullopt};
+}
+inline ParameterRange between(double low, bool low_inclusive, double high, bool high_inclusive) {
+  return {Bound{low, low_inclusive}, Bound{high, high_inclusive}};
+}
+
 /// A number in the shortest form that reads back to the same double, whole numbers as integers
 /// (100000, not 1e+05): for declared bounds and for exact output (the element tests' CSV).
 std::string format_bound(double x);

@@ -3,6 +3,7 @@
 // small strain increments; the tolerances are the ones that document suggests for engine tests:
 // 0.5 % on strains at a given q, 1e-3 on moduli, K0 within 0.002.
 #include "engine/materials/hardening_soil.hpp"
+#include "engine/materials/material_registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -85,6 +86,41 @@ TEST(HardeningSoil, AFailureRatioWhoseAsymptoteOverflowsIsRefused) {
   EXPECT_THROW(HardeningSoil{p}, std::invalid_argument);
   p.failure_ratio = 1e-3;
   EXPECT_NO_THROW(HardeningSoil{p});
+}
+
+// Each parameter's range is declared once (hardening_soil_fields) and the constructor checks it
+// there: a value just outside either bound is refused with the parameter's name and that range,
+// the bound itself (where the range includes it) accepted; the registry's keys carry the same
+// range.
+TEST(HardeningSoil, TheConstructorChecksEachDeclaredRange) {
+  const MaterialType* registered = nullptr;
+  for (const MaterialType& type : material_types()) {
+    registered = type.name == "hardening_soil" ? &type : registered;
+  }
+  ASSERT_NE(registered, nullptr);
+  for (const HardeningSoilField& f : hardening_soil_fields()) {
+    SCOPED_TRACE(f.name);
+    const auto key = std::find_if(registered->parameters.begin(), registered->parameters.end(),
+                                  [&](const MaterialParameterSpec& p) { return p.name == f.name; });
+    ASSERT_NE(key, registered->parameters.end());
+    EXPECT_EQ(key->range.text(), f.range.text());
+    for (const auto& [bound, outside] :
+         {std::pair{f.range.lower, -1.0}, std::pair{f.range.upper, 1.0}}) {
+      if (!bound) {
+        continue;
+      }
+      HardeningSoilParameters p = seed_parameters();
+      p.*f.member = bound->value + outside * std::max(1e-6, 1e-6 * std::abs(bound->value));
+      try {
+        HardeningSoil model(p);
+        ADD_FAILURE() << f.name << " = " << p.*f.member << " was accepted";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(std::string(f.name) + " " + f.range.requirement()),
+                  std::string::npos)
+            << e.what();
+      }
+    }
+  }
 }
 
 TEST(HardeningSoil, CapShapeAndModulusFollowFromK0ncAndEoedRef) {

@@ -113,35 +113,59 @@ struct ReturnState {
 
 } // namespace
 
+std::span<const HardeningSoilField> hardening_soil_fields() {
+  static const HardeningSoilField fields[] = {
+      {"e50_ref", &HardeningSoilParameters::e50_ref, false, "Pa", above(0.0),
+       "triaxial secant stiffness E50 at p_ref"},
+      {"eoed_ref", &HardeningSoilParameters::eoed_ref, false, "Pa", above(0.0),
+       "oedometer tangent stiffness at sigma_1 = p_ref"},
+      {"eur_ref", &HardeningSoilParameters::eur_ref, false, "Pa", above(0.0),
+       "unloading/reloading stiffness at p_ref, above 2 E50 / (2 - Rf)"},
+      {"power", &HardeningSoilParameters::power, false, "-", between(0.0, true, 1.0, false),
+       "m, the stress dependency of stiffness"},
+      {"poisson_ur", &HardeningSoilParameters::poisson_ur, true, "-",
+       between(-1.0, false, 0.5, false), "unloading/reloading Poisson ratio"},
+      {"k0_nc", &HardeningSoilParameters::k0_nc, false, "-", between(0.0, false, 1.0, false),
+       "K0 of normally consolidated soil"},
+      // Below 1e-3 the hyperbola's asymptote q_a = q_f / R_f is a thousand times the strength or
+      // more (typical R_f: 0.75 to 1), and at 1e-308 it overflows: every return then fell back to
+      // its bracketed roots, and `mpile check` ran for minutes.
+      {"failure_ratio", &HardeningSoilParameters::failure_ratio, true, "-",
+       between(1e-3, true, 1.0, false), "Rf = qf / qa"},
+      {"p_ref", &HardeningSoilParameters::p_ref, true, "Pa", above(0.0),
+       "reference stress of the stiffness laws"},
+      {"friction_angle", &HardeningSoilParameters::friction_angle, false, "degrees",
+       between(0.0, false, 90.0, false), "friction angle phi"},
+      {"dilatancy_angle", &HardeningSoilParameters::dilatancy_angle, true, "degrees", at_least(0.0),
+       "ultimate dilatancy angle psi, at most phi"},
+      {"cohesion", &HardeningSoilParameters::cohesion, true, "Pa", at_least(0.0), "cohesion c"},
+      {"tension_limit", &HardeningSoilParameters::tension_limit, true, "Pa", at_least(0.0),
+       "tension cut-off"},
+      {"stiffness_floor", &HardeningSoilParameters::stiffness_floor, true, "-",
+       between(0.0, false, 1.0, true), "lower bound of the stress ratio in the stiffness laws"},
+      {"cap_floor", &HardeningSoilParameters::cap_floor, true, "Pa", above(0.0),
+       "lower bound of the cap pressure p_p"},
+      {"ocr", &HardeningSoilParameters::ocr, true, "-", at_least(1.0),
+       "over-consolidation ratio of the initial state"},
+      {"pop", &HardeningSoilParameters::pop, true, "Pa", at_least(0.0),
+       "pre-overburden pressure of the initial state"},
+      {"density", &HardeningSoilParameters::density, false, "kg/m^3", above(0.0),
+       "initial density"},
+  };
+  return fields;
+}
+
 HardeningSoil::HardeningSoil(const HardeningSoilParameters& p) : parameters_(p) {
   auto require = [](bool ok, const std::string& message) {
     if (!ok) {
       throw std::invalid_argument(message);
     }
   };
-  require(p.e50_ref > 0.0, "e50_ref must be positive");
-  require(p.eoed_ref > 0.0, "eoed_ref must be positive");
-  require(p.eur_ref > 0.0, "eur_ref must be positive");
-  require(p.power >= 0.0 && p.power < 1.0, "power must lie in [0, 1)");
-  require(p.poisson_ur > -1.0 && p.poisson_ur < 0.5, "poisson_ur must lie in (-1, 0.5)");
-  require(p.k0_nc > 0.0 && p.k0_nc < 1.0, "k0_nc must lie in (0, 1)");
-  // Below 1e-3 the hyperbola's asymptote q_a = q_f / R_f is a thousand times the strength or
-  // more (typical R_f: 0.75 to 1), and at 1e-308 it overflows: every return then fell back to
-  // its bracketed roots, and `mpile check` ran for minutes.
-  require(p.failure_ratio >= 1e-3 && p.failure_ratio < 1.0, "failure_ratio must lie in [0.001, 1)");
-  require(p.p_ref > 0.0, "p_ref must be positive");
-  require(p.friction_angle > 0.0 && p.friction_angle < 90.0,
-          "friction_angle must lie in (0, 90) degrees");
-  require(p.dilatancy_angle >= 0.0 && p.dilatancy_angle <= p.friction_angle,
-          "dilatancy_angle must lie in [0, friction_angle]");
-  require(p.cohesion >= 0.0, "cohesion must not be negative");
-  require(p.tension_limit >= 0.0, "tension_limit must not be negative");
-  require(p.stiffness_floor > 0.0 && p.stiffness_floor <= 1.0,
-          "stiffness_floor must lie in (0, 1]");
-  require(p.cap_floor > 0.0, "cap_floor must be positive");
-  require(p.ocr >= 1.0, "ocr must be at least 1");
-  require(p.pop >= 0.0, "pop must not be negative");
-  require(p.density > 0.0, "density must be positive");
+  for (const HardeningSoilField& f : hardening_soil_fields()) {
+    require(f.range.contains(p.*f.member), std::string(f.name) + " " + f.range.requirement() +
+                                               ", got " + format_bound(p.*f.member));
+  }
+  require(p.dilatancy_angle <= p.friction_angle, "dilatancy_angle must lie in [0, friction_angle]");
   sin_phi_ = std::sin(radians(p.friction_angle));
   cos_phi_ = std::cos(radians(p.friction_angle));
   sin_psi_ = std::sin(radians(p.dilatancy_angle));

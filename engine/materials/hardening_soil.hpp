@@ -8,8 +8,10 @@
 // full 3x3 stress, with active sets and corner returns.
 
 #include "engine/materials/material.hpp"
+#include "engine/parameter_range.hpp"
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,6 +43,20 @@ struct HardeningSoilParameters {
   double pop = 0.0;              // Pa, pre-overburden pressure of the initial state
   double density = 0.0;          // kg/m^3
 };
+
+/// A parameter declared once: its key, its member (whose initialiser is an optional one's default),
+/// unit, range and meaning. The material registry builds the case's keys from it; the constructor
+/// checks each range through it. The cap's alpha and H are derived, never given
+/// (docs/hardening-soil.md).
+struct HardeningSoilField {
+  const char* name;
+  double HardeningSoilParameters::*member;
+  bool optional;
+  const char* unit;
+  ParameterRange range;
+  const char* meaning;
+};
+std::span<const HardeningSoilField> hardening_soil_fields();
 
 class HardeningSoil final : public Material {
 public:

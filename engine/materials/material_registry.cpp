@@ -11,63 +11,8 @@ namespace mpile {
 
 namespace {
 
-ParameterRange above(double x) {
-  return {Bound{x, false}, std::nullopt};
-}
-ParameterRange at_least(double x) {
-  return {Bound{x, true}, std::nullopt};
-}
-ParameterRange between(double low, bool low_inclusive, double high, bool high_inclusive) {
-  return {Bound{low, low_inclusive}, Bound{high, high_inclusive}};
-}
-
-/// Hardening Soil's parameters, each declared once: its name, its member of
-/// HardeningSoilParameters (whose initialiser is the default of an optional one), unit, range and
-/// meaning. The cap's alpha and H are derived, never given (docs/hardening-soil.md).
+/// Hardening Soil as a material type, from its parameters' declaration (hardening_soil.cpp).
 MaterialType hardening_soil_type() {
-  struct Field {
-    const char* name;
-    double HardeningSoilParameters::*member;
-    bool optional;
-    const char* unit;
-    ParameterRange range;
-    const char* meaning;
-  };
-  const Field fields[] = {
-      {"e50_ref", &HardeningSoilParameters::e50_ref, false, "Pa", above(0.0),
-       "triaxial secant stiffness E50 at p_ref"},
-      {"eoed_ref", &HardeningSoilParameters::eoed_ref, false, "Pa", above(0.0),
-       "oedometer tangent stiffness at sigma_1 = p_ref"},
-      {"eur_ref", &HardeningSoilParameters::eur_ref, false, "Pa", above(0.0),
-       "unloading/reloading stiffness at p_ref, above 2 E50 / (2 - Rf)"},
-      {"power", &HardeningSoilParameters::power, false, "-", between(0.0, true, 1.0, false),
-       "m, the stress dependency of stiffness"},
-      {"poisson_ur", &HardeningSoilParameters::poisson_ur, true, "-",
-       between(-1.0, false, 0.5, false), "unloading/reloading Poisson ratio"},
-      {"k0_nc", &HardeningSoilParameters::k0_nc, false, "-", between(0.0, false, 1.0, false),
-       "K0 of normally consolidated soil"},
-      {"failure_ratio", &HardeningSoilParameters::failure_ratio, true, "-",
-       between(1e-3, true, 1.0, false), "Rf = qf / qa"},
-      {"p_ref", &HardeningSoilParameters::p_ref, true, "Pa", above(0.0),
-       "reference stress of the stiffness laws"},
-      {"friction_angle", &HardeningSoilParameters::friction_angle, false, "degrees",
-       between(0.0, false, 90.0, false), "friction angle phi"},
-      {"dilatancy_angle", &HardeningSoilParameters::dilatancy_angle, true, "degrees", at_least(0.0),
-       "ultimate dilatancy angle psi, at most phi"},
-      {"cohesion", &HardeningSoilParameters::cohesion, true, "Pa", at_least(0.0), "cohesion c"},
-      {"tension_limit", &HardeningSoilParameters::tension_limit, true, "Pa", at_least(0.0),
-       "tension cut-off"},
-      {"stiffness_floor", &HardeningSoilParameters::stiffness_floor, true, "-",
-       between(0.0, false, 1.0, true), "lower bound of the stress ratio in the stiffness laws"},
-      {"cap_floor", &HardeningSoilParameters::cap_floor, true, "Pa", above(0.0),
-       "lower bound of the cap pressure p_p"},
-      {"ocr", &HardeningSoilParameters::ocr, true, "-", at_least(1.0),
-       "over-consolidation ratio of the initial state"},
-      {"pop", &HardeningSoilParameters::pop, true, "Pa", at_least(0.0),
-       "pre-overburden pressure of the initial state"},
-      {"density", &HardeningSoilParameters::density, false, "kg/m^3", above(0.0),
-       "initial density"},
-  };
   MaterialType type{"hardening_soil",
                     "Hardening Soil (Schanz et al. 1999, PLAXIS form): stress-dependent "
                     "stiffness, shear hardening with Mohr-Coulomb failure, cap from k0_nc and "
@@ -76,7 +21,7 @@ MaterialType hardening_soil_type() {
                     {}};
   const HardeningSoilParameters defaults;
   std::vector<std::pair<std::string, double HardeningSoilParameters::*>> members;
-  for (const Field& f : fields) {
+  for (const HardeningSoilField& f : hardening_soil_fields()) {
     type.parameters.push_back(
         {f.name, f.unit, f.meaning,
          f.optional ? std::optional<double>(defaults.*f.member) : std::nullopt, f.range});
