@@ -419,9 +419,9 @@ std::vector<TableSpec> declare() {
        "adhesion).",
        {string("structure", "a [[bodies]] name (rigid or deformable)").needed(),
         number("friction", "-", "Coulomb coefficient mu = tan(delta)")
-            .or_default(contact.friction)
-            .at_least(0.0),
-        number("adhesion", "Pa", "adhesion c_a").or_default(contact.adhesion).at_least(0.0),
+            .at_least(0.0)
+            .into(&ContactSpec::friction),
+        number("adhesion", "Pa", "adhesion c_a").at_least(0.0).into(&ContactSpec::adhesion),
         string("normals", "\"outline\": from the outline of the structure's region (a polygon must "
                           "be convex); \"mass_gradient\": from the structure's particles")
             .or_default(std::string("outline"))
@@ -454,23 +454,23 @@ std::vector<TableSpec> declare() {
        "The seed paper's model (its section 3): soil from the axis to soil_width and from y = 0 to "
        "soil_depth, an open-ended rigid pile, a graded grid with a band that moves with the pile.",
        {number("pile_length", "m", "the whole pile's length (its mass and polar inertia)")
-            .or_default(pile.pile_length)
+            .into(&MonopileParameters::pile_length)
             .above(0.0),
-        number("diameter", "m", "outer diameter D").or_default(pile.diameter).above(0.0),
+        number("diameter", "m", "outer diameter D").into(&MonopileParameters::diameter).above(0.0),
         number("wall_thickness", "m", "wall thickness t, below D / 2")
-            .or_default(pile.wall_thickness)
+            .into(&MonopileParameters::wall_thickness)
             .above(0.0),
         number("embedment", "m", "initial depth of the tip below the surface, below pile_length")
-            .or_default(pile.embedment)
+            .into(&MonopileParameters::embedment)
             .above(0.0),
         number("soil_width", "m", "the soil's radius (the roller face)")
-            .or_default(pile.soil_width)
+            .into(&MonopileParameters::soil_width)
             .above(0.0),
         number("soil_depth", "m", "the soil's depth (the fixed base at y = 0)")
-            .or_default(pile.soil_depth)
+            .into(&MonopileParameters::soil_depth)
             .above(0.0),
         number("head_room", "m", "grid above the surface (the meshed pile top stays above heave)")
-            .or_default(pile.head_room)
+            .into(&MonopileParameters::head_room)
             .above(0.0),
         string("soil_material", "the soil's [materials.<name>]").needed(),
         string("pile_material", "the pile's [materials.<name>]; gives the density").needed(),
@@ -480,34 +480,36 @@ std::vector<TableSpec> declare() {
         number("adhesion", "Pa", "contact adhesion c_a").or_default(0.0).at_least(0.0),
         integer("particles_per_cell", "per direction").or_default(2L).at_least(1).at_most(8),
         number("fine_cell", "m", "cell size at the wall and in the band")
-            .or_default(pile.fine_cell)
+            .into(&MonopileParameters::fine_cell)
             .above(0.0),
         number("fine_width", "m", "uniform fine cells on each side of the wall")
-            .or_default(pile.fine_width)
+            .into(&MonopileParameters::fine_width)
             .at_least(0.0),
         integer("wall_cells", "cells across the wall; more than 1 grades from t / wall_cells at "
                               "the wall and tip to fine_cell")
-            .or_default(static_cast<long>(pile.wall_cells))
+            .into(&MonopileParameters::wall_cells)
             .at_least(1)
             .at_most(16),
         number("shaft_cell", "m", "the largest cell along the shaft, at least fine_cell")
-            .or_default(pile.shaft_cell)
+            .into(&MonopileParameters::shaft_cell)
             .above(0.0),
         number("coarse_cell", "m", "the largest cell far from the pile, at least fine_cell")
-            .or_default(pile.coarse_cell)
+            .into(&MonopileParameters::coarse_cell)
             .above(0.0),
         number("growth", "-", "size ratio of neighbouring cells where the mesh coarsens")
-            .or_default(pile.growth)
+            .into(&MonopileParameters::growth)
             .at_least(1.0)
             .at_most(2.0),
         number("band_below", "m", "the band moving with the pile reaches this far below the tip")
-            .or_default(pile.band_below)
+            .into(&MonopileParameters::band_below)
             .above(0.0),
-        number("band_above", "m", "and this far above it").or_default(pile.band_above).above(0.0),
+        number("band_above", "m", "and this far above it")
+            .into(&MonopileParameters::band_above)
+            .above(0.0),
         number("travel", "m",
                "how far the band may be carried down (the soil below is seeded "
                "for the cells it will then have)")
-            .or_default(pile.travel)
+            .into(&MonopileParameters::travel)
             .above(0.0),
         boolean("moving_mesh", "false: the grid stays fixed (for comparison)").or_default(true),
         strings("absorbing", "faces that let waves out, as in [boundaries]")
@@ -625,9 +627,9 @@ std::vector<TableSpec> declare() {
        "sigma_yy, for one body or every body of one material.",
        {string("body", "the body; or material"),
         string("material", "every body of this material; or body"),
-        number("surface", "m", "y of the soil surface").needed(),
-        number("k0", "-", "K0").needed().above(0.0),
-        number("surcharge", "Pa", "a surface load q").or_default(0.0).at_least(0.0)},
+        number("surface", "m", "y of the soil surface").needed().into(&K0Spec::surface),
+        number("k0", "-", "K0").needed().above(0.0).into(&K0Spec::k0),
+        number("surcharge", "Pa", "a surface load q").at_least(0.0).into(&K0Spec::surcharge)},
        false});
   t.push_back(
       {"phases.stop_at",

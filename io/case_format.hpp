@@ -10,9 +10,12 @@
 #include "engine/parameter_range.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <typeinfo>
 #include <variant>
 #include <vector>
 
@@ -35,6 +38,14 @@ enum class ValueKind {
 /// The value a key takes when it is absent.
 using DefaultValue = std::variant<std::monostate, double, long, bool, std::string>;
 
+class TomlTable;
+/// Reads a declared key into a field of its kind (io/toml_reader.cpp), the range checked there.
+void read_key(TomlTable& table, const std::string& key, double& field);
+void read_key(TomlTable& table, const std::string& key, int& field);
+void read_key(TomlTable& table, const std::string& key, long& field);
+void read_key(TomlTable& table, const std::string& key, bool& field);
+void read_key(TomlTable& table, const std::string& key, std::string& field);
+
 struct KeySpec {
   std::string name;
   ValueKind kind = ValueKind::number;
@@ -56,6 +67,14 @@ struct KeySpec {
   KeySpec at_most(double value) &&;
   KeySpec one_of(std::vector<std::string> values) &&;
   KeySpec length(std::size_t n) &&;
+  /// Binds the key to a member of the struct its table is read into (TomlTable::read_into), whose
+  /// initialiser is then its default unless the key is required or its default computed.
+  /// `Target` names a struct that inherits the member (PhaseSpec's RunPhase::duration).
+  template <class Target = void, class T, class Owner> KeySpec into(T Owner::*member) &&;
+
+  /// The struct a bound key is read into (null: read by name), and how.
+  const std::type_info* bound_to = nullptr;
+  std::function<void(TomlTable&, const std::string&, void*)> store;
 
   /// "> 0", "in [0, 1)", "1 to 8", ... ; empty without bounds.
   std::string range_text() const { return range.text(kind == ValueKind::integer); }
@@ -63,6 +82,24 @@ struct KeySpec {
   /// "required" / "none".
   std::string default_description() const;
 };
+
+template <class Target, class T, class Owner> KeySpec KeySpec::into(T Owner::*member) && {
+  using Spec = std::conditional_t<std::is_void_v<Target>, Owner, Target>;
+  static_assert(std::is_base_of_v<Owner, Spec>);
+  bound_to = &typeid(Spec);
+  store = [member](TomlTable& table, const std::string& key, void* target) {
+    read_key(table, key, static_cast<Spec*>(target)->*member);
+  };
+  if (!required && default_text.empty() && std::holds_alternative<std::monostate>(fallback)) {
+    const T value = Spec{}.*member;
+    if constexpr (std::is_same_v<T, int>) {
+      fallback = static_cast<long>(value);
+    } else {
+      fallback = value;
+    }
+  }
+  return std::move(*this);
+}
 
 KeySpec number(std::string name, std::string unit, std::string meaning);
 KeySpec integer(std::string name, std::string meaning);

@@ -416,9 +416,8 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
         table.fail("structure", "'" + contact.structure + "' already has a [[contact]] entry");
       }
     }
-    contact.friction = table.number("friction");
+    table.read_into(contact);
     warn_implausible_friction(table, "friction", contact.friction, spec.warnings);
-    contact.adhesion = table.number("adhesion");
     contact.outline = table.string("normals") == "outline";
     contact.surface_gap = table.string("gap") == "surface";
     if (contact.surface_gap && !contact.outline) {
@@ -715,9 +714,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
       const std::string key = by_material ? "material" : "body";
       const std::string name = k0.string(key);
       K0Spec init;
-      init.surface = k0.number("surface");
-      init.k0 = k0.number("k0");
-      init.surcharge = k0.number("surcharge");
+      k0.read_into(init);
       k0.finish();
       bool found = false;
       for (const BodySpec& body : spec.bodies) {

@@ -30,29 +30,7 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
     table.fail("", "the monopile model is axisymmetric: remove geometry = \"plane_strain\"");
   }
   MonopileParameters p;
-  struct Key {
-    const char* name;
-    double* value;
-  };
-  const Key keys[] = {{"pile_length", &p.pile_length},
-                      {"diameter", &p.diameter},
-                      {"wall_thickness", &p.wall_thickness},
-                      {"embedment", &p.embedment},
-                      {"soil_width", &p.soil_width},
-                      {"soil_depth", &p.soil_depth},
-                      {"head_room", &p.head_room},
-                      {"fine_cell", &p.fine_cell},
-                      {"fine_width", &p.fine_width},
-                      {"coarse_cell", &p.coarse_cell},
-                      {"shaft_cell", &p.shaft_cell},
-                      {"growth", &p.growth},
-                      {"band_below", &p.band_below},
-                      {"band_above", &p.band_above},
-                      {"travel", &p.travel}};
-  for (const Key& key : keys) {
-    *key.value = table.number(key.name);
-  }
-  p.wall_cells = static_cast<int>(table.integer("wall_cells"));
+  table.read_into(p);
   note_one_cell_wall(table, p.wall_cells, spec.warnings);
   const MaterialSpec& soil = material_named(table, spec, "soil_material");
   const MaterialSpec& pile_material = material_named(table, spec, "pile_material");

@@ -513,6 +513,27 @@ std::vector<std::pair<std::string, TomlTable>> TomlTable::named_tables(const std
   return out;
 }
 
+std::span<const KeySpec> TomlTable::declared_keys() const {
+  return spec_ == nullptr ? std::span<const KeySpec>{} : std::span<const KeySpec>(spec_->keys);
+}
+
+void read_key(TomlTable& table, const std::string& key, double& field) {
+  field = table.number(key);
+}
+void read_key(TomlTable& table, const std::string& key, int& field) {
+  // The declaration's range keeps the value within an int.
+  field = static_cast<int>(table.integer(key));
+}
+void read_key(TomlTable& table, const std::string& key, long& field) {
+  field = table.integer(key);
+}
+void read_key(TomlTable& table, const std::string& key, bool& field) {
+  field = table.boolean(key);
+}
+void read_key(TomlTable& table, const std::string& key, std::string& field) {
+  field = table.string(key);
+}
+
 void TomlTable::finish() const {
   for (const auto& [key, v] : table_->as_table()) {
     if (read_.count(key) == 0) {

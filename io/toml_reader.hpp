@@ -15,6 +15,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,8 +52,15 @@ public:
   /// Names and tables of a table of tables ([materials.soil], [materials.steel], ...).
   std::vector<std::pair<std::string, TomlTable>> named_tables(const std::string& key);
 
+  /// Reads every key of this table bound to a member of Spec (KeySpec::into) that the table
+  /// holds; an absent one keeps the member's initialiser, its declared default, and an absent
+  /// required one is refused.
+  template <class Spec> void read_into(Spec& target);
+
   /// Throws for any key that was not read.
   void finish() const;
+  /// The keys this table's declaration holds (none for an undeclared table).
+  std::span<const KeySpec> declared_keys() const;
 
   /// "file:line: key: message" for a key of this table (the table's line when the key is absent).
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;
@@ -90,6 +98,16 @@ private:
   const TableSpec* spec_ = nullptr;
   std::set<std::string> read_;
 };
+
+template <class Spec> void TomlTable::read_into(Spec& target) {
+  for (const KeySpec& key : declared_keys()) {
+    // A required key is read absent too, to be refused as missing.
+    if (key.bound_to != nullptr && *key.bound_to == typeid(Spec) &&
+        (has(key.name) || key.required)) {
+      key.store(*this, key.name, &target);
+    }
+  }
+}
 
 /// A number as a message quotes it (six significant digits).
 std::string format_number(double x);

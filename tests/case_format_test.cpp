@@ -2,6 +2,7 @@
 // choices from it, reading an undeclared key is caught, docs/case-format.md is generated from it.
 #include "app/describe_command.hpp"
 #include "engine/materials/material_registry.hpp"
+#include "engine/monopile_geometry.hpp"
 #include "io/case_error.hpp"
 #include "io/case_format.hpp"
 #include "io/case_spec.hpp"
@@ -176,6 +177,32 @@ TEST(CaseFormat, EachSolverSettingIsDeclaredOnceAndBoundToItsMember) {
         },
         p.member);
   }
+}
+
+// A key bound to its field (KeySpec::into) is read through its declaration: a value given lands
+// in its field, an absent one leaves the field's initialiser, which is the declared default, and
+// an absent required one is refused at its table.
+TEST(CaseFormat, BoundKeysReachTheirFieldsThroughTheDeclaration) {
+  const CaseSpec spec =
+      read_case_text(block + "k0 = [{ body = \"soil\", surface = 0.5, k0 = 0.4 }]\n" +
+                         "[[contact]]\nstructure = \"block\"\nadhesion = 5e3\n",
+                     "case.toml");
+  const K0Spec& k0 = spec.phases.at(0).k0.at(0);
+  EXPECT_EQ(k0.surface, 0.5);
+  EXPECT_EQ(k0.k0, 0.4);
+  EXPECT_EQ(k0.surcharge,
+            std::get<double>(find_table_spec("phases.k0")->key("surcharge")->fallback));
+  EXPECT_EQ(spec.contacts.at(0).adhesion, 5e3);
+  EXPECT_EQ(spec.contacts.at(0).friction,
+            std::get<double>(find_table_spec("contact")->key("friction")->fallback));
+  const MonopileParameters pile;
+  EXPECT_EQ(pile.travel, std::get<double>(find_table_spec("monopile")->key("travel")->fallback));
+  EXPECT_EQ(pile.wall_cells,
+            std::get<long>(find_table_spec("monopile")->key("wall_cells")->fallback));
+  EXPECT_NE(error_of(block + "k0 = [{ body = \"soil\", k0 = 0.4 }]\n")
+                .find("case.toml:27: phases[0].k0[0].surface: missing"),
+            std::string::npos)
+      << error_of(block + "k0 = [{ body = \"soil\", k0 = 0.4 }]\n");
 }
 
 TEST(CaseFormat, ARangeOrChoiceOutsideTheDeclarationNamesFileLineKeyAndBound) {
