@@ -606,17 +606,24 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"phases",
        "A phase of the run; each starts where the previous ended.",
-       {string("name", "unique").needed(),
-        number("duration", "s", "the longest the phase can last").needed().above(0.0),
-        solver_key(solver_parameter("local_damping"), SolverSettings{}),
-        boolean("gravity", "whether [solver] gravity acts").or_default(true),
+       {string("name", "unique").needed().into<PhaseSpec>(&PhaseSpec::name),
+        number("duration", "s", "the longest the phase can last")
+            .needed()
+            .above(0.0)
+            .into<PhaseSpec>(&PhaseSpec::duration),
+        solver_key(solver_parameter("local_damping"), SolverSettings{})
+            .into(&PhaseSpec::local_damping),
+        boolean("gravity", "whether [solver] gravity acts").into(&PhaseSpec::gravity),
         number("equilibrium_tolerance", "-",
                "end early once out-of-balance force and kinetic energy fall below this fraction of "
                "the forces holding the state and of the external work")
             .above(0.0)
-            .or_computed("none"),
-        phase_override("flip_fraction"), phase_override("xpic_order"),
-        phase_override("mass_scaling"), phase_override("courant_number"),
+            .or_computed("none")
+            .into<PhaseSpec>(&PhaseSpec::equilibrium_tolerance),
+        phase_override("flip_fraction").into(&PhaseSpec::flip_fraction),
+        phase_override("xpic_order").into(&PhaseSpec::xpic_order),
+        phase_override("mass_scaling").into(&PhaseSpec::mass_scaling),
+        phase_override("courant_number").into(&PhaseSpec::courant_number),
         tables("k0", "K0 procedures at the phase start"),
         table("stop_at", "end the phase once a rigid body has penetrated"),
         table("drive", "a rigid body's drives from this phase's start")},

@@ -45,6 +45,8 @@ void read_key(TomlTable& table, const std::string& key, int& field);
 void read_key(TomlTable& table, const std::string& key, long& field);
 void read_key(TomlTable& table, const std::string& key, bool& field);
 void read_key(TomlTable& table, const std::string& key, std::string& field);
+void read_key(TomlTable& table, const std::string& key, std::optional<double>& field);
+void read_key(TomlTable& table, const std::string& key, std::optional<int>& field);
 
 struct KeySpec {
   std::string name;
@@ -90,12 +92,16 @@ template <class Target, class T, class Owner> KeySpec KeySpec::into(T Owner::*me
   store = [member](TomlTable& table, const std::string& key, void* target) {
     read_key(table, key, static_cast<Spec*>(target)->*member);
   };
-  if (!required && default_text.empty() && std::holds_alternative<std::monostate>(fallback)) {
-    const T value = Spec{}.*member;
-    if constexpr (std::is_same_v<T, int>) {
-      fallback = static_cast<long>(value);
-    } else {
-      fallback = value;
+  constexpr bool optional =
+      std::is_same_v<T, std::optional<double>> || std::is_same_v<T, std::optional<int>>;
+  if constexpr (!optional) {
+    if (!required && default_text.empty() && std::holds_alternative<std::monostate>(fallback)) {
+      const T value = Spec{}.*member;
+      if constexpr (std::is_same_v<T, int>) {
+        fallback = static_cast<long>(value);
+      } else {
+        fallback = value;
+      }
     }
   }
   return std::move(*this);

@@ -671,21 +671,9 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
   std::set<std::string> names;
   for (TomlTable& table : top.tables("phases")) {
     PhaseSpec phase;
-    phase.name = table.string("name");
+    table.read_into(phase);
     if (!names.insert(phase.name).second) {
       table.fail("name", "a phase named '" + phase.name + "' already exists");
-    }
-    phase.duration = table.number("duration");
-    phase.local_damping = table.number("local_damping");
-    phase.gravity = table.boolean("gravity");
-    if (table.has("equilibrium_tolerance")) {
-      phase.equilibrium_tolerance = table.number("equilibrium_tolerance");
-    }
-    if (table.has("flip_fraction")) {
-      phase.flip_fraction = table.number("flip_fraction");
-    }
-    if (table.has("xpic_order")) {
-      phase.xpic_order = static_cast<int>(table.integer("xpic_order"));
     }
     {
       // XPIC replaces the FLIP/PIC blend: the phase may not end up with both.
@@ -698,12 +686,6 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
                        ": XPIC replaces the FLIP/PIC blend, so set xpic_order = 0 for a blend or "
                        "leave flip_fraction at 1");
       }
-    }
-    if (table.has("mass_scaling")) {
-      phase.mass_scaling = table.number("mass_scaling");
-    }
-    if (table.has("courant_number")) {
-      phase.courant_number = table.number("courant_number");
     }
     for (TomlTable& k0 : table.tables("k0")) {
       // One body, or every body of one material (the monopile's three soil bodies).

@@ -533,6 +533,12 @@ void read_key(TomlTable& table, const std::string& key, bool& field) {
 void read_key(TomlTable& table, const std::string& key, std::string& field) {
   field = table.string(key);
 }
+void read_key(TomlTable& table, const std::string& key, std::optional<double>& field) {
+  field = table.number(key);
+}
+void read_key(TomlTable& table, const std::string& key, std::optional<int>& field) {
+  field = static_cast<int>(table.integer(key));
+}
 
 void TomlTable::finish() const {
   for (const auto& [key, v] : table_->as_table()) {
