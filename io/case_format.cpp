@@ -663,21 +663,21 @@ std::vector<TableSpec> declare() {
         number("snapshot_interval", "s",
                "simulated time between particle snapshots; 0: only the "
                "first and the last")
-            .or_default(output.snapshot_interval)
+            .into(&OutputSpec::snapshot_interval)
             .at_least(0.0),
         numbers("snapshot_times", "s", "further snapshot times; steps land on them")
             .or_computed("none"),
         number("history_interval", "s", "time between history rows; 0: every step")
-            .or_default(output.history_interval)
+            .into(&OutputSpec::history_interval)
             .at_least(0.0),
         number("checkpoint_interval", "s",
                "simulated time between checkpoints; 0: only when the "
                "run stops")
-            .or_default(output.checkpoint_interval)
+            .into(&OutputSpec::checkpoint_interval)
             .at_least(0.0),
         boolean("grid_snapshots",
                 "also write the grid at every snapshot (nodal mass, velocity and contact)")
-            .or_default(output.grid_snapshots),
+            .into(&OutputSpec::grid_snapshots),
         numbers("snapshot_penetrations", "m",
                 "further snapshots when a rigid body's penetration "
                 "first reaches each value")

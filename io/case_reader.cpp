@@ -939,23 +939,14 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     return;
   }
   OutputSpec& out = spec.output;
+  table->read_into(out);
   out.directory = table->path_or("directory", "");
-  if (table->has("snapshot_interval")) {
-    out.snapshot_interval = table->number("snapshot_interval");
-  }
   out.snapshot_times = table->numbers_or("snapshot_times", {});
   for (const double t : out.snapshot_times) {
     if (t < 0.0) {
       table->fail("snapshot_times", "times must not be negative");
     }
   }
-  if (table->has("history_interval")) {
-    out.history_interval = table->number("history_interval");
-  }
-  if (table->has("checkpoint_interval")) {
-    out.checkpoint_interval = table->number("checkpoint_interval");
-  }
-  out.grid_snapshots = table->boolean("grid_snapshots");
   out.snapshot_penetrations = table->numbers_or("snapshot_penetrations", {});
   if (!out.snapshot_penetrations.empty()) {
     for (const double depth : out.snapshot_penetrations) {
