@@ -156,9 +156,13 @@ std::vector<KeySpec> drive_keys() {
 }
 
 std::vector<KeySpec> zone_keys() {
-  return {number("start", "m", "where the zone starts").needed(),
-          number("end", "m", "where it ends, greater than start").needed(),
-          integer("cells", "uniform cells in the zone").needed().at_least(1).at_most(100000)};
+  return {number("start", "m", "where the zone starts").needed().into(&AxisZone::start),
+          number("end", "m", "where it ends, greater than start").needed().into(&AxisZone::end),
+          integer("cells", "uniform cells in the zone")
+              .needed()
+              .at_least(1)
+              .at_most(100000)
+              .into(&AxisZone::cells)};
 }
 
 std::vector<KeySpec> node_line_keys() {
@@ -324,12 +328,13 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"bodies",
        "A body: a region of one material filled with particles.",
-       {string("name", "unique name").needed(), string("material", "a [materials.<name>]").needed(),
+       {string("name", "unique name").needed().into(&BodySpec::name),
+        string("material", "a [materials.<name>]").needed().into(&BodySpec::material),
         table("region", "its shape, inside the grid").needed(),
         integer("particles_per_cell", "particles per cell direction (2 gives 4 per cell)")
-            .or_default(2L)
             .at_least(1)
-            .at_most(8),
+            .at_most(8)
+            .into(&BodySpec::particles_per_direction),
         string("seeding",
                "\"centres\": a particle at each sub-cell centre in the region; \"cut_cells\": "
                "also the sub-cells the outline cuts, each a particle of the part inside")
@@ -692,9 +697,9 @@ std::vector<TableSpec> declare() {
                {string("body", "the contact structure that is the cone")
                     .or_computed("the only structure with outline normals"),
                 string("cone", "its surface whose plan area q_c is quoted over")
-                    .or_default(std::string(cpt.cone)),
+                    .into(&OutputSpec::Cpt::cone),
                 string("sleeve", "its surface whose side area f_s is quoted over")
-                    .or_default(std::string(cpt.sleeve))},
+                    .into(&OutputSpec::Cpt::sleeve)},
                false});
   t.push_back({"output.monitor",
                "A material point followed through the run (/monitors/<name>/ in the history).",

@@ -52,9 +52,7 @@ std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key) {
   std::vector<AxisZone> zones;
   for (TomlTable& zone : grid.tables(key)) {
     AxisZone z;
-    z.start = zone.number("start");
-    z.end = zone.number("end");
-    z.cells = static_cast<int>(zone.integer("cells"));
+    zone.read_into(z);
     if (!(z.end > z.start)) {
       zone.fail("end", "must be greater than start (" + format_number(z.start) + ")");
     }
@@ -267,14 +265,13 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
   GroupNames groups("/bodies");
   for (TomlTable& table : top.tables("bodies")) {
     BodySpec body;
-    body.name = table.string("name");
+    table.read_into(body);
     if (!names.insert(body.name).second) {
       table.fail("name", "a body named '" + body.name + "' already exists");
     }
     if (const auto clash = groups.clash(body.name, location(table, "name"))) {
       table.fail("name", *clash);
     }
-    body.material = table.string("material");
     const bool known = std::any_of(spec.materials.begin(), spec.materials.end(),
                                    [&](const MaterialSpec& m) { return m.name == body.material; });
     if (!known) {
@@ -283,7 +280,6 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
     body.region = read_region(table, spec.mode, axes.r, axes.y);
     body.line = table.line_of("region");
     body.key = table.key_path("region");
-    body.particles_per_direction = static_cast<int>(table.integer("particles_per_cell"));
     body.cut_cells = table.string("seeding") == "cut_cells";
     if (std::optional<TomlTable> profile = table.optional_table("velocity_profile")) {
       VelocityProfile p;
@@ -852,8 +848,7 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
     }
   }
   cpt.body = table.string_or("body", outlined.size() == 1 ? outlined[0] : "");
-  cpt.cone = table.string("cone");
-  cpt.sleeve = table.string("sleeve");
+  table.read_into(cpt);
   table.finish(); // a misspelt key is named before what its absence caused
   if (spec.mode != GeometryMode::axisymmetric) {
     table.fail("cone", "a cone penetration test is axisymmetric: set geometry to "
