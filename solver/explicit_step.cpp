@@ -74,12 +74,14 @@ void ExplicitSolver::step_in_mode(double dt) {
   energy_ +=
       EnergyIncrement{.external_work = stress.gravity_work, .internal_work = stress.internal_work};
   energy_ += apply_pore_pressure_from_flow(stress.stress_free_inside_rigid > 0);
+  const double moved_crossing_time = move_bodies_and_mesh<contact>(step, stress);
+  finish_step(dt, stress, moved_crossing_time);
   if (settings_.cell_mean_pore_pressure && has_pore_water(scene_)) {
+    // Once the particles are binned where the stress pass moved them: each block then holds the
+    // particles of its own cells.
     PassTimer timer(timings_.stress_update);
     passes::smooth_excess_pore_pressure(scene_, bins_);
   }
-  const double moved_crossing_time = move_bodies_and_mesh<contact>(step, stress);
-  finish_step(dt, stress, moved_crossing_time);
 }
 
 template <GeometryMode mode, bool contact, ShapeFunctions shape>

@@ -10,6 +10,8 @@
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 
+#include <stdexcept>
+
 namespace mpile::passes {
 
 std::vector<int> pore_pressure_slots(const Scene& scene) {
@@ -59,7 +61,15 @@ void smooth_excess_pore_pressure(Scene& scene, const ParticleBins& bins) {
     const int block_cells = bins.block_cells();
     cell_sum.assign(static_cast<std::size_t>(block_cells * block_cells), {0.0, 0.0});
     const auto cell_of = [&](std::size_t i) {
-      return static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
+      const int r = p.cell_r[i] - cr0;
+      const int y = p.cell_y[i] - cy0;
+      if (r < 0 || r >= block_cells || y < 0 || y >= block_cells) {
+        // Run between a particle's move and its rebinning, a cell could lie outside the block
+        // and the sum be written out of bounds (a coupled run's heap once broke so).
+        throw std::logic_error("smooth_excess_pore_pressure: a particle is not binned in its "
+                               "cell's block");
+      }
+      return static_cast<std::size_t>(r + block_cells * y);
     };
     // A particle made stress-free inside a rigid body (no stress, no pore pressure) is left out.
     const auto saturated = [&](std::size_t i, int slot) {
