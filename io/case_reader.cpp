@@ -1196,6 +1196,13 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   }
   read_phases(top, spec, declared_rigid);
   read_water(top, spec, axes.y.start());
+  for (auto& [name, table] : top.named_tables("materials")) {
+    const auto m = std::find_if(spec.materials.begin(), spec.materials.end(),
+                                [&](const MaterialSpec& x) { return x.name == name; });
+    if (m != spec.materials.end() && m->water.drainage != Drainage::drained) {
+      note_pure_flip_in_saturated_soil(table, spec, spec.warnings);
+    }
+  }
   if (absorbing_table) {
     check_absorbing_phase(*absorbing_table, spec);
   }

@@ -216,6 +216,22 @@ void note_one_cell_wall(const TomlTable& table, int wall_cells,
       "converged with 3 to 4 cells across the wall); set wall_cells = 3 or more for forces");
 }
 
+void note_pure_flip_in_saturated_soil(const TomlTable& material, const CaseSpec& spec,
+                                      std::vector<CaseWarning>& warnings) {
+  const bool pure_flip =
+      std::any_of(spec.phases.begin(), spec.phases.end(), [&](const PhaseSpec& p) {
+        return p.xpic_order.value_or(spec.solver.xpic_order) == 0 &&
+               p.flip_fraction.value_or(spec.solver.flip_fraction) == 1.0;
+      });
+  if (pure_flip) {
+    add(warnings, CaseWarning::Kind::resolution, material, "drainage",
+        "saturated soil is nearly incompressible, and under pure FLIP (xpic_order = 0, "
+        "flip_fraction = 1) a mode the grid does not see can grow in it (docs/verification.md: "
+        "1.9 % of a pulse came back at an absorbing face); the saturated installation cases take "
+        "[solver] xpic_order = 2");
+  }
+}
+
 bool refused_when_strict(const std::vector<CaseWarning>& warnings) {
   return std::any_of(warnings.begin(), warnings.end(),
                      [](const CaseWarning& w) { return w.kind == CaseWarning::Kind::units; });

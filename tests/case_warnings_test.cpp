@@ -225,5 +225,31 @@ TEST(CaseWarnings, AOneCellWallIsANoteThatStrictLetsPass) {
   EXPECT_EQ(err.str().find("--strict"), std::string::npos) << err.str();
 }
 
+// Saturated soil under pure FLIP gets a note (never an error) at its drainage key; with XPIC(2),
+// or a FLIP/PIC blend, none.
+TEST(CaseWarnings, SaturatedSoilUnderPureFlipIsNoted) {
+  const std::string column =
+      replaced(read_text(source / "cases/verification/absorbing_column.toml"), "density = 2000.0",
+               "density = 2000.0\ndrainage = \"undrained\"");
+  const auto notes = [](const std::string& text) {
+    std::string found;
+    for (const CaseWarning& w : read_case_text(text, "case.toml").warnings) {
+      if (w.kind == CaseWarning::Kind::resolution &&
+          w.text.find("pure FLIP") != std::string::npos) {
+        found += w.text + "\n";
+      }
+    }
+    return found;
+  };
+  const auto at = column.find("drainage =");
+  const auto line = 1 + std::count(column.begin(), column.begin() + static_cast<long>(at), '\n');
+  EXPECT_EQ(
+      notes(column).rfind("case.toml:" + std::to_string(line) + ": materials.soil.drainage: ", 0),
+      0u)
+      << notes(column);
+  EXPECT_EQ(notes(column + "[solver]\nxpic_order = 2\n"), "");
+  EXPECT_EQ(notes(column + "[solver]\nflip_fraction = 0.99\n"), "");
+}
+
 } // namespace
 } // namespace mpile
