@@ -1124,6 +1124,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     read_materials(top, spec);
     rigid_tables = read_bodies(top, spec, axes, body_tables);
   }
+  std::optional<TomlTable> drained_table; // for the note below, once gravity is known
   if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
     read_absorbing_faces(*boundaries, spec,
                          spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0);
@@ -1134,6 +1135,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     }
     if (boundaries->has("drained")) {
       spec.drained_faces = read_face_list(*boundaries, "drained");
+      drained_table = *boundaries;
       for (const GridFace face : spec.drained_faces) {
         if (spec.faces[static_cast<std::size_t>(face)] == FaceCondition::free) {
           boundaries->fail("drained", std::string("lists \"") + keys[static_cast<int>(face)] +
@@ -1155,6 +1157,9 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     boundaries->finish();
   }
   read_solver(top, spec, axes);
+  if (drained_table && (spec.solver.gravity[0] != 0.0 || spec.solver.gravity[1] != 0.0)) {
+    note_drained_face_under_gravity(*drained_table, spec.warnings);
+  }
   RigidNames declared_rigid;
   for (const auto& [index, table] : rigid_tables) {
     declared_rigid.insert(spec.bodies[index].name);

@@ -232,6 +232,15 @@ void note_pure_flip_in_saturated_soil(const TomlTable& material, const CaseSpec&
   }
 }
 
+void note_drained_face_under_gravity(const TomlTable& boundaries,
+                                     std::vector<CaseWarning>& warnings) {
+  add(warnings, CaseWarning::Kind::resolution, boundaries, "drained",
+      "a drained face has p = 0 beyond it (the atmosphere, or the sea's pressure on the seabed "
+      "with [water]): under gravity the pore water flows out through it as from a column on an "
+      "open drain, not into a far field at hydrostatic pressure; leave the face impermeable for "
+      "that (docs/physics.md section 9b)");
+}
+
 bool refused_when_strict(const std::vector<CaseWarning>& warnings) {
   return std::any_of(warnings.begin(), warnings.end(),
                      [](const CaseWarning& w) { return w.kind == CaseWarning::Kind::units; });

@@ -41,6 +41,9 @@ void warn_implausible_torque(TomlTable& table, const std::string& key, const std
 
 /// [monopile] wall_cells = 1: a note that the wall and tip forces depend on the grid lines.
 void note_one_cell_wall(const TomlTable& table, int wall_cells, std::vector<CaseWarning>& warnings);
+/// A note at [boundaries] drained in a scene with gravity: the water drains to p = 0 beyond it.
+void note_drained_face_under_gravity(const TomlTable& boundaries,
+                                     std::vector<CaseWarning>& warnings);
 /// A note on a saturated material (its [materials.<name>] table) when a phase runs pure FLIP.
 void note_pure_flip_in_saturated_soil(const TomlTable& material, const CaseSpec& spec,
                                       std::vector<CaseWarning>& warnings);

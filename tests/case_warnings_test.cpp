@@ -251,5 +251,50 @@ TEST(CaseWarnings, SaturatedSoilUnderPureFlipIsNoted) {
   EXPECT_EQ(notes(column + "[solver]\nflip_fraction = 0.99\n"), "");
 }
 
+// A drained face lets the water out at p = 0 beyond it: under gravity a hydrostatic column drains
+// through it (measured: 6 mm/s of outflow at the base of a 5 m column, k = 1e-3 m/s), which the
+// reader notes at the key; without gravity it is the consolidation tests' boundary, and no note.
+TEST(CaseWarnings, ADrainedFaceUnderGravityIsNoted) {
+  const std::string column = R"(title = "column"
+[grid]
+r = [{ start = 0.0, end = 0.5, cells = 2 }]
+y = [{ start = 0.0, end = 5.0, cells = 20 }]
+[materials.sand]
+type = "linear_elastic"
+young_modulus = 50e6
+poisson_ratio = 0.3
+density = 1600.0
+drainage = "coupled"
+hydraulic_conductivity = 1e-3
+[[bodies]]
+name = "column"
+material = "sand"
+region = { r = [0.0, 0.5], y = [0.0, 5.0] }
+[boundaries]
+r_max = "roller"
+y_min = "fixed"
+drained = ["y_min"]
+[[phases]]
+name = "rest"
+duration = 0.2
+)";
+  const auto notes = [](const std::string& text) {
+    std::string found;
+    for (const CaseWarning& w : read_case_text(text, "case.toml").warnings) {
+      if (w.text.find("a drained face has p = 0") != std::string::npos) {
+        found += w.text + "\n";
+      }
+    }
+    return found;
+  };
+  EXPECT_EQ(notes(column), "");
+  const auto at = column.find("drained =");
+  const auto line = 1 + std::count(column.begin(), column.begin() + static_cast<long>(at), '\n');
+  EXPECT_EQ(notes(column + "[solver]\ngravity = [0.0, -9.81]\n")
+                .rfind("case.toml:" + std::to_string(line) + ": boundaries.drained: ", 0),
+            0u)
+      << notes(column + "[solver]\ngravity = [0.0, -9.81]\n");
+}
+
 } // namespace
 } // namespace mpile
