@@ -63,6 +63,25 @@ inline std::string saturated_column(double height, int cells, double duration,
   return s.str();
 }
 
+/// The seed's torsion check (V9) with friction 0.4 instead of adhesion, in saturated soil (n =
+/// 0.396; `drainage` its keys) under gravity, K0 = 0.5 from the surface at y = 1 m, on `cells` x
+/// `cells` cells, one phase of `duration`. Torsion does not change the soil's volume, so the
+/// water's stiffness does not enter: it is lowered to 0.1 GPa for a longer step.
+inline std::string spun_pile_text(int cells, const std::string& drainage, double duration) {
+  std::string text = read_text(source / "cases/verification/v9_torsion_adhesion.toml");
+  text = replaced(text, "cells = 40", "cells = " + std::to_string(cells));
+  text = replaced(text, "[materials.soil]\ntype = \"linear_elastic\"",
+                  "[materials.soil]\ntype = \"linear_elastic\"\n" + drainage +
+                      "\nwater_bulk_modulus = 1e8");
+  text = replaced(text, "young_modulus = 100e6\npoisson_ratio = 0.0\ndensity = 2000.0\n\n# The",
+                  "young_modulus = 100e6\npoisson_ratio = 0.0\ndensity = 1600.0\n\n# The");
+  text = replaced(text, "friction = 0.0\nadhesion = 10e3   # Pa", "friction = 0.4\nadhesion = 0.0");
+  std::ostringstream phase;
+  phase << "duration = " << duration << "\nk0 = [{ material = \"soil\", surface = 1.0, k0 = 0.5 }]";
+  text = replaced(text, "duration = 1.0", phase.str());
+  return replaced(text, "[boundaries]", "[solver]\ngravity = [0.0, -9.81]\n\n[boundaries]");
+}
+
 /// The highest particle moving at half the piston's velocity or more: the front.
 inline double wave_front(const CaseRun& run) {
   const Particles& p = run.scene->particles;

@@ -413,18 +413,7 @@ TEST(UndrainedSoil, CellMeanPorePressureTakesACheckerboardToEachCellsMean) {
 /// lowered to 0.1 GPa for a longer step.
 std::unique_ptr<CaseRun>
 spun_pile_in_saturated_soil(int cells, const std::string& drainage = "drainage = \"undrained\"") {
-  std::string text = read_text(source / "cases/verification/v9_torsion_adhesion.toml");
-  text = replaced(text, "cells = 40", "cells = " + std::to_string(cells));
-  text = replaced(text, "[materials.soil]\ntype = \"linear_elastic\"",
-                  "[materials.soil]\ntype = \"linear_elastic\"\n" + drainage +
-                      "\nwater_bulk_modulus = 1e8");
-  text = replaced(text, "young_modulus = 100e6\npoisson_ratio = 0.0\ndensity = 2000.0\n\n# The",
-                  "young_modulus = 100e6\npoisson_ratio = 0.0\ndensity = 1600.0\n\n# The");
-  text = replaced(text, "friction = 0.0\nadhesion = 10e3   # Pa", "friction = 0.4\nadhesion = 0.0");
-  text = replaced(text, "duration = 1.0",
-                  "duration = 0.1\nk0 = [{ material = \"soil\", surface = 1.0, k0 = 0.5 }]");
-  text = replaced(text, "[boundaries]", "[solver]\ngravity = [0.0, -9.81]\n\n[boundaries]");
-  auto run = std::make_unique<CaseRun>(text);
+  auto run = std::make_unique<CaseRun>(spun_pile_text(cells, drainage, 0.1));
   apply_k0(*run->scene, run->spec, run->spec.phases[0]);
   run->solver = std::make_unique<ExplicitSolver>(
       *run->scene, phase_settings(run->spec, run->spec.phases[0]), run->log);
