@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <stdexcept>
 
 namespace mpile {
 
@@ -50,6 +51,17 @@ std::string ParameterRange::requirement(bool integer) const {
     return "must lie " + text();
   }
   return "must be " + text();
+}
+
+void require_in_range(const char* name, const ParameterRange& range, double value) {
+  if (!std::isfinite(value)) {
+    throw std::invalid_argument(std::string(name) + " must be a finite number, got " +
+                                format_bound(value));
+  }
+  if (!range.contains(value)) {
+    throw std::invalid_argument(std::string(name) + " " + range.requirement() + ", got " +
+                                format_bound(value));
+  }
 }
 
 } // namespace mpile

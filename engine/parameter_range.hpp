@@ -36,6 +36,10 @@ inline ParameterRange between(double low, bool low_inclusive, double high, bool 
   return {Bound{low, low_inclusive}, Bound{high, high_inclusive}};
 }
 
+/// Throws std::invalid_argument "<name> <requirement>, got <value>" for a value outside the range
+/// or not finite: a model's constructor checks its declared parameters with it.
+void require_in_range(const char* name, const ParameterRange& range, double value);
+
 /// A number in the shortest form that reads back to the same double, whole numbers as integers
 /// (100000, not 1e+05): for declared bounds and for exact output (the element tests' CSV).
 std::string format_bound(double x);

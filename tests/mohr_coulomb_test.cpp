@@ -1,6 +1,7 @@
 // Mohr-Coulomb: parameter checks, returns against hand-computed closed forms, the consistency
 // conditions checked by an independent enumeration, frame invariance, a million random increments,
 // and drained triaxial failure through the element-test driver.
+#include "engine/materials/linear_elastic.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "engine/materials/mohr_coulomb.hpp"
 #include "engine/materials/principal_stress.hpp"
@@ -12,9 +13,11 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 
 namespace mpile {
 namespace {
@@ -577,6 +580,45 @@ TEST(MohrCoulomb, DrainedTriaxialFailsAtTheClosedForm) {
   EXPECT_LT(worst_dilation, 1e-8);
   std::cout << tests << " drained triaxial tests: worst relative error of sigma_1 at failure "
             << worst_strength << ", worst error of d eps_v / d eps_1 " << worst_dilation << '\n';
+}
+
+// Each range is declared once (material.hpp, mohr_coulomb.hpp): the registry's keys carry it, and
+// the constructors refuse a value past it, or a value that is not finite, naming the parameter.
+TEST(MohrCoulomb, TheConstructorsCheckTheDeclaredRanges) {
+  const MaterialType* mc = nullptr;
+  for (const MaterialType& type : material_types()) {
+    mc = type.name == "mohr_coulomb" ? &type : mc;
+  }
+  ASSERT_NE(mc, nullptr);
+  const auto range_of = [&](const std::string& name) {
+    for (const MaterialParameterSpec& p : mc->parameters) {
+      if (p.name == name) {
+        return p.range.text();
+      }
+    }
+    return std::string("none");
+  };
+  EXPECT_EQ(range_of("young_modulus"), young_modulus_range.text());
+  EXPECT_EQ(range_of("poisson_ratio"), poisson_ratio_range.text());
+  EXPECT_EQ(range_of("cohesion"), cohesion_range.text());
+  EXPECT_EQ(range_of("friction_angle"), mohr_coulomb_friction_range.text());
+  EXPECT_EQ(range_of("tension_limit"), tension_limit_range.text());
+  const auto message = [](auto make) {
+    try {
+      make();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message([] { MohrCoulomb(1e7, 0.3, 1800.0, 0.0, 90.0, 0.0, 0.0); }),
+            "friction_angle must lie in [0, 90), got 90");
+  EXPECT_EQ(message([] { MohrCoulomb(1e7, 0.3, 1800.0, -1.0, 30.0, 0.0, 0.0); }),
+            "cohesion must be >= 0, got -1");
+  EXPECT_EQ(message([] { LinearElastic(std::numeric_limits<double>::infinity(), 0.3, 1800.0); }),
+            "young_modulus must be a finite number, got inf");
+  EXPECT_EQ(message([] { LinearElastic(1e7, 0.5, 1800.0); }),
+            "poisson_ratio must lie in (-1, 0.5), got 0.5");
 }
 
 } // namespace

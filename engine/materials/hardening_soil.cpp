@@ -162,8 +162,7 @@ HardeningSoil::HardeningSoil(const HardeningSoilParameters& p) : parameters_(p) 
     }
   };
   for (const HardeningSoilField& f : hardening_soil_fields()) {
-    require(f.range.contains(p.*f.member), std::string(f.name) + " " + f.range.requirement() +
-                                               ", got " + format_bound(p.*f.member));
+    require_in_range(f.name, f.range, p.*f.member);
   }
   require(p.dilatancy_angle <= p.friction_angle, "dilatancy_angle must lie in [0, friction_angle]");
   sin_phi_ = std::sin(radians(p.friction_angle));

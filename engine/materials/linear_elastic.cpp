@@ -7,17 +7,9 @@ namespace mpile {
 
 LinearElastic::LinearElastic(double young_modulus, double poisson_ratio, double density)
     : young_(young_modulus), poisson_(poisson_ratio), density_(density) {
-  if (!(young_modulus > 0.0)) {
-    throw std::invalid_argument("young_modulus must be positive, got " +
-                                std::to_string(young_modulus));
-  }
-  if (!(poisson_ratio > -1.0 && poisson_ratio < 0.5)) {
-    throw std::invalid_argument("poisson_ratio must lie in (-1, 0.5), got " +
-                                std::to_string(poisson_ratio));
-  }
-  if (!(density > 0.0)) {
-    throw std::invalid_argument("density must be positive, got " + std::to_string(density));
-  }
+  require_in_range("young_modulus", young_modulus_range, young_modulus);
+  require_in_range("poisson_ratio", poisson_ratio_range, poisson_ratio);
+  require_in_range("density", density_range, density);
   mu_ = young_ / (2.0 * (1.0 + poisson_));
   lambda_ = young_ * poisson_ / ((1.0 + poisson_) * (1.0 - 2.0 * poisson_));
 }

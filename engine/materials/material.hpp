@@ -1,5 +1,6 @@
 #pragma once
 
+#include "engine/parameter_range.hpp"
 #include "engine/tensor.hpp"
 
 #include <cstdint>
@@ -9,6 +10,12 @@
 #include <vector>
 
 namespace mpile {
+
+/// The ranges of the constants every elastic model shares, declared once: the material registry
+/// gives them to the case's keys and each model's constructor checks them (require_in_range).
+inline const ParameterRange young_modulus_range = above(0.0);
+inline const ParameterRange poisson_ratio_range = between(-1.0, false, 0.5, false);
+inline const ParameterRange density_range = above(0.0);
 
 struct LiquidPhase;
 

@@ -85,34 +85,18 @@ MohrCoulomb::MohrCoulomb(double young_modulus, double poisson_ratio, double dens
                          double tension_limit)
     : young_(young_modulus), poisson_(poisson_ratio), density_(density), cohesion_(cohesion),
       friction_degrees_(friction_angle), dilatancy_degrees_(dilatancy_angle) {
-  if (!(young_modulus > 0.0) || !std::isfinite(young_modulus)) {
-    throw std::invalid_argument("young_modulus must be positive, got " +
-                                std::to_string(young_modulus));
-  }
-  if (!(poisson_ratio > -1.0 && poisson_ratio < 0.5)) {
-    throw std::invalid_argument("poisson_ratio must lie in (-1, 0.5), got " +
-                                std::to_string(poisson_ratio));
-  }
-  if (!(density > 0.0) || !std::isfinite(density)) {
-    throw std::invalid_argument("density must be positive, got " + std::to_string(density));
-  }
-  if (!(cohesion >= 0.0) || !std::isfinite(cohesion)) {
-    throw std::invalid_argument("cohesion must not be negative, got " + std::to_string(cohesion));
-  }
-  if (!(friction_angle >= 0.0 && friction_angle < 90.0)) {
-    throw std::invalid_argument("friction_angle must lie in [0, 90) degrees, got " +
-                                std::to_string(friction_angle));
-  }
+  require_in_range("young_modulus", young_modulus_range, young_modulus);
+  require_in_range("poisson_ratio", poisson_ratio_range, poisson_ratio);
+  require_in_range("density", density_range, density);
+  require_in_range("cohesion", cohesion_range, cohesion);
+  require_in_range("friction_angle", mohr_coulomb_friction_range, friction_angle);
   // The message avoids the other parameter's name so that a case file error points here.
   if (!(dilatancy_angle >= 0.0 && dilatancy_angle <= friction_angle)) {
     throw std::invalid_argument("dilatancy_angle must lie between 0 and the friction angle (" +
                                 std::to_string(friction_angle) + " degrees), got " +
                                 std::to_string(dilatancy_angle));
   }
-  if (!(tension_limit >= 0.0) || !std::isfinite(tension_limit)) {
-    throw std::invalid_argument("tension_limit must be a finite number >= 0, got " +
-                                std::to_string(tension_limit));
-  }
+  require_in_range("tension_limit", tension_limit_range, tension_limit);
   if (cohesion == 0.0 && friction_angle == 0.0) {
     throw std::invalid_argument("cohesion is zero and so is the friction angle: the material "
                                 "would have no shear strength");

@@ -14,6 +14,12 @@
 
 namespace mpile {
 
+/// Mohr-Coulomb's own ranges (its elastic ones are material.hpp's), declared once: the registry's
+/// keys and the constructor take them from here.
+inline const ParameterRange cohesion_range = at_least(0.0);
+inline const ParameterRange mohr_coulomb_friction_range = between(0.0, true, 90.0, false);
+inline const ParameterRange tension_limit_range = at_least(0.0);
+
 /// The part of the yield surface a stress is returned to. Edges and corners are named after the
 /// triaxial states they hold, compression positive: triaxial compression has the axial stress
 /// largest and sigma_2 = sigma_3, triaxial extension has sigma_1 = sigma_2. (In a tension-positive
