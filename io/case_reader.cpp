@@ -33,6 +33,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -809,6 +810,16 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
       0.75 * static_cast<double>(limit.rlim_cur) < physical) {
     physical = 0.75 * static_cast<double>(limit.rlim_cur);
     whose = "three quarters of this process's address-space limit,";
+  }
+  // A budget set for this process (a machine shared with others, or a sanitizer build, whose
+  // address space cannot be limited) bounds it further.
+  if (const char* budget = std::getenv("MPILE_MEMORY_BUDGET_MIB")) {
+    char* end = nullptr;
+    const double mib = std::strtod(budget, &end);
+    if (end != budget && *end == '\0' && mib > 0.0 && mib * 1048576.0 < physical) {
+      physical = mib * 1048576.0;
+      whose = "MPILE_MEMORY_BUDGET_MIB's";
+    }
   }
   const double total = grid_bytes + particles_bytes;
   if (!(physical > 0.0) || total <= physical) {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -644,6 +646,37 @@ TEST(CaseReader, TheMonopileCaseBuildsTheSeedGeometry) {
 
 TEST(CaseReader, RejectsEachBadMonopileInputWithFileLineKeyAndReason) {
   expect_rejected(bad_monopile_inputs());
+}
+
+// MPILE_MEMORY_BUDGET_MIB bounds what a case may need below what the machine has (a shared
+// machine, or a sanitizer build whose address space cannot be limited): the quick monopile case
+// (about 2 MB) reads within 10 MiB and is refused at 1 MiB, at the key that drives it, naming the
+// budget; an unreadable value is ignored.
+TEST(CaseReader, AMemoryBudgetSetForTheProcessBoundsTheCase) {
+  const std::string text = monopile_edited("", "");
+  struct Budget {
+    explicit Budget(const char* mib) { setenv("MPILE_MEMORY_BUDGET_MIB", mib, 1); }
+    ~Budget() { unsetenv("MPILE_MEMORY_BUDGET_MIB"); }
+    Budget(const Budget&) = delete;
+    Budget& operator=(const Budget&) = delete;
+  };
+  {
+    Budget budget("10");
+    EXPECT_NO_THROW(read_case_text(text, "case.toml"));
+  }
+  {
+    Budget budget("junk");
+    EXPECT_NO_THROW(read_case_text(text, "case.toml"));
+  }
+  Budget budget("1");
+  try {
+    read_case_text(text, "case.toml");
+    ADD_FAILURE() << "a case past the budget was read";
+  } catch (const CaseError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("more than MPILE_MEMORY_BUDGET_MIB's 0.00105 GB"), std::string::npos)
+        << message;
+  }
 }
 
 TEST(CaseReader, TheContactCaseReads) {

@@ -145,7 +145,7 @@ elseif(MPILE_SANITIZE STREQUAL "address")
   add_test(NAME Fuzz.ShippedCaseMutantsAreAcceptedOrRefusedCleanly
            COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/fuzz_cases.py
                    --mpile $<TARGET_FILE:mpile> --mutants 120 --seed 1 --jobs 1 --memory 0
-                   --timeout 120)
+                   --budget 768 --timeout 120)
 endif()
 if(TEST Fuzz.ShippedCaseMutantsAreAcceptedOrRefusedCleanly)
   set_tests_properties(Fuzz.ShippedCaseMutantsAreAcceptedOrRefusedCleanly PROPERTIES TIMEOUT 600

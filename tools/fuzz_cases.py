@@ -209,9 +209,15 @@ def main():
                              "while it computes, and fails once it waits 10 s without computing)")
     parser.add_argument("--memory", type=int, default=1024,
                         help="MiB of address space per check (0: no limit, for sanitizer builds)")
+    parser.add_argument("--budget", type=int, default=0,
+                        help="MiB a case may need (MPILE_MEMORY_BUDGET_MIB), for sanitizer builds "
+                             "whose address space cannot be limited: 768 refuses what --memory "
+                             "1024 does (0: none)")
     parser.add_argument("--all-cases", action="store_true", help="include the slow case files")
     parser.add_argument("--keep", default=os.path.join(tempfile.gettempdir(), "mpile-fuzz-failures"))
     args = parser.parse_args()
+    if args.budget > 0:
+        os.environ["MPILE_MEMORY_BUDGET_MIB"] = str(args.budget)  # the checks inherit it
     if not 0 <= args.first < args.mutants:
         parser.error(f"--first must be at least 0 and below --mutants ({args.mutants})")
 
