@@ -183,7 +183,6 @@ struct CaseWarning {
 struct WaterSpec {
   double level = 0.0;           // m: y of the sea's free surface
   double seabed = 0.0;          // m: the saturated bodies' K0 surface
-  double water_density = 0.0;   // kg/m^3: the saturated materials' pore water
   double column_pressure = 0.0; // Pa: rho_w g (level - seabed)
 };
 

@@ -99,7 +99,6 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
                                "modelled");
     }
     const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
-    water.water_density = water_density;
     water.column_pressure = water_density * g * (water.level - water.seabed);
     column_pressure = water.column_pressure;
     spec.water = water;

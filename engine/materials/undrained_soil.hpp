@@ -49,8 +49,6 @@ public:
   double water_stiffness() const { return water_stiffness_; }
   double water_density() const { return water_density_; }
   double water_column_pressure() const override { return column_pressure_; }
-  /// The highest pore pressure (tension positive, relative to the column's) before cavitation.
-  double pore_pressure_limit() const { return pore_limit_; }
   Drainage drainage() const { return coupled_ ? Drainage::coupled : Drainage::undrained; }
 
 private:
