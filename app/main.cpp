@@ -153,6 +153,8 @@ int main(int argc, char** argv) {
   std::string scheme;
   verify->add_option("--scheme", scheme, "musl (default) or usl")
       ->check(CLI::IsMember({"musl", "usl"}));
+  verify->add_flag("--implicit-pore-pressure", options.implicit_pore_pressure,
+                   "saturated cases: the pore pressure solved on the grid each step");
   bool csv = false;
   verify->add_flag("--csv", csv,
                    "one CSV row per check: case, quantity, measured, reference, unit, error, "

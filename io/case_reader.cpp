@@ -660,6 +660,24 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     table->fail("block_cells", "must be at least 3 with GIMP shape functions, got " +
                                    std::to_string(s.block_cells));
   }
+  if (s.implicit_pore_pressure) {
+    if (!s.musl) {
+      table->fail("implicit_pore_pressure", "the implicit pore pressure corrects the remapped "
+                                            "velocities the strains are taken from: it needs "
+                                            "scheme = \"musl\"");
+    }
+    bool saturated = false;
+    for (MaterialSpec& material : spec.materials) {
+      if (material.water.drainage != Drainage::drained) {
+        material.water.implicit_pressure = true;
+        saturated = true;
+      }
+    }
+    if (!saturated) {
+      table->fail("implicit_pore_pressure", "no material is undrained or coupled: there is no "
+                                            "pore pressure to solve for; remove it");
+    }
+  }
   s.validate(); // what the reader let through is valid; a failure here is the reader's fault
   table->finish();
 }

@@ -31,6 +31,24 @@ void require_unscaled_water(const SolverSettings& settings) {
   }
 }
 
+/// The materials leave their pore pressure to the solver exactly when the solver finds it: else
+/// the water's increment would be counted twice, or not at all.
+void require_pore_pressure_agreement(const Scene& scene, const SolverSettings& settings) {
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& material = *scene.materials[m];
+    if (material.pore_pressure_index() < 0) {
+      continue;
+    }
+    if ((material.implicit_pore_storage() != nullptr) != settings.implicit_pore_pressure) {
+      throw std::invalid_argument(
+          "material '" + scene.material_names[m] + "' was built for " +
+          (settings.implicit_pore_pressure ? "an explicit" : "an implicit") +
+          " pore pressure and the solver's implicit_pore_pressure is " +
+          (settings.implicit_pore_pressure ? "on" : "off"));
+    }
+  }
+}
+
 } // namespace
 
 ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log)
@@ -100,6 +118,7 @@ void ExplicitSolver::prepare() {
       }
     }
   }
+  require_pore_pressure_agreement(scene_, settings_);
   scene_.boundaries.mark_constrained_dofs(scene_.grid);
   if (scene_.moving_mesh) {
     // A restored run continues on the mesh of its rigid body's restored position.
@@ -139,6 +158,7 @@ void ExplicitSolver::change_settings(const SolverSettings& settings) {
   if (!liquid_phases_.empty()) {
     require_unscaled_water(settings);
   }
+  require_pore_pressure_agreement(scene_, settings);
   const bool rebin_needed = settings.block_cells != settings_.block_cells;
   const bool scaling_changed = settings.mass_scaling != settings_.mass_scaling;
   if (scaling_changed) {

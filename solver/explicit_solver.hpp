@@ -4,6 +4,7 @@
 #include "engine/scene.hpp"
 #include "solver/energy_balance.hpp"
 #include "solver/passes.hpp"
+#include "solver/pore_pressure_projection.hpp"
 #include "solver/run_log.hpp"
 #include "solver/solver_settings.hpp"
 #include "solver/xpic.hpp"
@@ -120,6 +121,13 @@ private:
   void find_pore_pressure_from_flow(const passes::StepParameters& step);
   /// some_made_stress_free: the stress pass made soil inside a rigid body stress-free this step.
   EnergyIncrement apply_pore_pressure_from_flow(bool some_made_stress_free);
+  /// implicit_pore_pressure: the step's pore pressure increment solved on the grid from the
+  /// remapped velocities, which it corrects (solver/pore_pressure_projection.hpp) ...
+  template <GeometryMode mode, ShapeFunctions shape>
+  EnergyIncrement project_pore_pressure(const passes::StepParameters& step);
+  /// ... and taken by the undrained particles after the stress pass (coupled ones take it with
+  /// their flow's).
+  EnergyIncrement apply_projected_pore_pressure(bool some_made_stress_free);
   /// Loads, absorbing faces' holding forces, the momentum balance with damping, the dashpots.
   template <GeometryMode mode> EnergyIncrement balance_momentum(const passes::StepParameters& step);
   /// The structures' supports, the rigid bodies' prediction, contact, the bodies' accelerations.
@@ -181,6 +189,8 @@ private:
   /// Each particle's pore-pressure change from the water's flow, between the passes that find
   /// and apply it (scratch of one step).
   std::vector<passes::PendingPorePressure> pending_pore_;
+  /// implicit_pore_pressure's workspace (its system and solver kept from step to step).
+  passes::PorePressureProjection projection_;
   double min_dt_ = 0.0;
   /// The log says what sets the step when it falls below this: half the step at the start, then
   /// half the step last reported (not in checkpoints: a restart reports from its own step).

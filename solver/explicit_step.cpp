@@ -69,11 +69,13 @@ void ExplicitSolver::step_in_mode(double dt) {
   if (settings_.musl) {
     energy_ += remap_momentum<mode, contact, shape>(step);
   }
+  energy_ += project_pore_pressure<mode, shape>(step);
   find_pore_pressure_from_flow<mode, shape>(step);
   passes::StressPassResult stress = update_stress<mode, contact, shape>(step);
   energy_ +=
       EnergyIncrement{.external_work = stress.gravity_work, .internal_work = stress.internal_work};
   energy_ += apply_pore_pressure_from_flow(stress.stress_free_inside_rigid > 0);
+  energy_ += apply_projected_pore_pressure(stress.stress_free_inside_rigid > 0);
   const double moved_crossing_time = move_bodies_and_mesh<contact>(step, stress);
   finish_step(dt, stress, moved_crossing_time);
   if (settings_.cell_mean_pore_pressure && has_pore_water(scene_)) {
@@ -136,6 +138,42 @@ void ExplicitSolver::find_pore_pressure_from_flow(const passes::StepParameters& 
   PassTimer timer(timings_.stress_update);
   passes::pore_pressure_from_flow<mode, shape>(scene_, bins_, liquid_phases_, settings_, step,
                                                pending_pore_);
+  if (settings_.implicit_pore_pressure) {
+    // The flow's strains as found; the pressure is the one the grid's solve found.
+    const std::vector<double>& increment = projection_.particle_increment();
+    parallel_for(pending_pore_.size(), [&](std::size_t i) {
+      if (liquid_phases_[scene_.particles.material[i]] != nullptr) {
+        pending_pore_[i].pressure = increment[i];
+      }
+    });
+  }
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+EnergyIncrement ExplicitSolver::project_pore_pressure(const passes::StepParameters& step) {
+  if (!settings_.implicit_pore_pressure) {
+    return {};
+  }
+  PassTimer timer(timings_.grid_update);
+  const passes::ProjectionResult solved =
+      projection_.project<mode, shape>(scene_, bins_, settings_, step);
+  if (!solved.converged) {
+    std::ostringstream s;
+    s << at_step(steps_ + 1, time_) << "the pore pressure's system over " << solved.cells
+      << " cells did not converge (relative residual " << solved.residual << " after "
+      << solved.iterations << " conjugate-gradient iterations): the run went unstable";
+    throw SimulationError(s.str());
+  }
+  return {.damping = solved.dissipated};
+}
+
+EnergyIncrement ExplicitSolver::apply_projected_pore_pressure(bool some_made_stress_free) {
+  if (!settings_.implicit_pore_pressure) {
+    return {};
+  }
+  PassTimer timer(timings_.stress_update);
+  return {.internal_work = passes::apply_projected_pore_pressure(
+              scene_, bins_, projection_.particle_increment(), some_made_stress_free)};
 }
 
 EnergyIncrement ExplicitSolver::apply_pore_pressure_from_flow(bool some_made_stress_free) {

@@ -47,6 +47,10 @@ const std::vector<SolverParameter>& solver_parameters() {
           "each cell's saturated particles share their volume-weighted mean excess pore pressure "
           "after every stress update",
           &S::cell_mean_pore_pressure, {}),
+      setting("implicit_pore_pressure", "",
+              "saturated soil's pore pressure increment solved on the grid each step, implicit in "
+              "K_w: the step follows the skeleton (MUSL only)",
+              &S::implicit_pore_pressure, {}),
       setting("jaumann_rate", "", "co-rotate stress with the in-plane spin", &S::jaumann_rate, {}),
       setting("split_particles", "", "split a particle grown longer than its cell into halves",
               &S::split_particles, {}),
@@ -107,6 +111,8 @@ void SolverSettings::validate() const {
           "energy_residual_limit must exceed energy_residual_warning (" +
               std::to_string(energy_residual_warning) + "), got " +
               std::to_string(energy_residual_limit));
+  require(!implicit_pore_pressure || musl,
+          "implicit_pore_pressure corrects the remapped velocities: it needs MUSL");
   // Two blocks of one colour are a block apart; a GIMP particle writes to nodes one cell outside
   // its block, so a block of 2 cells would let two blocks of one colour share a node.
   require(shape_functions == ShapeFunctions::linear || block_cells >= 3,

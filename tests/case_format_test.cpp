@@ -157,6 +157,11 @@ TEST(CaseFormat, EachSolverSettingIsDeclaredOnceAndBoundToItsMember) {
                                       ? p.range.upper->value
                                       : (p.range.lower ? p.range.lower->value : 0.0) + 1.0);
           std::string text = block + "[solver]\n" + p.name + " = " + written + "\n";
+          if (p.name == "implicit_pore_pressure") {
+            // It needs pore water to solve for.
+            const std::string wood = "[materials.wood]\n";
+            text.insert(text.find(wood) + wood.size(), "drainage = \"undrained\"\n");
+          }
           if (p.name == "energy_residual_warning") {
             text += "energy_residual_limit = 5.0\n";
           }

@@ -41,6 +41,11 @@ CaseSpec read_verification_case(std::string_view file, const Options& options,
     }
   }
   for (MaterialSpec& material : spec.materials) {
+    if (options.implicit_pore_pressure && material.water.drainage != Drainage::drained) {
+      // As the reader sets it from [solver] implicit_pore_pressure.
+      material.water.implicit_pressure = true;
+      spec.solver.implicit_pore_pressure = true;
+    }
     const auto nu = material.parameters.find("poisson_ratio");
     if (poisson == PoissonRatio::the_options && options.poisson_ratio &&
         nu != material.parameters.end()) {

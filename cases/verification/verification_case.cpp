@@ -23,6 +23,8 @@ Grid uniform_grid(double r0, double r1, int nr, double y0, double y1, int ny) {
 }
 
 SolverSettings apply_options(SolverSettings settings, const Options& options) {
+  settings.implicit_pore_pressure =
+      settings.implicit_pore_pressure || options.implicit_pore_pressure;
   if (options.bbar) {
     settings.bbar = *options.bbar;
   }

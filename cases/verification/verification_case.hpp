@@ -40,6 +40,7 @@ struct Options {
   std::optional<double> courant_number;
   std::optional<bool> musl;                      // default: MUSL; false: USL
   std::optional<ShapeFunctions> shape_functions; // default: the case file's
+  bool implicit_pore_pressure = false; // saturated cases: the pore pressure solved on the grid
   int block_cells = 8;
 };
 

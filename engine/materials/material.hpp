@@ -18,6 +18,7 @@ inline const ParameterRange poisson_ratio_range = between(-1.0, false, 0.5, fals
 inline const ParameterRange density_range = above(0.0);
 
 struct LiquidPhase;
+struct PoreStorage;
 
 /// A run of material points of one material handed to its stress update. Strain increments and the
 /// constrained modulus are per entry of the run; stress and state are the particles' own.
@@ -68,6 +69,10 @@ public:
   /// A saturated material whose water flows (drainage = "coupled"): where its particles keep the
   /// water's state and the constants of its two phases; null for every other.
   virtual const LiquidPhase* liquid_phase() const { return nullptr; }
+  /// A saturated material whose pore pressure the solver finds implicitly ([solver]
+  /// implicit_pore_pressure): where its pore pressure is kept and its water's compressibility;
+  /// null for every other (then the material updates its own pore pressure, if it has one).
+  virtual const PoreStorage* implicit_pore_storage() const { return nullptr; }
   /// Sets the state consistent with a given initial stress (for example after a K0 procedure).
   virtual void initialise_state(const Stress& /*stress*/, double* /*state*/) const {}
 

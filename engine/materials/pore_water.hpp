@@ -38,6 +38,11 @@ struct PoreWater {
   /// The tension (Pa, relative to the atmosphere) at which the pore water cavitates: its pore
   /// pressure rises no further (PLAXIS's cavitation cut-off). Infinite: no cut-off.
   double cavitation_stress = std::numeric_limits<double>::infinity();
+  /// Not a material key: set from [solver] implicit_pore_pressure. The solver finds the pore
+  /// pressure's increment on the grid each step, implicitly in the water's stiffness (physics.md
+  /// section 9d): the material then leaves the pore pressure to it and its water adds nothing to
+  /// the stiffness the time step follows.
+  bool implicit_pressure = false;
 };
 
 /// Standard gravity (m/s^2): a hydraulic conductivity is measured under it, k = kappa rho_w g / mu,
@@ -58,6 +63,20 @@ struct LiquidPhase {
   /// The highest p the water may reach before it cavitates (column_pressure +
   /// cavitation_stress; infinite without a cut-off).
   double pore_limit = std::numeric_limits<double>::infinity();
+};
+
+/// What the solver's implicit pore pressure needs of a saturated material (undrained or
+/// coupled): where the pore pressure is kept and how much water a unit of pressure stores.
+struct PoreStorage {
+  int pore_slot = 0;      // state[pore_slot]: p; state[pore_slot + 1]: its change since the start
+  int porosity_slot = -1; // state[porosity_slot]: the porosity now; -1: constant (undrained)
+  double porosity = 0.0;  // n0, the porosity of an undrained material
+  double bulk_modulus = 0.0;                                   // K_w (Pa)
+  double pore_limit = std::numeric_limits<double>::infinity(); // as LiquidPhase's
+  /// n / K_w (1/Pa): the pore water's volume change per unit volume of soil and unit pressure.
+  double compressibility(const double* state) const {
+    return (porosity_slot < 0 ? porosity : state[porosity_slot]) / bulk_modulus;
+  }
 };
 
 /// A water parameter as the case layer sees it: its key, unit, meaning, default and range, bound

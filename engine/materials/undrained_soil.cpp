@@ -48,6 +48,12 @@ UndrainedSoil::UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater
     liquid_.bulk_modulus = water.bulk_modulus;
     liquid_.pore_limit = pore_limit_;
   }
+  implicit_ = water.implicit_pressure;
+  storage_.pore_slot = pore_index_;
+  storage_.porosity_slot = coupled_ ? liquid_.porosity_slot : -1;
+  storage_.porosity = porosity_;
+  storage_.bulk_modulus = water.bulk_modulus;
+  storage_.pore_limit = pore_limit_;
 }
 
 Stress UndrainedSoil::effective(const Stress& stress, const double* state) const {
@@ -104,6 +110,12 @@ void UndrainedSoil::update_stress(const StressUpdateBatch& batch) const {
     } else {
       dp = water_stiffness_ * volumetric;
     }
+    if (implicit_) {
+      // The solver has found this step's pore pressure increment on the grid and adds it after
+      // this pass; the water sets no step.
+      dp = 0.0;
+      stiffness = 0.0;
+    }
     // Beyond the cavitation stress the water boils out of solution and carries no more tension:
     // the skeleton alone takes the rest of the dilation (its work is then dissipated).
     dp = std::min(dp, pore_limit_ - water[0]);
@@ -118,7 +130,7 @@ void UndrainedSoil::update_stress(const StressUpdateBatch& batch) const {
 }
 
 double UndrainedSoil::constrained_modulus(const Stress& stress, const double* state) const {
-  return skeleton_->constrained_modulus(effective(stress, state), state) + water_stiffness(state);
+  return skeleton_->constrained_modulus(effective(stress, state), state) + step_stiffness(state);
 }
 
 double UndrainedSoil::shear_modulus(const Stress& stress, const double* state) const {

@@ -31,6 +31,9 @@ public:
   std::span<const std::string> state_names() const override { return state_names_; }
   int pore_pressure_index() const override { return pore_index_; }
   const LiquidPhase* liquid_phase() const override { return coupled_ ? &liquid_ : nullptr; }
+  const PoreStorage* implicit_pore_storage() const override {
+    return implicit_ ? &storage_ : nullptr;
+  }
   /// The skeleton's state from the effective stress: the pore pressure must already be in state.
   void initialise_state(const Stress& stress, double* state) const override;
   void update_stress(const StressUpdateBatch& batch) const override;
@@ -57,6 +60,11 @@ private:
   double water_stiffness(const double* state) const {
     return coupled_ ? liquid_.bulk_modulus / state[liquid_.porosity_slot] : water_stiffness_;
   }
+  /// What the water adds to the stiffness the time step follows: nothing when the solver takes
+  /// the pore pressure implicitly.
+  double step_stiffness(const double* state) const {
+    return implicit_ ? 0.0 : water_stiffness(state);
+  }
 
   std::unique_ptr<Material> skeleton_;
   double porosity_ = 0.0;
@@ -67,7 +75,9 @@ private:
   double pore_limit_ = 0.0;
   int pore_index_ = 0; // state[pore_index_] is p, state[pore_index_ + 1] its change since the start
   bool coupled_ = false;
+  bool implicit_ = false; // the solver finds the pore pressure (PoreWater::implicit_pressure)
   LiquidPhase liquid_;
+  PoreStorage storage_;
   std::vector<std::string> state_names_;
 };
 

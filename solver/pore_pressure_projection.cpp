@@ -1,0 +1,362 @@
+#include "solver/pore_pressure_projection.hpp"
+
+#include "engine/materials/pore_water.hpp"
+#include "engine/parallel.hpp"
+#include "solver/rigid_interiors.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+
+namespace mpile::passes {
+
+namespace {
+
+/// Each material's PoreStorage when the solver finds its pore pressure (null for every other).
+std::vector<const PoreStorage*> implicit_storages(const Scene& scene) {
+  std::vector<const PoreStorage*> storages;
+  for (const auto& material : scene.materials) {
+    storages.push_back(material->implicit_pore_storage());
+  }
+  return storages;
+}
+
+/// A particle made stress-free inside a rigid body carries no pore pressure: it takes none.
+bool stress_free(const Particles& p, std::size_t i, const PoreStorage& storage) {
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  return p.stress[i] == Stress{} &&
+         p.state[i * stride + static_cast<std::size_t>(storage.pore_slot)] == 0.0;
+}
+
+/// One node DOF's response to a force f from the pressure increment over the step: the
+/// skeleton's velocity changes by skeleton f, the water's by water f, and the pore water's volume
+/// flux by weight f.
+struct DofResponse {
+  double skeleton = 0.0;
+  double water = 0.0;
+  double weight = 0.0;
+  double flux = 0.0;
+};
+
+/// Coupled soil: the water's balance with the drag at the new velocities, (M_w + dt Q) dw =
+/// dt f + dt Q dv, put into the mixture's, M_s dv + M_nw dw = dt f, as couple_phases folds it:
+/// dv = dt (1 - M_nw / D) f / M*, dw = dt (f + Q dv) / D, D = M_w + dt Q, M* = M_s + M_nw dt Q / D.
+DofResponse coupled_response(const LiquidNode& water, double v, double w, bool skeleton_held,
+                             bool water_held, double dt, double dt_over_beta) {
+  const double share = water.share;
+  const double porosity = share / water.mass;
+  const double d = water.mass + dt * water.drag;
+  DofResponse r;
+  if (skeleton_held) {
+    r.water = water_held ? 0.0 : dt / d; // through a drained face, against the drag alone
+  } else if (water_held) {
+    r.skeleton = dt_over_beta / water.mixture_mass; // the phases move as one
+    r.water = r.skeleton;
+  } else {
+    const double skeleton_mass = water.mixture_mass - share;
+    const double effective = skeleton_mass + share * dt * water.drag / d;
+    r.skeleton = dt_over_beta * (1.0 - share / d) / effective;
+    r.water = dt * (1.0 + water.drag * r.skeleton) / d;
+  }
+  r.weight = (1.0 - porosity) * r.skeleton + porosity * r.water;
+  r.flux = (1.0 - porosity) * v + porosity * w;
+  return r;
+}
+
+} // namespace
+
+template <GeometryMode mode, ShapeFunctions shape>
+ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBins& bins,
+                                                 const SolverSettings& settings,
+                                                 const StepParameters& step) {
+  Grid& grid = scene.grid;
+  Particles& p = scene.particles;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const std::vector<const PoreStorage*> storages = implicit_storages(scene);
+  const int cells_r = grid.cells_r();
+  const int nodes_r = grid.nodes_r();
+  const int nodes_y = grid.nodes_y();
+  const auto cell_count =
+      static_cast<std::size_t>(cells_r) * static_cast<std::size_t>(grid.cells_y());
+  cells_.resize(cell_count);
+  std::memset(static_cast<void*>(cells_.data()), 0, cells_.size() * sizeof(CellSums));
+  // Soil the stress pass will make stress-free inside a rigid body carries no pore pressure.
+  const std::optional<RigidInteriors> interiors = kept_rigid_interiors(scene, settings);
+  const auto storage_of = [&](std::size_t i) -> const PoreStorage* {
+    const PoreStorage* storage = storages[p.material[i]];
+    if (storage == nullptr || scene.field_of(p.body[i]) != 0 ||
+        (interiors && interiors->holds_soil(p, i))) {
+      return nullptr;
+    }
+    return storage;
+  };
+
+  // Each cell's divergence operator and storage, its particles' sums. A block holds every
+  // particle of its cells, so each cell is one block's work: the sums are the same for any
+  // thread count.
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    const auto [cr0, cy0] = bins.block_origin(block);
+    const int block_cells = bins.block_cells();
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const PoreStorage* storage = storage_of(i);
+      if (storage == nullptr) {
+        continue;
+      }
+      const int cr = p.cell_r[i];
+      const int cy = p.cell_y[i];
+      if (cr < cr0 || cr >= cr0 + block_cells || cy < cy0 || cy >= cy0 + block_cells) {
+        throw std::logic_error("project_pore_pressure: a particle is not binned in its cell's "
+                               "block");
+      }
+      CellSums& cell = cells_[static_cast<std::size_t>(cr + cells_r * cy)];
+      const double volume = p.volume[i];
+      cell.volume += volume;
+      cell.storage += volume * storage->compressibility(p.state.data() + i * stride);
+      const double hoop = has_theta(mode) ? volume / p.r[i] : 0.0;
+      const auto weights = particle_weights<shape>(grid, p, i);
+      for (int k = 0; k < weights.size; ++k) {
+        const int node = weights.node[k];
+        const int lr = node % nodes_r - (cr - 1);
+        const int ly = node / nodes_r - (cy - 1);
+        if (lr < 0 || lr > 3 || ly < 0 || ly > 3) {
+          throw std::logic_error("project_pore_pressure: a particle reaches beyond the nodes of "
+                                 "its cell's neighbours");
+        }
+        double* c = cell.coefficient[lr + 4 * ly];
+        c[0] += volume * weights.dN_dr[k] + hoop * weights.N[k];
+        c[1] += volume * weights.dN_dy[k];
+      }
+    }
+  });
+
+  // The unknowns: the cells that hold saturated soil, in cell order.
+  unknown_of_cell_.assign(cell_count, -1);
+  cell_of_unknown_.clear();
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    if (cells_[c].volume > 0.0) {
+      unknown_of_cell_[c] = static_cast<int>(cell_of_unknown_.size());
+      cell_of_unknown_.push_back(static_cast<int>(c));
+    }
+  }
+  const auto unknowns = static_cast<Eigen::Index>(cell_of_unknown_.size());
+  ProjectionResult result;
+  result.cells = unknowns;
+  particle_increment_.assign(p.size(), 0.0);
+  if (unknowns == 0) {
+    return result;
+  }
+
+  // Each node DOF's response to the pressure's force, and the flux it carries.
+  const std::size_t dofs = 2 * grid.nodes.size();
+  response_.assign(dofs, 0.0);
+  water_response_.assign(dofs, 0.0);
+  Eigen::VectorXd weight = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs));
+  Eigen::VectorXd flux = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs));
+  const bool structures = !grid.structure_fields.empty();
+  const bool coupled = !grid.liquid.empty();
+  const double dt_over_beta = step.dt / settings.mass_scaling;
+  parallel_for(grid.nodes.size(), [&](std::size_t i) {
+    const GridNode& node = grid.nodes[i];
+    if (!(node.mass > step.mass_floor)) {
+      return;
+    }
+    // Where a structure occupies the node, contact has decided the soil's velocity (and the
+    // water keeps to it): the pressure moves neither there.
+    if (structures && grid.structure_occupies(i, step.mass_floor)) {
+      for (int d = 0; d < 2; ++d) {
+        flux[static_cast<Eigen::Index>(2 * i + d)] = node.velocity()[d];
+      }
+      return;
+    }
+    const bool liquid = coupled && grid.liquid[i].mass > 0.0 && grid.liquid[i].mixture_mass > 0.0;
+    for (int d = 0; d < 2; ++d) {
+      const bool held = (grid.constrained[i] & (1u << d)) != 0;
+      DofResponse r;
+      if (liquid) {
+        const bool water_held = (grid.water_held[i] & (1u << d)) != 0;
+        r = coupled_response(grid.liquid[i], node.velocity()[d], grid.liquid[i].velocity()[d], held,
+                             water_held, step.dt, dt_over_beta);
+      } else {
+        r.skeleton = held ? 0.0 : dt_over_beta / node.mass;
+        r.weight = r.skeleton;
+        r.flux = node.velocity()[d];
+      }
+      const std::size_t dof = 2 * i + static_cast<std::size_t>(d);
+      response_[dof] = r.skeleton;
+      water_response_[dof] = r.water;
+      weight[static_cast<Eigen::Index>(dof)] = r.weight;
+      flux[static_cast<Eigen::Index>(dof)] = r.flux;
+    }
+  });
+
+  // G, row by row (each row's columns in increasing order).
+  divergence_.resize(unknowns, static_cast<Eigen::Index>(dofs));
+  divergence_.setZero();
+  divergence_.reserve(Eigen::VectorXi::Constant(unknowns, 32));
+  Eigen::VectorXd storage(unknowns);
+  for (Eigen::Index u = 0; u < unknowns; ++u) {
+    const int c = cell_of_unknown_[static_cast<std::size_t>(u)];
+    const CellSums& cell = cells_[static_cast<std::size_t>(c)];
+    storage[u] = cell.storage;
+    const int cr = c % cells_r;
+    const int cy = c / cells_r;
+    for (int ly = 0; ly < 4; ++ly) {
+      const int ny = cy - 1 + ly;
+      for (int lr = 0; lr < 4; ++lr) {
+        const int nr = cr - 1 + lr;
+        if (ny < 0 || ny >= nodes_y || nr < 0 || nr >= nodes_r) {
+          continue;
+        }
+        const Eigen::Index node = nr + static_cast<Eigen::Index>(nodes_r) * ny;
+        for (int d = 0; d < 2; ++d) {
+          const double value = cell.coefficient[lr + 4 * ly][d];
+          if (value != 0.0) {
+            divergence_.insert(u, 2 * node + d) = value;
+          }
+        }
+      }
+    }
+  }
+  divergence_.makeCompressed();
+
+  // (S + dt G H G^T) dp = dt G u*, in m^3: S dp is the water's volume change.
+  system_ = step.dt * (divergence_ * weight.asDiagonal() * divergence_.transpose());
+  Eigen::SparseMatrix<double> diagonal(unknowns, unknowns);
+  diagonal.reserve(Eigen::VectorXi::Constant(unknowns, 1));
+  for (Eigen::Index u = 0; u < unknowns; ++u) {
+    diagonal.insert(u, u) = storage[u];
+  }
+  system_ += diagonal;
+  const Eigen::VectorXd rhs = step.dt * (divergence_ * flux);
+  // Relative to the right-hand side: the pressure's error is then a small fraction of this
+  // step's increment, far below what the skeleton's explicit update leaves.
+  solver_.setTolerance(1e-10);
+  solver_.compute(system_);
+  const Eigen::VectorXd increment = solver_.solve(rhs);
+  result.iterations = static_cast<int>(solver_.iterations());
+  result.residual = solver_.error();
+  result.converged = solver_.info() == Eigen::Success && increment.allFinite();
+  if (!result.converged) {
+    return result;
+  }
+
+  // The correction: the pressure's force f = -G^T dp on every node DOF the pressure moves.
+  const Eigen::VectorXd force = -(divergence_.transpose() * increment);
+  correction_.assign(dofs, 0.0);
+  water_correction_.assign(dofs, 0.0);
+  // Backward Euler's damping: the correction from (v*, p^n) to (v', p^n + dp) loses the kinetic
+  // energy of the velocity change and dp^2 S / 2 of the water's (physics.md section 9d).
+  const double kinetic = parallel_reduce(
+      grid.nodes.size(), 0.0,
+      [&](std::size_t begin, std::size_t end, double lost) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const bool liquid = coupled && grid.liquid[i].mass > 0.0;
+          const double skeleton_mass = liquid ? grid.liquid[i].mixture_mass - grid.liquid[i].share
+                                              : settings.mass_scaling * grid.nodes[i].mass;
+          for (int d = 0; d < 2; ++d) {
+            const std::size_t dof = 2 * i + static_cast<std::size_t>(d);
+            const double f = force[static_cast<Eigen::Index>(dof)];
+            correction_[dof] = response_[dof] * f;
+            grid.nodes[i].velocity()[d] += correction_[dof];
+            lost += 0.5 * skeleton_mass * correction_[dof] * correction_[dof];
+            if (liquid) {
+              water_correction_[dof] = water_response_[dof] * f;
+              grid.liquid[i].velocity()[d] += water_correction_[dof];
+              lost += 0.5 * grid.liquid[i].share * water_correction_[dof] * water_correction_[dof];
+            }
+          }
+        }
+        return lost;
+      },
+      std::plus<>(), true);
+  result.dissipated = kinetic + 0.5 * increment.dot(storage.cwiseProduct(increment));
+
+  // The particles' velocities take the nodes' corrections (as FLIP and PIC both would); each
+  // saturated particle keeps its cell's increment for after the stress pass.
+  bins.for_each_block([&](int, std::span<const std::int32_t> particles) {
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      if (scene.field_of(p.body[i]) != 0) {
+        continue;
+      }
+      const auto weights = particle_weights<shape>(grid, p, i);
+      double dv[2] = {0.0, 0.0}, dw[2] = {0.0, 0.0};
+      for (int k = 0; k < weights.size; ++k) {
+        const auto dof = 2 * static_cast<std::size_t>(weights.node[k]);
+        dv[0] += weights.N[k] * correction_[dof];
+        dv[1] += weights.N[k] * correction_[dof + 1];
+        if (coupled) {
+          dw[0] += weights.N[k] * water_correction_[dof];
+          dw[1] += weights.N[k] * water_correction_[dof + 1];
+        }
+      }
+      p.v_r[i] += dv[0];
+      p.v_y[i] += dv[1];
+      const Material& material = *scene.materials[p.material[i]];
+      if (const LiquidPhase* phase = material.liquid_phase()) {
+        double* w = p.state.data() + i * stride + static_cast<std::size_t>(phase->velocity_slot);
+        w[0] += dw[0];
+        w[1] += dw[1];
+      }
+      if (storage_of(i) != nullptr) {
+        const auto c = static_cast<std::size_t>(p.cell_r[i] + cells_r * p.cell_y[i]);
+        particle_increment_[i] = increment[unknown_of_cell_[c]];
+      }
+    }
+  });
+  return result;
+}
+
+double apply_projected_pore_pressure(Scene& scene, const ParticleBins& bins,
+                                     const std::vector<double>& increment,
+                                     bool some_made_stress_free) {
+  Particles& p = scene.particles;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const std::vector<const PoreStorage*> storages = implicit_storages(scene);
+  std::vector<double> block_work(static_cast<std::size_t>(bins.block_count()), 0.0);
+  bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
+    double work = 0.0;
+    for (const std::int32_t q : particles) {
+      const auto i = static_cast<std::size_t>(q);
+      const PoreStorage* storage = storages[p.material[i]];
+      // Coupled soil takes its increment with its flow's (apply_pore_pressure_from_flow).
+      if (storage == nullptr || storage->porosity_slot >= 0 || increment[i] == 0.0 ||
+          (some_made_stress_free && stress_free(p, i, *storage))) {
+        continue;
+      }
+      double* state = p.state.data() + i * stride;
+      double& pore = state[storage->pore_slot];
+      // The stress pass booked p^n times the volume change; the trapezoid's other half is dp / 2
+      // times it, and the volume change is what the solve stored, n dp / K_w. Past the
+      // cavitation stress the water takes no more: what it would have stored is dissipated.
+      const double applied = std::min(increment[i], storage->pore_limit - pore);
+      work += p.volume[i] * 0.5 * applied * storage->compressibility(state) * increment[i];
+      pore += applied;
+      state[storage->pore_slot + 1] += applied;
+      Stress& s = p.stress[i];
+      s[RR] += applied;
+      s[YY] += applied;
+      s[TT] += applied;
+    }
+    block_work[static_cast<std::size_t>(block)] = work;
+  });
+  double total = 0.0;
+  for (const std::int32_t block : bins.non_empty_blocks()) {
+    total += block_work[static_cast<std::size_t>(block)];
+  }
+  return total;
+}
+
+#define MPILE_PROJECTION(MODE, SHAPE)                                                              \
+  template ProjectionResult PorePressureProjection::project<MODE, SHAPE>(                          \
+      Scene&, const ParticleBins&, const SolverSettings&, const StepParameters&);
+MPILE_PROJECTION(GeometryMode::axisymmetric, ShapeFunctions::linear)
+MPILE_PROJECTION(GeometryMode::axisymmetric, ShapeFunctions::gimp)
+MPILE_PROJECTION(GeometryMode::plane_strain, ShapeFunctions::linear)
+MPILE_PROJECTION(GeometryMode::plane_strain, ShapeFunctions::gimp)
+#undef MPILE_PROJECTION
+
+} // namespace mpile::passes

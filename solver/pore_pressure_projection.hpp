@@ -1,0 +1,87 @@
+#pragma once
+
+// The implicit pore pressure of saturated soil ([solver] implicit_pore_pressure; physics.md
+// section 9d). Explicitly, the pore water's stiffness K_w / n sets the step: its undrained P-wave
+// is five to seven times faster than the skeleton's. Here the step's pore pressure increment is
+// found on the grid instead, one value dp_c per cell, from the remapped velocities the stress
+// pass will read, so that the velocities it leaves and the increment agree (backward Euler in
+// the water's stiffness, a fractional step: the step's momentum balance took the pressure at the
+// step's start, and this pass adds what its increment does):
+//   (S_c / dt) dp_c = G_c u',   u' = u* - H G^T dp,
+// with S_c = sum over the cell's saturated particles of V n / K_w, G_c the cell's divergence
+// operator (sum of V grad N, and V N / r in the hoop direction), u the pore water's volume flux
+// per node, (1 - n) v + n w (v for undrained soil), and H each node DOF's response to a force
+// from the pressure: dt / M for undrained soil, the two phases' implicit-drag response for
+// coupled soil, 0 where a support, a drained face's skeleton or a structure has decided the
+// velocity. The system S + dt G H G^T is symmetric positive definite; Eigen's conjugate gradients
+// solve it. The correction -H G^T dp goes onto the nodes and, interpolated, onto the particles.
+//
+// Reads particle cell, position, volume, body, material, state and stress, grid field 0 and the
+// liquid nodes after the MUSL remap; writes their velocities, the particles' velocities (and
+// their water's) and the increment each saturated particle takes after the stress pass.
+
+#include "engine/geometry_mode.hpp"
+#include "engine/particle_bins.hpp"
+#include "engine/scene.hpp"
+#include "engine/shape_functions.hpp"
+#include "solver/passes.hpp"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+
+#include <cstdint>
+#include <vector>
+
+namespace mpile::passes {
+
+struct ProjectionResult {
+  std::int64_t cells = 0; // pressure unknowns (cells holding saturated soil)
+  int iterations = 0;     // conjugate-gradient iterations
+  double residual = 0.0;  // the solve's relative residual
+  bool converged = true;
+  double dissipated = 0.0; // backward Euler's numerical damping over the step (J)
+};
+
+class PorePressureProjection {
+public:
+  /// Solves for this step's pore pressure increment and corrects the velocities.
+  template <GeometryMode mode, ShapeFunctions shape>
+  ProjectionResult project(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                           const StepParameters& step);
+
+  /// The increment each particle takes (0 for a particle without implicit pore water), by
+  /// particle index, from the last projection.
+  const std::vector<double>& particle_increment() const { return particle_increment_; }
+
+private:
+  /// One cell's sums over its saturated particles: the divergence operator's coefficients on the
+  /// 4 x 4 nodes a GIMP particle of the cell can reach (r and y), its volume and storage.
+  struct CellSums {
+    double coefficient[16][2];
+    double volume;
+    double storage; // sum V n / K_w
+  };
+
+  std::vector<CellSums> cells_;
+  std::vector<int> unknown_of_cell_;
+  std::vector<int> cell_of_unknown_;
+  std::vector<double> response_;       // H per node DOF (2 per node): dv / f
+  std::vector<double> water_response_; // dw / f per node DOF (coupled only)
+  std::vector<double> flux_;           // u* per node DOF
+  std::vector<double> correction_;     // dv per node DOF
+  std::vector<double> water_correction_;
+  std::vector<double> particle_increment_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> divergence_;
+  Eigen::SparseMatrix<double> system_;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver_;
+};
+
+/// After the stress pass: each undrained particle's pore pressure and total stress take the
+/// increment (no further than its cavitation limit); returns the water's work beyond the stress
+/// pass's (which booked the pressure at the step's start), dp / 2 times the stored volume change.
+/// A particle the stress pass made stress-free inside a rigid body is left so.
+double apply_projected_pore_pressure(Scene& scene, const ParticleBins& bins,
+                                     const std::vector<double>& increment,
+                                     bool some_made_stress_free);
+
+} // namespace mpile::passes
