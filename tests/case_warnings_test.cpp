@@ -227,7 +227,7 @@ TEST(CaseWarnings, AOneCellWallIsANoteThatStrictLetsPass) {
 }
 
 // Saturated soil under pure FLIP gets a note (never an error) at its drainage key; with XPIC(2),
-// or a FLIP/PIC blend, none.
+// a FLIP/PIC blend or the implicit pore pressure with the cell-mean one, none.
 TEST(CaseWarnings, SaturatedSoilUnderPureFlipIsNoted) {
   const std::string column =
       replaced(read_text(source / "cases/verification/absorbing_column.toml"), "density = 2000.0",
@@ -250,6 +250,15 @@ TEST(CaseWarnings, SaturatedSoilUnderPureFlipIsNoted) {
       << notes(column);
   EXPECT_EQ(notes(column + "[solver]\nxpic_order = 2\n"), "");
   EXPECT_EQ(notes(column + "[solver]\nflip_fraction = 0.99\n"), "");
+  // The implicit pore pressure with one excess pore pressure per cell: no note; either alone:
+  // the note.
+  const std::string wave = saturated_wave_column("drainage = \"undrained\"");
+  EXPECT_NE(notes(wave), "");
+  EXPECT_NE(notes(wave + "[solver]\nimplicit_pore_pressure = true\n"), "");
+  EXPECT_NE(notes(wave + "[solver]\ncell_mean_pore_pressure = true\n"), "");
+  EXPECT_EQ(
+      notes(wave + "[solver]\nimplicit_pore_pressure = true\ncell_mean_pore_pressure = true\n"),
+      "");
 }
 
 // A drained face lets the water out at p = 0 beyond it: under gravity a hydrostatic column drains
