@@ -248,9 +248,10 @@ TEST(CoupledSoil, AnAbsorbingFaceLetsTheSaturatedPulseOut) {
 // Nearly incompressible soil (undrained, or coupled with so small a k that its water cannot move
 // against the skeleton) under pure FLIP lets a mode the grid does not see grow after the pulse has
 // left the same column: 1.9 % of the pulse is back by 0.049 s, the ledger 4.7 % off, and less so
-// the smaller the step (Courant 0.25: none). XPIC(2), which the saturated installation cases use,
-// filters it: under 0.01 % left, the dashpots 99.1 %, the ledger within 0.4 % (measured), both
-// drainages. 2 %: the ledger's target; 0.1 % left against FLIP's 1.9 %.
+// the smaller the step (Courant 0.25: none). XPIC(2) filters it: under 0.01 % left, the dashpots
+// 99.1 %, the ledger within 0.4 % (measured), both drainages. 2 %: the ledger's target; 0.1 % left
+// against FLIP's 1.9 %. (The saturated installation cases take the implicit pore pressure
+// instead, which absorbing faces refuse.)
 TEST(CoupledSoil, XpicLetsTheNearlyIncompressiblePulseOut) {
   for (const std::string water :
        {"drainage = \"undrained\"", "drainage = \"coupled\"\nhydraulic_conductivity = 1e-9"}) {
