@@ -118,6 +118,10 @@ void print_pore_water(std::ostream& out, const CaseSpec& spec, const Scene& scen
     if (std::isfinite(water.cavitation_stress)) {
       out << ", cavitates at " << water.cavitation_stress << " Pa of tension";
     }
+    if (water.implicit_pressure) {
+      out << "; its pore pressure solved on the grid (implicit_pore_pressure): the step follows "
+             "the skeleton";
+    }
     out << "\n";
     if (b_high >= b_low) {
       out << "  at the first phase's initial stresses: Skempton B " << b_low << " to " << b_high
