@@ -163,20 +163,18 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
     if (!(node.mass > step.mass_floor)) {
       return;
     }
-    // Where a structure occupies the node, contact has decided the soil's velocity (and the
-    // water keeps to it): the pressure moves neither there.
-    if (structures && grid.structure_occupies(i, step.mass_floor)) {
-      for (int d = 0; d < 2; ++d) {
-        flux[static_cast<Eigen::Index>(2 * i + d)] = node.velocity()[d];
-      }
-      return;
-    }
+    // Where a structure occupies the node the pressure moves the soil too: held there for the
+    // contact's sake, the soil at the wall would take the water's stiffness explicitly, and under a
+    // cone's tip its pore water ran away in tension within ten steps. The contact corrects what
+    // the pressure pushes into the structure in the next step. The water keeps to the skeleton
+    // there, as the phases are tied at a wall (couple_phases).
+    const bool at_wall = structures && grid.structure_occupies(i, step.mass_floor);
     const bool liquid = coupled && grid.liquid[i].mass > 0.0 && grid.liquid[i].mixture_mass > 0.0;
     for (int d = 0; d < 2; ++d) {
       const bool held = (grid.constrained[i] & (1u << d)) != 0;
       DofResponse r;
       if (liquid) {
-        const bool water_held = (grid.water_held[i] & (1u << d)) != 0;
+        const bool water_held = at_wall || (grid.water_held[i] & (1u << d)) != 0;
         r = coupled_response(grid.liquid[i], node.velocity()[d], grid.liquid[i].velocity()[d], held,
                              water_held, step.dt, dt_over_beta);
       } else {

@@ -12,8 +12,8 @@
 // operator (sum of V grad N, and V N / r in the hoop direction), u the pore water's volume flux
 // per node, (1 - n) v + n w (v for undrained soil), and H each node DOF's response to a force
 // from the pressure: dt / M for undrained soil, the two phases' implicit-drag response for
-// coupled soil, 0 where a support, a drained face's skeleton or a structure has decided the
-// velocity. The system S + dt G H G^T is symmetric positive definite; Eigen's conjugate gradients
+// coupled soil (the mixture's at a structure's wall, where the phases are tied), 0 where a
+// support or a drained face holds the skeleton. The system S + dt G H G^T is symmetric positive definite; Eigen's conjugate gradients
 // solve it. The correction -H G^T dp goes onto the nodes and, interpolated, onto the particles.
 //
 // Reads particle cell, position, volume, body, material, state and stress, grid field 0 and the
