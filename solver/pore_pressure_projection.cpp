@@ -75,6 +75,7 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   Particles& p = scene.particles;
   const auto stride = static_cast<std::size_t>(p.state_stride);
   const std::vector<const PoreStorage*> storages = implicit_storages(scene);
+  const std::vector<const LiquidPhase*> phases = liquid_phases(scene);
   const int cells_r = grid.cells_r();
   const int nodes_r = grid.nodes_r();
   const int nodes_y = grid.nodes_y();
@@ -82,6 +83,7 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       static_cast<std::size_t>(cells_r) * static_cast<std::size_t>(grid.cells_y());
   cells_.resize(cell_count);
   std::memset(static_cast<void*>(cells_.data()), 0, cells_.size() * sizeof(CellSums));
+  takes_increment_.assign(p.size(), 0);
   // Soil the stress pass will make stress-free inside a rigid body carries no pore pressure.
   const std::optional<RigidInteriors> interiors = kept_rigid_interiors(scene, settings);
   const auto storage_of = [&](std::size_t i) -> const PoreStorage* {
@@ -111,9 +113,9 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
         throw std::logic_error("project_pore_pressure: a particle is not binned in its cell's "
                                "block");
       }
+      takes_increment_[i] = 1;
       CellSums& cell = cells_[static_cast<std::size_t>(cr + cells_r * cy)];
       const double volume = p.volume[i];
-      cell.volume += volume;
       cell.storage += volume * storage->compressibility(p.state.data() + i * stride);
       const double hoop = has_theta(mode) ? volume / p.r[i] : 0.0;
       const auto weights = particle_weights<shape>(grid, p, i);
@@ -136,7 +138,7 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   unknown_of_cell_.assign(cell_count, -1);
   cell_of_unknown_.clear();
   for (std::size_t c = 0; c < cell_count; ++c) {
-    if (cells_[c].volume > 0.0) {
+    if (cells_[c].storage > 0.0) {
       unknown_of_cell_[c] = static_cast<int>(cell_of_unknown_.size());
       cell_of_unknown_.push_back(static_cast<int>(c));
     }
@@ -293,13 +295,12 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       }
       p.v_r[i] += dv[0];
       p.v_y[i] += dv[1];
-      const Material& material = *scene.materials[p.material[i]];
-      if (const LiquidPhase* phase = material.liquid_phase()) {
+      if (const LiquidPhase* phase = phases[p.material[i]]) {
         double* w = p.state.data() + i * stride + static_cast<std::size_t>(phase->velocity_slot);
         w[0] += dw[0];
         w[1] += dw[1];
       }
-      if (storage_of(i) != nullptr) {
+      if (takes_increment_[i] != 0) {
         const auto c = static_cast<std::size_t>(p.cell_r[i] + cells_r * p.cell_y[i]);
         particle_increment_[i] = increment[unknown_of_cell_[c]];
       }

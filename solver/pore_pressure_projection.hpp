@@ -13,8 +13,9 @@
 // per node, (1 - n) v + n w (v for undrained soil), and H each node DOF's response to a force
 // from the pressure: dt / M for undrained soil, the two phases' implicit-drag response for
 // coupled soil (the mixture's at a structure's wall, where the phases are tied), 0 where a
-// support or a drained face holds the skeleton. The system S + dt G H G^T is symmetric positive definite; Eigen's conjugate gradients
-// solve it. The correction -H G^T dp goes onto the nodes and, interpolated, onto the particles.
+// support or a drained face holds the skeleton. The system S + dt G H G^T is symmetric positive
+// definite; Eigen's conjugate gradients solve it. The correction -H G^T dp goes onto the nodes and,
+// interpolated, onto the particles.
 //
 // Reads particle cell, position, volume, body, material, state and stress, grid field 0 and the
 // liquid nodes after the MUSL remap; writes their velocities, the particles' velocities (and
@@ -55,10 +56,10 @@ public:
 
 private:
   /// One cell's sums over its saturated particles: the divergence operator's coefficients on the
-  /// 4 x 4 nodes a GIMP particle of the cell can reach (r and y), its volume and storage.
+  /// 4 x 4 nodes a GIMP particle of the cell can reach (r and y), and its storage (> 0 exactly
+  /// where the cell holds saturated soil).
   struct CellSums {
     double coefficient[16][2];
-    double volume;
     double storage; // sum V n / K_w
   };
 
@@ -67,10 +68,10 @@ private:
   std::vector<int> cell_of_unknown_;
   std::vector<double> response_;       // H per node DOF (2 per node): dv / f
   std::vector<double> water_response_; // dw / f per node DOF (coupled only)
-  std::vector<double> flux_;           // u* per node DOF
   std::vector<double> correction_;     // dv per node DOF
   std::vector<double> water_correction_;
   std::vector<double> particle_increment_;
+  std::vector<std::uint8_t> takes_increment_; // per particle: saturated soil in the solve
   Eigen::SparseMatrix<double, Eigen::RowMajor> divergence_;
   Eigen::SparseMatrix<double> system_;
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver_;

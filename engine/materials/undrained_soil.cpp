@@ -95,26 +95,25 @@ void UndrainedSoil::update_stress(const StressUpdateBatch& batch) const {
     const StrainIncrement& de = batch.strain[k];
     double* water = batch.state + i * stride + pore;
     const double volumetric = de[RR] + de[YY] + de[TT];
-    double stiffness = water_stiffness_;
+    // With the implicit pore pressure the solver has found this step's increment on the grid and
+    // adds it after this pass, and the water sets no step: dp and the stiffness stay 0.
+    double stiffness = 0.0;
     double dp = 0.0;
     if (coupled_) {
       // The skeleton's share of the water's volume change, (1 - n) d eps_vol: the grains it moves
       // into or out of the pores; the water's own flow adds n d eps_vol,w (the solver's water
       // pass). The grains are incompressible, so their volume (1 - n) V is kept.
       double& n = batch.state[i * stride + static_cast<std::size_t>(liquid_.porosity_slot)];
-      dp = liquid_.bulk_modulus * (1.0 - n) / n * volumetric;
+      if (!implicit_) {
+        dp = liquid_.bulk_modulus * (1.0 - n) / n * volumetric;
+      }
       n = 1.0 - (1.0 - n) / (1.0 + volumetric);
       // The step follows the undrained P-wave, the faster of the two phases' (Biot's fast wave
       // lies between the drained skeleton's and it).
-      stiffness = liquid_.bulk_modulus / n;
-    } else {
+      stiffness = implicit_ ? 0.0 : liquid_.bulk_modulus / n;
+    } else if (!implicit_) {
       dp = water_stiffness_ * volumetric;
-    }
-    if (implicit_) {
-      // The solver has found this step's pore pressure increment on the grid and adds it after
-      // this pass; the water sets no step.
-      dp = 0.0;
-      stiffness = 0.0;
+      stiffness = water_stiffness_;
     }
     // Beyond the cavitation stress the water boils out of solution and carries no more tension:
     // the skeleton alone takes the rest of the dilation (its work is then dissipated).
