@@ -172,8 +172,10 @@ def check(mpile, path, timeout, memory_mib):
         return "accepted", None
     if returncode != 2:
         return "failed", f"exit {returncode}: {err.strip()[-300:]}"
-    lines = [line for line in err.splitlines() if line.strip()]
-    # The message's first line names the file (a TOML syntax error then shows the line with a caret).
+    # Notes (a one-cell wall, say) go before the refusal and may name an included file; the
+    # refusal's first line names the file (a TOML syntax error then shows the line with a caret).
+    lines = [line for line in err.splitlines()
+             if line.strip() and not line.startswith("mpile: note: ")]
     if not lines or not lines[0].startswith("mpile: ") or "internal error" in err:
         return "failed", f"exit 2 without a message: {err.strip()[-300:]}"
     if os.path.basename(path) not in lines[0]:
