@@ -115,7 +115,11 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
   }
   PassTimer timer(timings_.grid_update);
   const passes::WaterVelocityResult water = passes::update_water_velocities<mode>(scene_, step);
-  return {.external_work = water.support_work, .drag = water.drag};
+  // With the pore pressure solved on the grid the drag is booked there, at the corrected
+  // velocities: the predictor's relative flow, driven by p^n alone, is in part a mode the remap
+  // and the correction do not keep, and the pressure's work on it is not booked either.
+  return {.external_work = water.support_work,
+          .drag = settings_.implicit_pore_pressure ? 0.0 : water.drag};
 }
 
 template <GeometryMode mode, ShapeFunctions shape>
@@ -164,7 +168,7 @@ EnergyIncrement ExplicitSolver::project_pore_pressure(const passes::StepParamete
       << solved.iterations << " conjugate-gradient iterations): the run went unstable";
     throw SimulationError(s.str());
   }
-  return {.damping = solved.dissipated};
+  return {.damping = solved.dissipated, .drag = solved.drag};
 }
 
 EnergyIncrement ExplicitSolver::apply_projected_pore_pressure(bool some_made_stress_free) {

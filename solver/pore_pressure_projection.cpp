@@ -65,6 +65,28 @@ DofResponse coupled_response(const LiquidNode& water, double v, double w, bool s
   return r;
 }
 
+/// Darcy's drag over the step, n Q (w - v)^2 dt summed over the nodes' r and y DOFs, at the
+/// corrected velocities: those whose divergences the pore pressure's work is booked on.
+double darcy_dissipation(const Grid& grid, const StepParameters& step) {
+  return parallel_reduce(
+      grid.nodes.size(), 0.0,
+      [&](std::size_t begin, std::size_t end, double sum) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const LiquidNode& water = grid.liquid[i];
+          if (!(water.mass > 0.0) || !(grid.nodes[i].mass > step.mass_floor)) {
+            continue;
+          }
+          const double porosity = water.share / water.mass;
+          for (int d = 0; d < 2; ++d) {
+            const double relative = water.velocity()[d] - grid.nodes[i].velocity()[d];
+            sum += porosity * water.drag * relative * relative * step.dt;
+          }
+        }
+        return sum;
+      },
+      std::plus<>(), true);
+}
+
 } // namespace
 
 template <GeometryMode mode, ShapeFunctions shape>
@@ -263,9 +285,10 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
             grid.nodes[i].velocity()[d] += correction_[dof];
             lost += 0.5 * skeleton_mass * correction_[dof] * correction_[dof];
             if (liquid) {
+              LiquidNode& water = grid.liquid[i];
               water_correction_[dof] = water_response_[dof] * f;
-              grid.liquid[i].velocity()[d] += water_correction_[dof];
-              lost += 0.5 * grid.liquid[i].share * water_correction_[dof] * water_correction_[dof];
+              water.velocity()[d] += water_correction_[dof];
+              lost += 0.5 * water.share * water_correction_[dof] * water_correction_[dof];
             }
           }
         }
@@ -273,6 +296,9 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       },
       std::plus<>(), true);
   result.dissipated = kinetic + 0.5 * increment.dot(storage.cwiseProduct(increment));
+  if (coupled) {
+    result.drag = darcy_dissipation(grid, step);
+  }
 
   // The particles' velocities take the nodes' corrections (as FLIP and PIC both would); each
   // saturated particle keeps its cell's increment for after the stress pass.

@@ -41,6 +41,7 @@ struct ProjectionResult {
   double residual = 0.0;  // the solve's relative residual
   bool converged = true;
   double dissipated = 0.0; // backward Euler's numerical damping over the step (J)
+  double drag = 0.0;       // Darcy's dissipation over the step at the corrected velocities (J)
 };
 
 class PorePressureProjection {

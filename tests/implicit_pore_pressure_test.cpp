@@ -6,6 +6,7 @@
 #include "app/run_command.hpp"
 #include "cases/verification/verification_cases.hpp"
 #include "io/case_error.hpp"
+#include "io/hdf5_file.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 #include "tests/saturated_column.hpp"
@@ -149,6 +150,39 @@ TEST(ImplicitPorePressure, SoilAtAStructuresWallStaysStable) {
     }
   }
   EXPECT_LT(largest, 50e3) << run.solver->time();
+}
+
+// Darcy's drag is booked at the velocities the pore pressure's work is booked at, the corrected
+// ones. Booked at the predictor's, driven by p^n alone, it took in a relative flow that the remap
+// and the correction do not keep (and whose pressure work is booked nowhere): in the coarse CPT
+// chamber, coupled at k = 1e-4 m/s, the ledger was 3.1 % off at 1 mm of penetration (16 % at its
+// worst, in the first centimetre), 0.41 % with the drag at the corrected velocities; the
+// explicit water closes it to 0.21 % there, with a seventh of the step. Within 1 %.
+TEST(ImplicitPorePressure, CoupledConeLedgerBooksTheDragWhereThePressureWorks) {
+  const auto directory = fresh_directory("implicit_cone_ledger");
+  RunOptions options;
+  options.case_path = (source / "cases/cpt/cpt_coarse.toml").string();
+  options.output_directory = directory.string();
+  options.overrides = {"materials.sand.drainage=\"coupled\"",
+                       "materials.sand.grain_density=2650.0",
+                       "materials.sand.hydraulic_conductivity=1e-4",
+                       "solver.implicit_pore_pressure=true",
+                       "solver.cell_mean_pore_pressure=true",
+                       "phases.1.mass_scaling=1.0",
+                       "phases.1.stop_at.penetration=0.001",
+                       "output.snapshot_penetrations=[]"};
+  std::ostringstream out, err;
+  ASSERT_EQ(run_case(options, out, err), 0) << err.str();
+  Hdf5File history((directory / "history.h5").string(), Hdf5File::Mode::read);
+  const std::vector<double> residual = history.read_doubles("/energy/relative_residual");
+  const std::vector<double> drag = history.read_doubles("/energy/drag");
+  ASSERT_FALSE(residual.empty());
+  EXPECT_GT(drag.back(), 0.0);
+  double worst = 0.0;
+  for (const double r : residual) {
+    worst = std::max(worst, std::abs(r));
+  }
+  EXPECT_LT(worst, 0.01);
 }
 
 // `mpile check` says the pore pressure is solved on the grid and gives the skeleton's step:
