@@ -21,13 +21,14 @@ namespace mpile {
 
 namespace {
 
-/// Mass scaling slows the skeleton's waves by scaling its inertia; the water's inertia and drag
-/// would need their own scaling, and the consolidation time would change with it.
-void require_unscaled_water(const SolverSettings& settings) {
-  if (settings.mass_scaling != 1.0) {
-    throw std::invalid_argument("mass_scaling must be 1 in a scene with coupled soil: scaling "
-                                "the skeleton's inertia but not the water's would change how "
-                                "fast it drains");
+/// Mass scaling multiplies both phases' inertia and leaves Darcy's drag, so that the water drains
+/// as fast as unscaled while inertia is negligible (physics.md section 9d). With the water's
+/// stiffness explicit its waves would set the step still: only the implicit pore pressure gains.
+void require_scalable_water(const SolverSettings& settings) {
+  if (settings.mass_scaling != 1.0 && !settings.implicit_pore_pressure) {
+    throw std::invalid_argument("mass_scaling must be 1 in a scene with coupled soil unless "
+                                "[solver] implicit_pore_pressure is on: the water's explicit "
+                                "stiffness would still set the step");
   }
 }
 
@@ -109,7 +110,7 @@ void ExplicitSolver::prepare() {
                    [](const LiquidPhase* phase) { return phase != nullptr; })) {
     liquid_phases_.clear();
   } else {
-    require_unscaled_water(settings_);
+    require_scalable_water(settings_);
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (liquid_phases_[p.material[i]] != nullptr && scene_.field_of(p.body[i]) != 0) {
         throw std::invalid_argument(
@@ -156,7 +157,7 @@ void ExplicitSolver::report_settings() {
 void ExplicitSolver::change_settings(const SolverSettings& settings) {
   settings.validate();
   if (!liquid_phases_.empty()) {
-    require_unscaled_water(settings);
+    require_scalable_water(settings);
   }
   require_pore_pressure_agreement(scene_, settings);
   const bool rebin_needed = settings.block_cells != settings_.block_cells;

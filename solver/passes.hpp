@@ -47,14 +47,16 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
                        const SolverSettings& settings);
 /// ... the water's inertia and drag folded into field 0's nodes before their momentum balance ...
 /// Returns the kinetic energy the water tied to the skeleton at a structure's wall gives up.
-template <GeometryMode mode> double couple_phases(Scene& scene, const StepParameters& step);
+template <GeometryMode mode>
+double couple_phases(Scene& scene, const StepParameters& step, double mass_scaling);
 /// ... the water's velocities from the skeleton's final ones ...
 struct WaterVelocityResult {
   double drag = 0.0;         // taken by Darcy's drag over the step
   double support_work = 0.0; // done on the water by the impermeable faces
 };
 template <GeometryMode mode>
-WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step);
+WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step,
+                                            double mass_scaling);
 /// With cell_mean_pore_pressure: each cell's saturated particles take their volume-weighted mean
 /// excess pore pressure (the total stress following, the effective stress kept); the stored energy
 /// this changes is the ledger's plastic term (solver/pore_pressure_to_grid.cpp).

@@ -44,21 +44,22 @@ struct DofResponse {
 /// dt f + dt Q dv, put into the mixture's, M_s dv + M_nw dw = dt f, as couple_phases folds it:
 /// dv = dt (1 - M_nw / D) f / M*, dw = dt (f + Q dv) / D, D = M_w + dt Q, M* = M_s + M_nw dt Q / D.
 DofResponse coupled_response(const LiquidNode& water, double v, double w, bool skeleton_held,
-                             bool water_held, double dt, double dt_over_beta) {
+                             bool water_held, double dt_over_beta) {
+  // Mass scaling beta multiplies both phases' inertia: divided through by it, every dt is dt / beta.
   const double share = water.share;
   const double porosity = share / water.mass;
-  const double d = water.mass + dt * water.drag;
+  const double d = water.mass + dt_over_beta * water.drag;
   DofResponse r;
   if (skeleton_held) {
-    r.water = water_held ? 0.0 : dt / d; // through a drained face, against the drag alone
+    r.water = water_held ? 0.0 : dt_over_beta / d; // through a drained face, against the drag alone
   } else if (water_held) {
     r.skeleton = dt_over_beta / water.mixture_mass; // the phases move as one
     r.water = r.skeleton;
   } else {
     const double skeleton_mass = water.mixture_mass - share;
-    const double effective = skeleton_mass + share * dt * water.drag / d;
+    const double effective = skeleton_mass + share * dt_over_beta * water.drag / d;
     r.skeleton = dt_over_beta * (1.0 - share / d) / effective;
-    r.water = dt * (1.0 + water.drag * r.skeleton) / d;
+    r.water = dt_over_beta * (1.0 + water.drag * r.skeleton) / d;
   }
   r.weight = (1.0 - porosity) * r.skeleton + porosity * r.water;
   r.flux = (1.0 - porosity) * v + porosity * w;
@@ -200,7 +201,7 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       if (liquid) {
         const bool water_held = at_wall || (grid.water_held[i] & (1u << d)) != 0;
         r = coupled_response(grid.liquid[i], node.velocity()[d], grid.liquid[i].velocity()[d], held,
-                             water_held, step.dt, dt_over_beta);
+                             water_held, dt_over_beta);
       } else {
         r.skeleton = held ? 0.0 : dt_over_beta / node.mass;
         r.weight = r.skeleton;
@@ -276,8 +277,9 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       [&](std::size_t begin, std::size_t end, double lost) {
         for (std::size_t i = begin; i < end; ++i) {
           const bool liquid = coupled && grid.liquid[i].mass > 0.0;
-          const double skeleton_mass = liquid ? grid.liquid[i].mixture_mass - grid.liquid[i].share
-                                              : settings.mass_scaling * grid.nodes[i].mass;
+          const double skeleton_mass =
+              settings.mass_scaling * (liquid ? grid.liquid[i].mixture_mass - grid.liquid[i].share
+                                              : grid.nodes[i].mass);
           for (int d = 0; d < 2; ++d) {
             const std::size_t dof = 2 * i + static_cast<std::size_t>(d);
             const double f = force[static_cast<Eigen::Index>(dof)];
@@ -288,7 +290,8 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
               LiquidNode& water = grid.liquid[i];
               water_correction_[dof] = water_response_[dof] * f;
               water.velocity()[d] += water_correction_[dof];
-              lost += 0.5 * water.share * water_correction_[dof] * water_correction_[dof];
+              lost += 0.5 * settings.mass_scaling * water.share * water_correction_[dof] *
+                      water_correction_[dof];
             }
           }
         }

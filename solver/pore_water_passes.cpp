@@ -124,15 +124,18 @@ struct EffectiveDof {
 };
 inline EffectiveDof effective_dof(double skeleton_mass, double share, double water_mass,
                                   double drag, double force, double water_force, double v, double w,
-                                  double dt) {
-  const double d = water_mass + dt * drag;
-  return {skeleton_mass + share * dt * drag / d,
+                                  double dt, double beta) {
+  // Mass scaling beta multiplies both phases' inertia and leaves the drag: the grid update divides
+  // the effective force by beta times the mass returned here, so the drag enters as dt Q / beta.
+  const double d = water_mass + dt * drag / beta;
+  return {skeleton_mass + share * dt * drag / beta / d,
           force - share / d * (water_force - drag * (w - v))};
 }
 
 } // namespace
 
-template <GeometryMode mode> double couple_phases(Scene& scene, const StepParameters& step) {
+template <GeometryMode mode>
+double couple_phases(Scene& scene, const StepParameters& step, double beta) {
   Grid& grid = scene.grid;
   const bool structures = !grid.structure_fields.empty();
   return parallel_reduce(
@@ -169,13 +172,13 @@ template <GeometryMode mode> double couple_phases(Scene& scene, const StepParame
             if (tied) {
               mass = node.mass;
               node.momentum[d] = mass * v;
-              node.force[d] += water.share * (w - v) / step.dt;
-              merged += 0.5 * skeleton_mass * water.share / mass * (w - v) * (w - v);
+              node.force[d] += beta * water.share * (w - v) / step.dt;
+              merged += beta * 0.5 * skeleton_mass * water.share / mass * (w - v) * (w - v);
               continue;
             }
             const EffectiveDof dof =
                 effective_dof(skeleton_mass, water.share, water.mass, water.drag, node.force[d],
-                              water.force[d], v, w, step.dt);
+                              water.force[d], v, w, step.dt, beta);
             mass = dof.mass; // the same for r and y
             node.momentum[d] = dof.mass * v;
             node.force[d] = dof.force;
@@ -188,14 +191,14 @@ template <GeometryMode mode> double couple_phases(Scene& scene, const StepParame
             water.velocity()[2] = omega_w;
             if (tied) {
               node.momentum[2] = node.inertia * omega;
-              node.force[2] += water.share_inertia * (omega_w - omega) / step.dt;
-              merged += 0.5 * skeleton_inertia * water.share_inertia / node.inertia *
+              node.force[2] += beta * water.share_inertia * (omega_w - omega) / step.dt;
+              merged += beta * 0.5 * skeleton_inertia * water.share_inertia / node.inertia *
                         (omega_w - omega) * (omega_w - omega);
               continue;
             }
             const EffectiveDof dof = effective_dof(skeleton_inertia, water.share_inertia,
                                                    water.inertia, water.drag_inertia, node.force[2],
-                                                   water.force[2], omega, omega_w, step.dt);
+                                                   water.force[2], omega, omega_w, step.dt, beta);
             node.inertia = dof.mass;
             node.momentum[2] = dof.mass * omega;
             node.force[2] = dof.force;
@@ -207,10 +210,11 @@ template <GeometryMode mode> double couple_phases(Scene& scene, const StepParame
 }
 
 template <GeometryMode mode>
-WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step) {
+WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step, double beta) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
   Grid& grid = scene.grid;
   const double dt = step.dt;
+  const double dt_over_beta = dt / beta; // the water's inertia scaled as the skeleton's
   const bool structures = !grid.structure_fields.empty();
   auto update = [&](std::size_t begin, std::size_t end, WaterVelocityResult result) {
     for (std::size_t i = begin; i < end; ++i) {
@@ -230,8 +234,9 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
       for (int d = 0; d < dofs; ++d) {
         const double v = node.velocity()[d];
         const double w = water.velocity()[d];
-        const double held = mass[d] + dt * drag[d];
-        double w_new = (mass[d] * w + dt * water.force[d] + dt * drag[d] * v) / held;
+        const double held = mass[d] + dt_over_beta * drag[d];
+        double w_new =
+            (mass[d] * w + dt_over_beta * water.force[d] + dt_over_beta * drag[d] * v) / held;
         // A face that holds the skeleton is impermeable: the water keeps to the skeleton's normal
         // velocity there (the theta DOF is a direction along every face). The skeleton's support
         // booked the mixture's reaction as if the water had moved freely; held, the water's share
@@ -240,7 +245,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
         if (at_wall) {
           w_new = v; // tied to the skeleton in couple_phases, its drag booked there
         } else if (d < 2 && (grid.water_held[i] & (1u << d)) != 0) {
-          result.support_work += porosity * mass[d] * (v - w_new) * v;
+          result.support_work += beta * porosity * mass[d] * (v - w_new) * v;
           w_new = v;
         }
         // Darcy's drag takes n Q (w - v)^2 per unit time, at the velocities it acts on: the
@@ -307,8 +312,9 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
           const double w_pic[3] = {velocity[0], velocity[1], r * velocity[2]};
           const double v_off[3] = {p.v_r[i] - skeleton[0], p.v_y[i] - skeleton[1],
                                    has_theta(mode) ? p.v_theta[i] - r * skeleton[2] : 0.0};
-          const double decay = 1.0 / (1.0 + step.dt * phase.drag_per_mass);
+          const double decay = 1.0 / (1.0 + step.dt * phase.drag_per_mass / settings.mass_scaling);
           const double water_mass = phase.mass_fraction * p.mass[i];
+          const double inertia = settings.mass_scaling * water_mass; // what the kinetic energy sees
           double blend_drop = 0.0, drag_drop = 0.0;
           for (int d = 0; d < dofs; ++d) {
             const double w_off = flip * (w_flip[d] - w_pic[d]);
@@ -318,8 +324,8 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
             drag_drop += w_blend * w_blend - w_new * w_new;
             w[d] = w_new;
           }
-          out.transfer += 0.5 * water_mass * blend_drop;
-          out.drag += 0.5 * water_mass * drag_drop;
+          out.transfer += 0.5 * inertia * blend_drop;
+          out.drag += 0.5 * inertia * drag_drop;
           // Gravity on the water works along the water's path; the stress pass books the mixture's
           // weight along the skeleton's, so the difference is added here.
           out.external_work +=
@@ -544,11 +550,11 @@ MPILE_WATER_PASSES(GeometryMode::plane_strain, ShapeFunctions::gimp)
 #undef MPILE_WATER_PASSES
 template void rescale_remapped_skeleton<GeometryMode::axisymmetric>(Scene&);
 template void rescale_remapped_skeleton<GeometryMode::plane_strain>(Scene&);
-template double couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
-template double couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&);
+template double couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&, double);
+template double couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&, double);
 template WaterVelocityResult
-update_water_velocities<GeometryMode::axisymmetric>(Scene&, const StepParameters&);
+update_water_velocities<GeometryMode::axisymmetric>(Scene&, const StepParameters&, double);
 template WaterVelocityResult
-update_water_velocities<GeometryMode::plane_strain>(Scene&, const StepParameters&);
+update_water_velocities<GeometryMode::plane_strain>(Scene&, const StepParameters&, double);
 
 } // namespace mpile::passes

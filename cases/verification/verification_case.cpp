@@ -45,6 +45,9 @@ SolverSettings apply_options(SolverSettings settings, const Options& options) {
   if (options.shape_functions) {
     settings.shape_functions = *options.shape_functions;
   }
+  if (options.mass_scaling) {
+    settings.mass_scaling = *options.mass_scaling;
+  }
   settings.block_cells = options.block_cells;
   return settings;
 }

@@ -41,6 +41,7 @@ struct Options {
   std::optional<bool> musl;                      // default: MUSL; false: USL
   std::optional<ShapeFunctions> shape_functions; // default: the case file's
   bool implicit_pore_pressure = false; // saturated cases: the pore pressure solved on the grid
+  std::optional<double> mass_scaling;  // default: the case's (1)
   int block_cells = 8;
 };
 

@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+"""The saturated installation runs side by side: a Markdown table of forces and pore pressures.
+
+Each run is PATH[:LABEL], PATH a monopile run's directory (history.h5 and run.log). For each
+penetration of --at, at the first history row at or past it: the time, the forces of the soil on
+the tip (F_y) and on the external and internal shafts (F_r) in kN/rad with the pore water's part
+in brackets, each shaft's friction over its radial force, sqrt(F_y^2 + F_theta^2) / |F_r|, and the
+excess pore pressure (kPa) at the monitors below the tip, in the plug and beside the outer shaft
+1 and 2 m deep (base/seed_monopile.toml). A run that stopped short gives its last penetration.
+The run's steps and wall time come from the last row.
+
+    tools/saturated_table.py out/gdp_und:"GDP, undrained" out/gdp_k1e-4:"GDP, k = 1e-4" --at 0.05,0.1
+"""
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+import mpile  # noqa: E402
+
+MONITORS = ("below_tip", "inside_tip", "outer_shaft_1m", "outer_shaft_2m")
+
+
+def series(path, names):
+    available = {name for name, _, _ in mpile.list_datasets(path)}
+    found = [name for name in names if name in available]
+    data = mpile.read_series(path, found)
+    return {name: data.get(name, np.full(len(data["/time"]), np.nan)) for name in names}
+
+
+def force(f, surface, component, row, pore=False):
+    name = f"/reactions/pile/{surface}/{'pore_' if pore else ''}{component}"
+    return f[name][row] / 1e3
+
+
+def ratio(f, surface, row):
+    base = f"/reactions/pile/{surface}"
+    shear = np.hypot(f[f"{base}/F_y"][row], f[f"{base}/F_theta"][row])
+    return shear / abs(f[f"{base}/F_r"][row])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("runs", nargs="+", help="PATH[:LABEL]")
+    parser.add_argument("--at", type=lambda s: [float(x) for x in s.split(",")], default=[0.05, 0.1])
+    args = parser.parse_args()
+    names = ["/time", "/step", "/wall_time", "/bodies/pile/penetration"]
+    for surface in ("tip", "external_shaft", "internal_shaft"):
+        for component in ("F_r", "F_y", "F_theta", "pore_F_r", "pore_F_y"):
+            names.append(f"/reactions/pile/{surface}/{component}")
+    names += [f"/monitors/{m}/excess_pore_pressure" for m in MONITORS]
+    header = ("| run | steps | wall (s) | at | time (s) | tip F_y | ext F_r | int F_r | ext ratio "
+              "| int ratio | excess p: below tip / plug / shaft 1 m / 2 m (kPa) |")
+    print(header)
+    print("|" + "---|" * (header.count("|") - 1))
+    for item in args.runs:
+        path, _, label = item.partition(":")
+        history = Path(path) / "history.h5" if Path(path).is_dir() else Path(path)
+        try:
+            f = series(str(history), names)
+        except mpile.RunFileError as error:
+            sys.exit(str(error))
+        penetration = f["/bodies/pile/penetration"]
+        first = True
+        for depth in args.at:
+            reached = np.nonzero(penetration >= depth)[0]
+            row = reached[0] if reached.size else len(penetration) - 1
+            at = f"{depth:g} m" if reached.size else f"{penetration[row]:.3f} m (stopped)"
+            cells = [label or path, f"{int(f['/step'][-1]):,}".replace(",", " "),
+                     f"{f['/wall_time'][-1]:.0f}"] if first else ["", "", ""]
+            first = False
+            cells += [at, f"{f['/time'][row]:.3f}"]
+            for surface, component in (("tip", "F_y"), ("external_shaft", "F_r"),
+                                       ("internal_shaft", "F_r")):
+                total = force(f, surface, component, row)
+                pore = force(f, surface, f"pore_{component}", row)
+                cells.append(f"{total:.1f}" + (f" ({pore:.1f})" if np.isfinite(pore) else ""))
+            cells += [f"{ratio(f, 'external_shaft', row):.2f}",
+                      f"{ratio(f, 'internal_shaft', row):.2f}"]
+            excess = [f[f"/monitors/{m}/excess_pore_pressure"][row] / 1e3 for m in MONITORS]
+            cells.append(" / ".join("-" if not np.isfinite(x) else f"{x:.0f}" for x in excess))
+            if not reached.size:
+                cells[3] = at
+                print("| " + " | ".join(cells) + " |")
+                break
+            print("| " + " | ".join(cells) + " |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
