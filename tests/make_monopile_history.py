@@ -13,7 +13,10 @@ on the pile are, in kN/rad,
   external_shaft  -20 s     8 s    -6 s
   internal_shaft   10 s     4 s    -3 s
 
-so that |F_y| / |F_r| = 0.4 and sqrt(F_y^2 + F_theta^2) / |F_r| = 0.5 on both shafts.
+so that |F_y| / |F_r| = 0.4 and sqrt(F_y^2 + F_theta^2) / |F_r| = 0.5 on both shafts. The pore
+water carries 3/4 of each F_r and 1/2 of each F_y (pore_F_r, pore_F_y), and the excess pore
+pressure at the monitors below_tip, inside_tip, outer_shaft_1m and outer_shaft_2m is -100, -50,
+-20 and -10 kPa times s (tension positive: compressed). Row k is step 10 k at a wall time of k / 10 s.
 
 particles.pvd lists two snapshots of a 50 x 50 lattice of soil particles (spacing 0.02 m) on
 0 < r, y < 1 m with sigma_ry = 10 kPa/m * (r + y - 1 m) at t = 2.5 s (half of it at t = 0), around a
@@ -34,6 +37,8 @@ from point_snapshot import write_point_snapshot  # noqa: E402
 FORCES_KN = {"tip": (2.0, 50.0, -4.0), "external_shaft": (-20.0, 8.0, -6.0),
              "internal_shaft": (10.0, 4.0, -3.0)}
 RADIUS = {"tip": 2.0, "external_shaft": 2.05, "internal_shaft": 1.95}  # lever arms of M_theta [m]
+MONITOR_EXCESS_KPA = {"below_tip": 100.0, "inside_tip": 50.0, "outer_shaft_1m": 20.0,
+                      "outer_shaft_2m": 10.0}
 SPEED = 0.1  # m/s
 # The part of the case file the tools read: the phases, of which the installation is the last.
 CASE_TEXT = """title = "synthetic monopile"
@@ -77,6 +82,12 @@ def write_history(path):
             dataset(f"/reactions/pile/{surface}/F_y", f_y + held, "N/rad")
             dataset(f"/reactions/pile/{surface}/F_theta", f_theta, "N/rad")
             dataset(f"/reactions/pile/{surface}/M_theta", RADIUS[surface] * f_theta, "N m/rad")
+            dataset(f"/reactions/pile/{surface}/pore_F_r", 0.75 * f_r, "N/rad")
+            dataset(f"/reactions/pile/{surface}/pore_F_y", 0.5 * f_y, "N/rad")
+        dataset("/step", 10.0 * np.arange(rows), "-")
+        dataset("/wall_time", 0.1 * np.arange(rows), "s")
+        for monitor, kpa in MONITOR_EXCESS_KPA.items():
+            dataset(f"/monitors/{monitor}/excess_pore_pressure", -1e3 * kpa * penetration / 0.1, "Pa")
 
 
 def write_snapshot(path, scale):

@@ -21,6 +21,17 @@ set_tests_properties(PlotMonopile.WritesFivePngs PROPERTIES FIXTURES_REQUIRED sy
   PASS_REGULAR_EXPRESSION
   "/figures/fig3_radial_forces\\.png\n[^\n]*/figures/fig4_vertical_forces\\.png\n[^\n]*/figures/fig5_friction_ratio\\.png\n[^\n]*/figures/fig6_total_friction_ratio\\.png\n[^\n]*/figures/fig7_penetration\\.png\n")
 
+# tools/saturated_table.py at 0.3 m (3 s into the installation, t = 3.49 s) and at the 0.501 m where
+# the synthetic run stops: its forces with the pore water's 3/4 of F_r and 1/2 of F_y in brackets,
+# ratios 0.5, the monitors' excess pore pressure compression positive, the last row's step and wall time.
+add_test(NAME SaturatedTable.ForcesPorePartsAndExcessPressure
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/saturated_table.py
+                 ${synthetic_run}:synthetic --at 0.3,0.6)
+set_tests_properties(SaturatedTable.ForcesPorePartsAndExcessPressure PROPERTIES
+  FIXTURES_REQUIRED synthetic_monopile
+  PASS_REGULAR_EXPRESSION
+  "\\| synthetic \\| 5 500 \\| 55 \\| 0\\.3 m \\| 3\\.490 \\| 150\\.0 \\(75\\.0\\) \\| -60\\.0 \\(-45\\.0\\) \\| 30\\.0 \\(22\\.5\\) \\| 0\\.50 \\| 0\\.50 \\| 300 / 150 / 60 / 30 \\|\n[^\n]*0\\.501 m \\(stopped\\)")
+
 # The renderer on the synthetic snapshots: sigma_ry = 10 kPa/m * (r + y - 1 m) around a pile block
 # (body 1) whose 1e9 Pa must stay off the range and the colours. Red at the maximum (top right), blue at
 # the minimum (bottom left), so a wrong colour map, mirrored view or unfitted camera fails.
@@ -140,6 +151,19 @@ foreach(water undrained coupled)
   set_tests_properties(CptTool.SaturatedConeResistanceAtOneCentimetre_${water} PROPERTIES
                        FIXTURES_REQUIRED cpt_coarse_${water} LABELS study)
 endforeach()
+
+# tools/cpt_rate.py on those runs and the dry chamber's (mass-scaled: 1.88 MPa at 1 cm, a drained
+# limit for the arithmetic): V = v d / (k E_oed / gamma_w) = 0.5 x 0.0357 / (1e-5 x 31.9e6 / 9810) =
+# 0.549, q_c / q_c,d = 0.751 / 1.88 = 0.40, (0.751 - 0.369) / (1.88 - 0.369) = 0.25.
+add_test(NAME CptTool.RateTableGivesVAndTheNormalisedResistance
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/cpt_rate.py ${cpt_output}:drained
+                 ${CMAKE_CURRENT_BINARY_DIR}/cpt_coarse_undrained:undrained
+                 ${CMAKE_CURRENT_BINARY_DIR}/cpt_coarse_coupled:1e-5 --eoed 31.9e6 --velocity 0.5
+                 --depth 0.01 --half-window 0.0025)
+set_tests_properties(CptTool.RateTableGivesVAndTheNormalisedResistance PROPERTIES
+                     FIXTURES_REQUIRED "cpt_coarse;cpt_coarse_undrained;cpt_coarse_coupled"
+                     LABELS study
+                     PASS_REGULAR_EXPRESSION "\\| 1e-05 \\| 0\\.549 \\| 0\\.75 \\| 0\\.40 \\| 0\\.25 \\|")
 
 # The chamber's plane-strain strip (docs/cpt.md, "The pile tip against the cone"): written by
 # make_cases.py, run 2 cm (about 4 s), held to its plane of symmetry, q over its half-width.

@@ -5,8 +5,9 @@ Each run is PATH[:LABEL], PATH a monopile run's directory (history.h5 and run.lo
 penetration of --at, at the first history row at or past it: the time, the forces of the soil on
 the tip (F_y) and on the external and internal shafts (F_r) in kN/rad with the pore water's part
 in brackets, each shaft's friction over its radial force, sqrt(F_y^2 + F_theta^2) / |F_r|, and the
-excess pore pressure (kPa) at the monitors below the tip, in the plug and beside the outer shaft
-1 and 2 m deep (base/seed_monopile.toml). A run that stopped short gives its last penetration.
+excess pore pressure (kPa, compression positive as geotechnical engineers read it: the history's is
+tension positive) at the monitors below the tip, in the plug and beside the outer shaft 1 and 2 m
+deep (base/seed_monopile.toml). A run that stopped short gives its last penetration.
 The run's steps and wall time come from the last row.
 
     tools/saturated_table.py out/gdp_und:"GDP, undrained" out/gdp_k1e-4:"GDP, k = 1e-4" --at 0.05,0.1
@@ -46,13 +47,13 @@ def main():
     parser.add_argument("runs", nargs="+", help="PATH[:LABEL]")
     parser.add_argument("--at", type=lambda s: [float(x) for x in s.split(",")], default=[0.05, 0.1])
     args = parser.parse_args()
-    names = ["/time", "/step", "/wall_time", "/bodies/pile/penetration"]
+    names = ["/time", "/step", "/wall_time", "/bodies/pile/u_y"]
     for surface in ("tip", "external_shaft", "internal_shaft"):
         for component in ("F_r", "F_y", "F_theta", "pore_F_r", "pore_F_y"):
             names.append(f"/reactions/pile/{surface}/{component}")
     names += [f"/monitors/{m}/excess_pore_pressure" for m in MONITORS]
     header = ("| run | steps | wall (s) | at | time (s) | tip F_y | ext F_r | int F_r | ext ratio "
-              "| int ratio | excess p: below tip / plug / shaft 1 m / 2 m (kPa) |")
+              "| int ratio | excess u: below tip / plug / shaft 1 m / 2 m (kPa) |")
     print(header)
     print("|" + "---|" * (header.count("|") - 1))
     for item in args.runs:
@@ -62,7 +63,7 @@ def main():
             f = series(str(history), names)
         except mpile.RunFileError as error:
             sys.exit(str(error))
-        penetration = f["/bodies/pile/penetration"]
+        penetration = -f["/bodies/pile/u_y"]
         first = True
         for depth in args.at:
             reached = np.nonzero(penetration >= depth)[0]
@@ -79,7 +80,7 @@ def main():
                 cells.append(f"{total:.1f}" + (f" ({pore:.1f})" if np.isfinite(pore) else ""))
             cells += [f"{ratio(f, 'external_shaft', row):.2f}",
                       f"{ratio(f, 'internal_shaft', row):.2f}"]
-            excess = [f[f"/monitors/{m}/excess_pore_pressure"][row] / 1e3 for m in MONITORS]
+            excess = [-f[f"/monitors/{m}/excess_pore_pressure"][row] / 1e3 for m in MONITORS]
             cells.append(" / ".join("-" if not np.isfinite(x) else f"{x:.0f}" for x in excess))
             if not reached.size:
                 cells[3] = at
