@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Ground vibration of installation runs as a Markdown table (docs/results.md, "Ground vibration"):
+"""Ground vibration of installation runs as a Markdown table (docs/waves.md, "Ground vibration"):
 per run the penetration gained, the energy radiated through absorbing faces (J/rad, and per metre
 of penetration) and the peak particle velocity at each vibration monitor (mm/s).
 
