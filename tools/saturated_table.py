@@ -11,6 +11,9 @@ deep (base/seed_monopile.toml). A run that stopped short gives its last penetrat
 The run's steps and wall time come from the last row.
 
     tools/saturated_table.py out/gdp_und:"GDP, undrained" out/gdp_k1e-4:"GDP, k = 1e-4" --at 0.05,0.1
+
+With --figure PNG it also draws the excess pore pressure at the four monitors against time, one
+panel per run.
 """
 import argparse
 import sys
@@ -46,7 +49,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("runs", nargs="+", help="PATH[:LABEL]")
     parser.add_argument("--at", type=lambda s: [float(x) for x in s.split(",")], default=[0.05, 0.1])
+    parser.add_argument("--figure", help="PNG of the monitors' excess pore pressure against time")
     args = parser.parse_args()
+    histories = []
     names = ["/time", "/step", "/wall_time", "/bodies/pile/u_y"]
     for surface in ("tip", "external_shaft", "internal_shaft"):
         for component in ("F_r", "F_y", "F_theta", "pore_F_r", "pore_F_y"):
@@ -63,6 +68,7 @@ def main():
             f = series(str(history), names)
         except mpile.RunFileError as error:
             sys.exit(str(error))
+        histories.append((label or path, f))
         penetration = -f["/bodies/pile/u_y"]
         first = True
         for depth in args.at:
@@ -87,7 +93,31 @@ def main():
                 print("| " + " | ".join(cells) + " |")
                 break
             print("| " + " | ".join(cells) + " |")
+    if args.figure:
+        draw(histories, args.figure)
     return 0
+
+
+def draw(histories, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(len(histories), 1, figsize=(6.4, 2.2 * len(histories) + 0.6),
+                             sharex=False, squeeze=False)
+    for ax, (label, f) in zip(axes[:, 0], histories):
+        for monitor, name in zip(MONITORS, ("below the tip", "in the plug", "outer shaft, 1 m",
+                                            "outer shaft, 2 m")):
+            u = -f[f"/monitors/{monitor}/excess_pore_pressure"] / 1e3
+            if np.isfinite(u).any():
+                ax.plot(f["/time"], u, lw=0.8, label=name)
+        ax.set_title(label, fontsize=9)
+        ax.set_ylabel("excess u (kPa)")
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=7, ncol=2)
+    axes[-1, 0].set_xlabel("time (s)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print(path)
 
 
 if __name__ == "__main__":
