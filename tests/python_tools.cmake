@@ -23,7 +23,8 @@ set_tests_properties(PlotMonopile.WritesFivePngs PROPERTIES FIXTURES_REQUIRED sy
 
 # tools/saturated_table.py at 0.3 m (3 s into the installation, t = 3.49 s) and at the 0.501 m where
 # the synthetic run stops: its forces with the pore water's 3/4 of F_r and 1/2 of F_y in brackets,
-# ratios 0.5, the monitors' excess pore pressure compression positive, the last row's step and wall
+# the friction over the effective F_r (0.5 / (1 - 3/4) = 2), the monitors' excess pore pressure
+# compression positive, the last row's step and wall
 # time; then the figure of the monitors' excess pore pressure against time.
 add_test(NAME SaturatedTable.ForcesPorePartsAndExcessPressure
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/saturated_table.py
@@ -31,7 +32,7 @@ add_test(NAME SaturatedTable.ForcesPorePartsAndExcessPressure
 set_tests_properties(SaturatedTable.ForcesPorePartsAndExcessPressure PROPERTIES
   FIXTURES_REQUIRED synthetic_monopile
   PASS_REGULAR_EXPRESSION
-  "\\| synthetic \\| 5 500 \\| 55 \\| 0\\.3 m \\| 3\\.490 \\| 150\\.0 \\(75\\.0\\) \\| -60\\.0 \\(-45\\.0\\) \\| 30\\.0 \\(22\\.5\\) \\| 0\\.50 \\| 0\\.50 \\| 300 / 150 / 60 / 30 \\|\n[^\n]*0\\.501 m \\(stopped\\)[^\n]*\n[^\n]*/excess_u\\.png\n")
+  "\\| synthetic \\| 5 500 \\| 55 \\| 0\\.3 m \\| 3\\.490 \\| 150\\.0 \\(75\\.0\\) \\| -60\\.0 \\(-45\\.0\\) \\| 30\\.0 \\(22\\.5\\) \\| 2\\.00 \\| 2\\.00 \\| 300 / 150 / 60 / 30 \\|\n[^\n]*0\\.501 m \\(stopped\\)[^\n]*\n[^\n]*/excess_u\\.png\n")
 
 # The renderer on the synthetic snapshots: sigma_ry = 10 kPa/m * (r + y - 1 m) around a pile block
 # (body 1) whose 1e9 Pa must stay off the range and the colours. Red at the maximum (top right), blue at

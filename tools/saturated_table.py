@@ -4,7 +4,8 @@
 Each run is PATH[:LABEL], PATH a monopile run's directory (history.h5 and run.log). For each
 penetration of --at, at the first history row at or past it: the time, the forces of the soil on
 the tip (F_y) and on the external and internal shafts (F_r) in kN/rad with the pore water's part
-in brackets, each shaft's friction over its radial force, sqrt(F_y^2 + F_theta^2) / |F_r|, and the
+in brackets (the whole pore pressure's, hydrostatic and excess), each shaft's friction over its
+effective radial force, sqrt(F_y^2 + F_theta^2) / |F_r - pore F_r| (mu where it slides), and the
 excess pore pressure (kPa, compression positive as geotechnical engineers read it: the history's is
 tension positive) at the monitors below the tip, in the plug and beside the outer shaft 1 and 2 m
 deep (base/seed_monopile.toml). A run that stopped short gives its last penetration.
@@ -40,9 +41,11 @@ def force(f, surface, component, row, pore=False):
 
 
 def ratio(f, surface, row):
+    """The shaft's friction over its effective radial force: mu where it slides."""
     base = f"/reactions/pile/{surface}"
     shear = np.hypot(f[f"{base}/F_y"][row], f[f"{base}/F_theta"][row])
-    return shear / abs(f[f"{base}/F_r"][row])
+    pore = f[f"{base}/pore_F_r"][row]
+    return shear / abs(f[f"{base}/F_r"][row] - (pore if np.isfinite(pore) else 0.0))
 
 
 def main():
@@ -113,7 +116,10 @@ def draw(histories, path):
         ax.set_title(label, fontsize=9)
         ax.set_ylabel("excess u (kPa)")
         ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize=7, ncol=2)
+    for ax in axes[:, 0]:
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7, ncol=2)
+            break
     axes[-1, 0].set_xlabel("time (s)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
