@@ -114,7 +114,8 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
     return {};
   }
   PassTimer timer(timings_.grid_update);
-  const passes::WaterVelocityResult water = passes::update_water_velocities<mode>(scene_, step, settings_.mass_scaling);
+  const passes::WaterVelocityResult water =
+      passes::update_water_velocities<mode>(scene_, step, settings_.mass_scaling);
   // With the pore pressure solved on the grid the drag is booked there, at the corrected
   // velocities: the predictor's relative flow, driven by p^n alone, is in part a mode the remap
   // and the correction do not keep, and the pressure's work on it is not booked either.
@@ -196,7 +197,9 @@ EnergyIncrement ExplicitSolver::balance_momentum(const passes::StepParameters& s
   // Absorbing faces' terms from the grid's coordinates this step, for both of their passes.
   const std::vector<passes::FaceNodeTerms> faces = passes::absorbing_face_terms(scene_);
   passes::apply_holding_tractions(scene_, faces, step);
-  const double tied_drag = liquid_phases_.empty() ? 0.0 : passes::couple_phases<mode>(scene_, step, settings_.mass_scaling);
+  const double tied_drag = liquid_phases_.empty()
+                               ? 0.0
+                               : passes::couple_phases<mode>(scene_, step, settings_.mass_scaling);
   const passes::GridUpdateResult grid =
       passes::update_grid_velocities<mode>(scene_, settings_, step);
   const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, faces, settings_, step);

@@ -45,7 +45,7 @@ struct DofResponse {
 /// dv = dt (1 - M_nw / D) f / M*, dw = dt (f + Q dv) / D, D = M_w + dt Q, M* = M_s + M_nw dt Q / D.
 DofResponse coupled_response(const LiquidNode& water, double v, double w, bool skeleton_held,
                              bool water_held, double dt_over_beta) {
-  // Mass scaling beta multiplies both phases' inertia: divided through by it, every dt is dt / beta.
+  // Mass scaling beta multiplies both phases' inertia: divided through by it, each dt is dt/beta.
   const double share = water.share;
   const double porosity = share / water.mass;
   const double d = water.mass + dt_over_beta * water.drag;
@@ -278,8 +278,8 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
         for (std::size_t i = begin; i < end; ++i) {
           const bool liquid = coupled && grid.liquid[i].mass > 0.0;
           const double skeleton_mass =
-              settings.mass_scaling * (liquid ? grid.liquid[i].mixture_mass - grid.liquid[i].share
-                                              : grid.nodes[i].mass);
+              settings.mass_scaling *
+              (liquid ? grid.liquid[i].mixture_mass - grid.liquid[i].share : grid.nodes[i].mass);
           for (int d = 0; d < 2; ++d) {
             const std::size_t dof = 2 * i + static_cast<std::size_t>(d);
             const double f = force[static_cast<Eigen::Index>(dof)];

@@ -189,14 +189,11 @@ TEST(ImplicitPorePressure, CoupledConeLedgerBooksTheDragWhereThePressureWorks) {
   RunOptions options;
   options.case_path = (source / "cases/cpt/cpt_coarse.toml").string();
   options.output_directory = directory.string();
-  options.overrides = {"materials.sand.drainage=\"coupled\"",
-                       "materials.sand.grain_density=2650.0",
-                       "materials.sand.hydraulic_conductivity=1e-4",
-                       "solver.implicit_pore_pressure=true",
-                       "solver.cell_mean_pore_pressure=true",
-                       "phases.1.mass_scaling=1.0",
-                       "phases.1.stop_at.penetration=0.001",
-                       "output.snapshot_penetrations=[]"};
+  options.overrides = {
+      "materials.sand.drainage=\"coupled\"",        "materials.sand.grain_density=2650.0",
+      "materials.sand.hydraulic_conductivity=1e-4", "solver.implicit_pore_pressure=true",
+      "solver.cell_mean_pore_pressure=true",        "phases.1.mass_scaling=1.0",
+      "phases.1.stop_at.penetration=0.001",         "output.snapshot_penetrations=[]"};
   std::ostringstream out, err;
   ASSERT_EQ(run_case(options, out, err), 0) << err.str();
   Hdf5File history((directory / "history.h5").string(), Hdf5File::Mode::read);
