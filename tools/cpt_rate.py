@@ -5,7 +5,7 @@ Each run is given as PATH:K, PATH a history.h5 (or its run directory) of the CPT
 hydraulic conductivity in m/s, or "drained" or "undrained" for the two limits (both required).
 q_c is the mean over a window of penetration (tools/cpt.py); V takes the cone's velocity v, its
 diameter d and c_v = k E_oed / gamma_w with the sand's oedometer modulus E_oed at the chamber's
-stress. Prints a Markdown table, fits the backbone form
+stress. Prints a Markdown table, with each run's steps and wall time, fits the backbone form
 
     (q_c - q_c,u) / (q_c,d - q_c,u) = 1 / (1 + (V / V_50)^m)
 
@@ -19,6 +19,7 @@ import argparse
 import sys
 from pathlib import Path
 
+import h5py
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -64,28 +65,37 @@ def main():
         value = window(penetration, q_c, args.depth, args.half_window)
         if not np.isfinite(value):
             sys.exit(f"{history}: no q_c within {args.half_window} m of {args.depth} m")
+        with h5py.File(history, "r") as f:  # the run's cost, from its last row
+            cost = (int(f["/step"][-1]), float(f["/wall_time"][-1]))
         if k in ("drained", "undrained"):
-            limits[k] = value
+            limits[k] = (value, cost)
         else:
-            partial.append((float(k), value))
+            partial.append((float(k), value, cost))
     if set(limits) != {"drained", "undrained"}:
         sys.exit("give both limits, PATH:drained and PATH:undrained")
-    drained, undrained = limits["drained"], limits["undrained"]
+    (drained, drained_cost), (undrained, undrained_cost) = limits["drained"], limits["undrained"]
     partial.sort(reverse=True)
-    ks = np.array([k for k, _ in partial])
-    q = np.array([value for _, value in partial])
+    ks = np.array([k for k, _, _ in partial])
+    q = np.array([value for _, value, _ in partial])
+    costs = [cost for _, _, cost in partial]
     speeds = args.velocity * args.diameter / (ks * args.eoed / GAMMA_W)
     normalised = (q - undrained) / (drained - undrained)
     v50, m = fit_backbone(speeds, normalised) if len(partial) >= 2 else (np.nan, np.nan)
 
     print(f"q_c at {args.depth} m (mean over +- {args.half_window} m); "
           f"c_v = k E_oed / gamma_w, E_oed = {args.eoed / 1e6:.3g} MPa\n")
-    print("| k (m/s) | V | q_c (MPa) | q_c / q_c,drained | (q_c - q_c,u) / (q_c,d - q_c,u) |")
-    print("|---|---|---|---|---|")
-    print(f"| drained | 0 | {drained / 1e6:.2f} | 1 | 1 |")
-    for k, v, value, x in zip(ks, speeds, q, normalised):
-        print(f"| {k:.0e} | {v:.3g} | {value / 1e6:.2f} | {value / drained:.2f} | {x:.2f} |")
-    print(f"| undrained | infinite | {undrained / 1e6:.2f} | {undrained / drained:.3f} | 0 |")
+    def spent(cost):
+        return f"{cost[0]:,}".replace(",", " ") + f" | {cost[1]:.0f}"
+
+    print("| k (m/s) | V | q_c (MPa) | q_c / q_c,drained | (q_c - q_c,u) / (q_c,d - q_c,u) "
+          "| steps | wall (s) |")
+    print("|---|---|---|---|---|---|---|")
+    print(f"| drained | 0 | {drained / 1e6:.2f} | 1 | 1 | {spent(drained_cost)} |")
+    for k, v, value, x, cost in zip(ks, speeds, q, normalised, costs):
+        print(f"| {k:.0e} | {v:.3g} | {value / 1e6:.2f} | {value / drained:.2f} | {x:.2f} "
+              f"| {spent(cost)} |")
+    print(f"| undrained | infinite | {undrained / 1e6:.2f} | {undrained / drained:.3f} | 0 "
+          f"| {spent(undrained_cost)} |")
     print(f"\nfit: V_50 = {v50:.3g}, m = {m:.2f}")
 
     if args.figure:
