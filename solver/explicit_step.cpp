@@ -146,9 +146,11 @@ void ExplicitSolver::find_pore_pressure_from_flow(const passes::StepParameters& 
   if (settings_.implicit_pore_pressure) {
     // The flow's strains as found; the pressure is the one the grid's solve found.
     const std::vector<double>& increment = projection_.particle_increment();
+    const std::vector<std::uint8_t>& cavitated = projection_.particle_cavitated();
     parallel_for(pending_pore_.size(), [&](std::size_t i) {
       if (liquid_phases_[scene_.particles.material[i]] != nullptr) {
         pending_pore_[i].pressure = increment[i];
+        pending_pore_[i].cavitated = cavitated[i] != 0;
       }
     });
   }
@@ -169,7 +171,9 @@ EnergyIncrement ExplicitSolver::project_pore_pressure(const passes::StepParamete
       << solved.iterations << " conjugate-gradient iterations): the run went unstable";
     throw SimulationError(s.str());
   }
-  return {.damping = solved.dissipated, .drag = solved.drag};
+  // The vapour's share is work on the soil's pore volume, as the cut-off's is in the explicit
+  // water: internal work, dissipated.
+  return {.internal_work = solved.vapour_work, .damping = solved.dissipated, .drag = solved.drag};
 }
 
 EnergyIncrement ExplicitSolver::apply_projected_pore_pressure(bool some_made_stress_free) {
@@ -178,7 +182,8 @@ EnergyIncrement ExplicitSolver::apply_projected_pore_pressure(bool some_made_str
   }
   PassTimer timer(timings_.stress_update);
   return {.internal_work = passes::apply_projected_pore_pressure(
-              scene_, bins_, projection_.particle_increment(), some_made_stress_free)};
+              scene_, bins_, projection_.particle_increment(), projection_.particle_cavitated(),
+              some_made_stress_free)};
 }
 
 EnergyIncrement ExplicitSolver::apply_pore_pressure_from_flow(bool some_made_stress_free) {

@@ -86,6 +86,9 @@ struct PendingPorePressure {
   double water_strain = 0.0;    // div w dt
   double skeleton_strain = 0.0; // div v dt
   double pore_before = 0.0;     // p at the step's start
+  /// The implicit pore pressure held the particle's cell at the cavitation limit: the particle
+  /// goes to its limit, and `pressure` is the cell's increment.
+  bool cavitated = false;
 };
 template <GeometryMode mode, ShapeFunctions shape>
 void pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,

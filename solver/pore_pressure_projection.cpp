@@ -2,9 +2,11 @@
 
 #include "engine/materials/pore_water.hpp"
 #include "engine/parallel.hpp"
+#include "solver/conjugate_gradients.hpp"
 #include "solver/rigid_interiors.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <optional>
@@ -13,6 +15,10 @@
 namespace mpile::passes {
 
 namespace {
+
+/// The solve's tolerance, relative to its right-hand side: the pressure's error is then a small
+/// fraction of the step's increment, far below what the skeleton's explicit update leaves.
+constexpr double tolerance = 1e-10;
 
 /// Each material's PoreStorage when the solver finds its pore pressure (null for every other).
 std::vector<const PoreStorage*> implicit_storages(const Scene& scene) {
@@ -139,7 +145,10 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       takes_increment_[i] = 1;
       CellSums& cell = cells_[static_cast<std::size_t>(cr + cells_r * cy)];
       const double volume = p.volume[i];
-      cell.storage += volume * storage->compressibility(p.state.data() + i * stride);
+      const double* state = p.state.data() + i * stride;
+      const double stored = volume * storage->compressibility(state);
+      cell.storage += stored;
+      cell.headroom += stored * (storage->pore_limit - state[storage->pore_slot]);
       const double hoop = has_theta(mode) ? volume / p.r[i] : 0.0;
       const auto weights = particle_weights<shape>(grid, p, i);
       for (int k = 0; k < weights.size; ++k) {
@@ -170,6 +179,7 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   ProjectionResult result;
   result.cells = unknowns;
   particle_increment_.assign(p.size(), 0.0);
+  particle_cavitated_.assign(p.size(), 0);
   if (unknowns == 0) {
     return result;
   }
@@ -254,16 +264,65 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   }
   system_ += diagonal;
   const Eigen::VectorXd rhs = step.dt * (divergence_ * flux);
-  // Relative to the right-hand side: the pressure's error is then a small fraction of this
-  // step's increment, far below what the skeleton's explicit update leaves.
-  solver_.setTolerance(1e-10);
-  solver_.compute(system_);
-  const Eigen::VectorXd increment = solver_.solve(rhs);
-  result.iterations = static_cast<int>(solver_.iterations());
-  result.residual = solver_.error();
-  result.converged = solver_.info() == Eigen::Success && increment.allFinite();
+  Eigen::VectorXd increment = Eigen::VectorXd::Zero(unknowns);
+  const ConjugateGradientResult solved =
+      solve_conjugate_gradients(system_, rhs, increment, tolerance);
+  result.iterations = solved.iterations;
+  result.residual = solved.residual;
+  result.converged = solved.converged;
+  result.active_set_passes = 1;
   if (!result.converged) {
     return result;
+  }
+
+  // The cut-off: each cell's increment to its limit (infinite without one).
+  Eigen::VectorXd limit_increment(unknowns);
+  bool cut_off = false;
+  for (Eigen::Index u = 0; u < unknowns; ++u) {
+    const CellSums& cell = cells_[static_cast<std::size_t>(cell_of_unknown_[u])];
+    limit_increment[u] = cell.headroom / cell.storage;
+    cut_off = cut_off || std::isfinite(limit_increment[u]);
+  }
+  held_.assign(static_cast<std::size_t>(unknowns), 0);
+  if (cut_off) {
+    // A primal-dual active set: hold the cells whose increment passes the limit, free the held
+    // cells whose vapour (the volume change the held pressure does not store, the system's
+    // residual there) would be negative. Freeing stops after a few passes, so that the set only
+    // grows and the loop ends.
+    constexpr int passes_freeing = 8;
+    Eigen::VectorXd vapour = Eigen::VectorXd::Zero(unknowns);
+    for (int pass = 1;; ++pass) {
+      bool changed = false;
+      for (Eigen::Index u = 0; u < unknowns; ++u) {
+        auto& held = held_[static_cast<std::size_t>(u)];
+        if (held == 0 && increment[u] > limit_increment[u]) {
+          held = 1;
+          changed = true;
+        } else if (held != 0 && vapour[u] < 0.0 && pass <= passes_freeing) {
+          held = 0;
+          changed = true;
+        }
+      }
+      if (!changed) {
+        break;
+      }
+      result.active_set_passes = pass + 1;
+      if (!solve_held(rhs, limit_increment, increment, result)) {
+        return result;
+      }
+      vapour = rhs - system_ * increment;
+      for (Eigen::Index u = 0; u < unknowns; ++u) {
+        if (held_[static_cast<std::size_t>(u)] == 0) {
+          vapour[u] = 0.0;
+        }
+      }
+    }
+    for (Eigen::Index u = 0; u < unknowns; ++u) {
+      if (held_[static_cast<std::size_t>(u)] != 0) {
+        ++result.cavitated;
+        result.vapour_work += increment[u] * vapour[u];
+      }
+    }
   }
 
   // The correction: the pressure's force f = -G^T dp on every node DOF the pressure moves.
@@ -331,15 +390,52 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       }
       if (takes_increment_[i] != 0) {
         const auto c = static_cast<std::size_t>(p.cell_r[i] + cells_r * p.cell_y[i]);
-        particle_increment_[i] = increment[unknown_of_cell_[c]];
+        const int u = unknown_of_cell_[c];
+        particle_increment_[i] = increment[u];
+        particle_cavitated_[i] = held_[static_cast<std::size_t>(u)];
       }
     }
   });
   return result;
 }
 
+bool PorePressureProjection::solve_held(const Eigen::VectorXd& rhs,
+                                        const Eigen::VectorXd& limit_increment,
+                                        Eigen::VectorXd& increment, ProjectionResult& result) {
+  // K' = K with each held cell's row and column its diagonal alone; b' = b - K x_held on the free
+  // rows, K_cc d_c on the held ones, so that the solve returns d_c there.
+  Eigen::VectorXd fixed = Eigen::VectorXd::Zero(rhs.size());
+  for (Eigen::Index u = 0; u < rhs.size(); ++u) {
+    if (held_[static_cast<std::size_t>(u)] != 0) {
+      fixed[u] = limit_increment[u];
+    }
+  }
+  Eigen::VectorXd held_rhs = rhs - system_ * fixed;
+  held_system_ = system_;
+  for (Eigen::Index column = 0; column < held_system_.outerSize(); ++column) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(held_system_, column); it; ++it) {
+      const bool row_held = held_[static_cast<std::size_t>(it.row())] != 0;
+      const bool column_held = held_[static_cast<std::size_t>(it.col())] != 0;
+      if (it.row() == it.col()) {
+        if (row_held) {
+          held_rhs[it.row()] = it.value() * fixed[it.row()];
+        }
+      } else if (row_held || column_held) {
+        it.valueRef() = 0.0;
+      }
+    }
+  }
+  const ConjugateGradientResult solved =
+      solve_conjugate_gradients(held_system_, held_rhs, increment, tolerance);
+  result.iterations += solved.iterations;
+  result.residual = std::max(result.residual, solved.residual);
+  result.converged = solved.converged;
+  return result.converged;
+}
+
 double apply_projected_pore_pressure(Scene& scene, const ParticleBins& bins,
                                      const std::vector<double>& increment,
+                                     const std::vector<std::uint8_t>& cavitated,
                                      bool some_made_stress_free) {
   Particles& p = scene.particles;
   const auto stride = static_cast<std::size_t>(p.state_stride);
@@ -351,16 +447,19 @@ double apply_projected_pore_pressure(Scene& scene, const ParticleBins& bins,
       const auto i = static_cast<std::size_t>(q);
       const PoreStorage* storage = storages[p.material[i]];
       // Coupled soil takes its increment with its flow's (apply_pore_pressure_from_flow).
-      if (storage == nullptr || storage->porosity_slot >= 0 || increment[i] == 0.0 ||
+      if (storage == nullptr || storage->porosity_slot >= 0 ||
+          (increment[i] == 0.0 && cavitated[i] == 0) ||
           (some_made_stress_free && stress_free(p, i, *storage))) {
         continue;
       }
       double* state = p.state.data() + i * stride;
       double& pore = state[storage->pore_slot];
       // The stress pass booked p^n times the volume change; the trapezoid's other half is dp / 2
-      // times it, and the volume change is what the solve stored, n dp / K_w. Past the
-      // cavitation stress the water takes no more: what it would have stored is dissipated.
-      const double applied = std::min(increment[i], storage->pore_limit - pore);
+      // times it, and the volume change is what the solve stored, n dp / K_w. In a held cell the
+      // water goes to its limit (the vapour's work is the solve's); elsewhere a particle above
+      // its cell's mean may still reach it, and what it would have stored beyond is dissipated.
+      const double applied = cavitated[i] != 0 ? storage->pore_limit - pore
+                                               : std::min(increment[i], storage->pore_limit - pore);
       work += p.volume[i] * 0.5 * applied * storage->compressibility(state) * increment[i];
       pore += applied;
       state[storage->pore_slot + 1] += applied;

@@ -17,6 +17,15 @@
 // definite; Eigen's conjugate gradients solve it. The correction -H G^T dp goes onto the nodes and,
 // interpolated, onto the particles.
 //
+// Water that would go past its cavitation stress takes no more tension (PLAXIS's cut-off): a cell
+// whose increment would carry its water's pressure beyond the limit is held at it, its increment
+// known (the limit less the cell's storage-weighted mean pressure) and its row of the system
+// replaced by that, while the water's volume grows beyond what the pressure stores: vapour. A
+// cell whose vapour would shrink is let go again. The held cells are found by iteration (a
+// primal-dual active set: solve, hold the cells past the limit, free the held cells whose vapour
+// would shrink, until none changes), so that the velocities take the tension the water carries,
+// not the one it would have carried without the cut-off.
+//
 // Reads particle cell, position, volume, body, material, state and stress, grid field 0 and the
 // liquid nodes after the MUSL remap; writes their velocities, the particles' velocities (and
 // their water's) and the increment each saturated particle takes after the stress pass.
@@ -27,7 +36,6 @@
 #include "engine/shape_functions.hpp"
 #include "solver/passes.hpp"
 
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
 #include <cstdint>
@@ -40,8 +48,13 @@ struct ProjectionResult {
   int iterations = 0;     // conjugate-gradient iterations
   double residual = 0.0;  // the solve's relative residual
   bool converged = true;
-  double dissipated = 0.0; // backward Euler's numerical damping over the step (J)
-  double drag = 0.0;       // Darcy's dissipation over the step at the corrected velocities (J)
+  double dissipated = 0.0;    // backward Euler's numerical damping over the step (J)
+  double drag = 0.0;          // Darcy's dissipation over the step at the corrected velocities (J)
+  std::int64_t cavitated = 0; // cells held at the cavitation limit
+  int active_set_passes = 0;  // solves the cut-off's active set took (1 without cavitation)
+  /// The work of the held cells' water at the limit on the vapour's volume, sum d_c V_vapour (J):
+  /// the water's work on the volume it does not store, taken by the vapour.
+  double vapour_work = 0.0;
 };
 
 class PorePressureProjection {
@@ -55,14 +68,27 @@ public:
   /// particle index, from the last projection.
   const std::vector<double>& particle_increment() const { return particle_increment_; }
 
+  /// By particle index, from the last projection: 1 where the particle's cell was held at the
+  /// cavitation limit. Such a particle's pressure goes to its limit (the cell's increment moved its
+  /// storage-weighted mean there) and the trapezoid's half of its work is d_c / 2 times what it
+  /// stores.
+  const std::vector<std::uint8_t>& particle_cavitated() const { return particle_cavitated_; }
+
 private:
   /// One cell's sums over its saturated particles: the divergence operator's coefficients on the
   /// 4 x 4 nodes a GIMP particle of the cell can reach (r and y), and its storage (> 0 exactly
   /// where the cell holds saturated soil).
   struct CellSums {
     double coefficient[16][2];
-    double storage; // sum V n / K_w
+    double storage;  // sum V n / K_w
+    double headroom; // sum V n / K_w (limit - p): the storage the cut-off leaves (infinite: none)
   };
+
+  /// Solves again with the held cells' increments fixed: their rows and columns become their
+  /// diagonal's (scaled as the others, so the solve's tolerance still speaks of the free cells).
+  /// Starts from `increment` and leaves the solution there; false if the solve failed.
+  bool solve_held(const Eigen::VectorXd& rhs, const Eigen::VectorXd& limit_increment,
+                  Eigen::VectorXd& increment, ProjectionResult& result);
 
   std::vector<CellSums> cells_;
   std::vector<int> unknown_of_cell_;
@@ -72,18 +98,22 @@ private:
   std::vector<double> correction_;     // dv per node DOF
   std::vector<double> water_correction_;
   std::vector<double> particle_increment_;
+  std::vector<std::uint8_t> particle_cavitated_;
+  std::vector<std::uint8_t> held_;            // per unknown: held at the cavitation limit
   std::vector<std::uint8_t> takes_increment_; // per particle: saturated soil in the solve
   Eigen::SparseMatrix<double, Eigen::RowMajor> divergence_;
   Eigen::SparseMatrix<double> system_;
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver_;
+  Eigen::SparseMatrix<double> held_system_;
 };
 
 /// After the stress pass: each undrained particle's pore pressure and total stress take the
-/// increment (no further than its cavitation limit); returns the water's work beyond the stress
-/// pass's (which booked the pressure at the step's start), dp / 2 times the stored volume change.
-/// A particle the stress pass made stress-free inside a rigid body is left so.
+/// increment (no further than its cavitation limit; to it in a held cell); returns the water's
+/// work beyond the stress pass's (which booked the pressure at the step's start), dp / 2 times
+/// the stored volume change. A particle the stress pass made stress-free inside a rigid body is
+/// left so.
 double apply_projected_pore_pressure(Scene& scene, const ParticleBins& bins,
                                      const std::vector<double>& increment,
+                                     const std::vector<std::uint8_t>& cavitated,
                                      bool some_made_stress_free);
 
 } // namespace mpile::passes

@@ -504,11 +504,18 @@ double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
           const double skeleton_mean = 0.5 * (change.pore_before + pore); // p^n + dp_s / 2
           const double storage = (1.0 - n) * change.skeleton_strain + n * change.water_strain;
           // No further than the cavitation stress (infinite without a cut-off): what the water's
-          // volume gains beyond it is vapour, and the work on it is dissipated.
-          const double pressure = std::min(change.pressure, phase.pore_limit - pore);
+          // volume gains beyond it is vapour, and the work on it is dissipated. In a cell the
+          // implicit pore pressure held at the limit the particle goes to it, and the trapezoid's
+          // half is the cell's increment over two times what the particle stores (the vapour's
+          // work is the solve's).
+          const double pressure = change.cavitated
+                                      ? phase.pore_limit - pore
+                                      : std::min(change.pressure, phase.pore_limit - pore);
+          const double stored_volume =
+              change.cavitated ? n / phase.bulk_modulus * change.pressure : storage;
           work +=
               p.volume[i] * (n * skeleton_mean * (change.water_strain - change.skeleton_strain) +
-                             0.5 * pressure * storage);
+                             0.5 * pressure * stored_volume);
           pore += pressure;
           state[phase.pore_slot + 1] += pressure;
           Stress& s = p.stress[i];
