@@ -247,8 +247,9 @@ endif()
 # The independent reference for the Hertz impact (tools/hertz_fe.py) on 4 mm elements, 2 s: the
 # clipped and snapped mesh weighs the sphere's 0.66667 kg/rad to 0.03 %; central differences with a
 # kinematic contact give back the kinetic energy of a purely elastic impact within 0.2 % (measured
-# 0.9989); the contact lasts 44 to 50 ms, -10 % to +2 % of Hertz's 48.99 (measured -5.0 %; -5.9 % and -4.2 % on 2
-# and 1 mm, docs/verification.md): a wrong stiffness, mass or contact law leaves these.
+# 0.9989); the contact lasts 44 to 50 ms, -10 % to +2 % of Hertz's 48.99 (measured -5.0 %; -5.9 %
+# and -4.2 % on 2 and 1 mm, docs/verification.md): a wrong stiffness, mass or contact law leaves
+# these.
 add_test(NAME HertzFe.FourMillimetreElementsKeepMassEnergyAndNearlyHertzsTime
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/hertz_fe.py --cell 4e-3)
 set_tests_properties(HertzFe.FourMillimetreElementsKeepMassEnergyAndNearlyHertzsTime PROPERTIES
