@@ -285,7 +285,6 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   result.iterations = solved.iterations;
   result.residual = solved.residual;
   result.converged = solved.converged;
-  result.active_set_passes = 1;
   if (!result.converged) {
     return result;
   }
@@ -301,9 +300,11 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   for (Eigen::Index u = 0; u < unknowns; ++u) {
     const int c = cell_of_unknown_[static_cast<std::size_t>(u)];
     const CellSums& cell = cells_[static_cast<std::size_t>(c)];
-    limit_increment[u] = structures && at_structure(grid, c % cells_r, c / cells_r, step.mass_floor)
-                             ? std::numeric_limits<double>::infinity()
-                             : cell.headroom / cell.storage;
+    limit_increment[u] = cell.headroom / cell.storage;
+    if (std::isfinite(limit_increment[u]) && structures &&
+        at_structure(grid, c % cells_r, c / cells_r, step.mass_floor)) {
+      limit_increment[u] = std::numeric_limits<double>::infinity();
+    }
     cut_off = cut_off || std::isfinite(limit_increment[u]);
   }
   held_.assign(static_cast<std::size_t>(unknowns), 0);
@@ -329,7 +330,6 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       if (!changed) {
         break;
       }
-      result.active_set_passes = pass + 1;
       if (!solve_held(rhs, limit_increment, increment, result)) {
         return result;
       }
@@ -342,7 +342,6 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
     }
     for (Eigen::Index u = 0; u < unknowns; ++u) {
       if (held_[static_cast<std::size_t>(u)] != 0) {
-        ++result.cavitated;
         result.vapour_work += increment[u] * vapour[u];
       }
     }

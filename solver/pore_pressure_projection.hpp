@@ -24,7 +24,8 @@
 // cell whose vapour would shrink is let go again. The held cells are found by iteration (a
 // primal-dual active set: solve, hold the cells past the limit, free the held cells whose vapour
 // would shrink, until none changes), so that the velocities take the tension the water carries,
-// not the one it would have carried without the cut-off.
+// not the one it would have carried without the cut-off. A cell a structure occupies is not held
+// (the contact decides there whether the soil leaves the wall): its particles are capped after it.
 //
 // Reads particle cell, position, volume, body, material, state and stress, grid field 0 and the
 // liquid nodes after the MUSL remap; writes their velocities, the particles' velocities (and
@@ -48,10 +49,8 @@ struct ProjectionResult {
   int iterations = 0;     // conjugate-gradient iterations
   double residual = 0.0;  // the solve's relative residual
   bool converged = true;
-  double dissipated = 0.0;    // backward Euler's numerical damping over the step (J)
-  double drag = 0.0;          // Darcy's dissipation over the step at the corrected velocities (J)
-  std::int64_t cavitated = 0; // cells held at the cavitation limit
-  int active_set_passes = 0;  // solves the cut-off's active set took (1 without cavitation)
+  double dissipated = 0.0; // backward Euler's numerical damping over the step (J)
+  double drag = 0.0;       // Darcy's dissipation over the step at the corrected velocities (J)
   /// The work of the held cells' water at the limit on the vapour's volume, sum d_c V_vapour (J):
   /// the water's work on the volume it does not store, taken by the vapour.
   double vapour_work = 0.0;
