@@ -348,7 +348,7 @@ HertzImpact hertz_impact(const std::string& text) {
   return impact;
 }
 
-TEST(HertzImpact, SphereTouchesOnTimeBouncesWithItsEnergyAndLastsNearlyHertzsTime) {
+TEST(HertzImpact, SphereTouchesOnTimeBouncesWithItsEnergyAndLastsTheElastodynamicTime) {
   // 2 mm cells (53 x 105) instead of the file's 1 mm, for the suite; the file's numbers are in
   // docs/verification.md.
   std::string text = read_text(source / "cases/verification/hertz_sphere.toml");
@@ -373,11 +373,15 @@ TEST(HertzImpact, SphereTouchesOnTimeBouncesWithItsEnergyAndLastsNearlyHertzsTim
   // Seeded by sub-cell centres its lowest particles' domains ended 1 mm above the sphere and it
   // touched after 10 ms.
   EXPECT_NEAR(impact.touch, 0.005, 5e-5);
-  // Measured -4.35 % here and -4.45 % on the file's 1 mm cells; the same with 4 x 4 particles per
-  // cell, with half the Courant number and without B-bar, so the remainder is not an error of the
-  // cells this test can bound. 5 % catches what came before it: -24 % with the staircase seeding,
-  // -7.4 % with contact taken where any particle of a node's cells touches.
-  EXPECT_NEAR(duration / hertz_time, 1.0, 0.05);
+  // Hertz's time is quasi-static; this sphere rings with a quarter of the contact's period and its
+  // patch reaches 0.13 R. The reference is the elastodynamic contact time of the same impact from
+  // independent finite elements (tools/hertz_fe.py: -4.18 % of Hertz's on 1 mm and -4.23 % on
+  // 0.5 mm elements; docs/verification.md), -4.2 %. The 2 % is held against it: measured
+  // -0.15 % here (-4.35 % of Hertz), -0.26 % and +0.20 % on 1 and 0.5 mm cells. It fails with
+  // what came before: contact taken where any particle of a node's cells touches (-7.4 % of
+  // Hertz, -3.3 % of the reference) and the staircase seeding (-24 %).
+  const double elastodynamic_time = (1.0 - 0.042) * hertz_time;
+  EXPECT_NEAR(duration / elastodynamic_time, 1.0, 0.02);
   // A purely elastic impact: the kinetic plus stored energy stays within 1 % of the initial
   // kinetic energy throughout (0.86 % at the deepest indentation), and the kinetic energy comes
   // back within 1 % (0.44 % stays in the ringing sphere). With bilinear weights the cell crossings
