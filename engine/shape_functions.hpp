@@ -21,10 +21,17 @@ constexpr int support_nodes(ShapeFunctions shape) {
   return shape == ShapeFunctions::linear ? 4 : 9;
 }
 
-/// Shape function values and gradients at a particle, node by node.
+/// Shape function values and gradients at a particle, node by node: `columns` node columns in r
+/// by size / columns rows in y, node k = a + columns b. With GIMP a domain inside its cell along
+/// an axis reaches two nodes of it, not three, so the passes loop over 4, 6 or 9 nodes and never
+/// over weights that are exactly zero.
 template <int count> struct NodeWeights {
-  static constexpr int size = count;
+  int size = count;
+  int columns = count == 4 ? 2 : 3;
   int first_r; // the r index of the first node column (the theta gradient's cells)
+  /// The first node of the whole support, 2 x 2 or 3 x 3 nodes, zero weights included: the nodes
+  /// whose contact gaps a particle takes part in (for_each_support_node).
+  int support_origin;
   int node[count];
   double N[count];
   double dN_dr[count];
@@ -46,6 +53,7 @@ inline CellWeights bilinear_weights(const Grid& grid, int cr, int cy, double r, 
   CellWeights w;
   w.first_r = cr;
   const int n0 = grid.node_index(cr, cy);
+  w.support_origin = n0;
   const int nr_count = grid.nodes_r();
   for (int b = 0; b < 2; ++b) {
     for (int a = 0; a < 2; ++a) {
@@ -59,11 +67,14 @@ inline CellWeights bilinear_weights(const Grid& grid, int cr, int cy, double r, 
   return w;
 }
 
-/// GIMP weights along one axis: nodes first, first + 1, first + 2.
+/// GIMP weights along one axis: nodes first, first + 1, first + 2. Those from first + lowest on,
+/// `count` of them, may be nonzero; a domain inside its cell has one weight of exactly zero.
 struct AxisWeights {
   int first;
   double S[3];
   double dS[3];
+  int lowest = 0;
+  int count = 3;
 };
 
 /// The weights of a domain of half-size l that a grid line splits into `left` (in the cell before
@@ -116,30 +127,50 @@ inline AxisWeights gimp_axis_weights(const GradedAxis& axis, int c, double x, do
     w.S[k + 1] = xi;
     w.dS[k] = -inverse_h;
     w.dS[k + 1] = inverse_h;
+    w.lowest = k;
+    w.count = 2;
   }
   return w;
 }
 
-/// The 3 x 3 GIMP weights of a particle with domain half-sizes (half_r, half_y). Node k = a + 3 b
-/// is (first_r + a, first_y + b).
+/// The GIMP weights of a particle with domain half-sizes (half_r, half_y): 2 or 3 node columns by
+/// 2 or 3 rows, those of its support whose weights are not exactly zero. Node k = a + columns b is
+/// (first_r + a, first_y + b).
 inline NodeWeights<9> gimp_weights(const Grid& grid, int cr, int cy, double r, double y,
                                    double half_r, double half_y) {
   const AxisWeights wr = gimp_axis_weights(grid.r_axis(), cr, r, half_r);
   const AxisWeights wy = gimp_axis_weights(grid.y_axis(), cy, y, half_y);
   NodeWeights<9> w;
-  w.first_r = wr.first;
-  const int n0 = grid.node_index(wr.first, wy.first);
+  w.first_r = wr.first + wr.lowest;
+  w.columns = wr.count;
+  w.size = wr.count * wy.count;
+  w.support_origin = grid.node_index(wr.first, wy.first);
+  const int n0 = grid.node_index(w.first_r, wy.first + wy.lowest);
   const int nr_count = grid.nodes_r();
-  for (int b = 0; b < 3; ++b) {
-    for (int a = 0; a < 3; ++a) {
-      const int k = a + 3 * b;
+  for (int b = 0; b < wy.count; ++b) {
+    const double s_y = wy.S[wy.lowest + b];
+    const double ds_y = wy.dS[wy.lowest + b];
+    for (int a = 0; a < wr.count; ++a) {
+      const int k = a + wr.count * b;
       w.node[k] = n0 + a + nr_count * b;
-      w.N[k] = wr.S[a] * wy.S[b];
-      w.dN_dr[k] = wr.dS[a] * wy.S[b];
-      w.dN_dy[k] = wr.S[a] * wy.dS[b];
+      w.N[k] = wr.S[wr.lowest + a] * s_y;
+      w.dN_dr[k] = wr.dS[wr.lowest + a] * s_y;
+      w.dN_dy[k] = wr.S[wr.lowest + a] * ds_y;
     }
   }
   return w;
+}
+
+/// Calls f(node) for each node of the whole support of weights w (2 x 2, or 3 x 3 with GIMP),
+/// those of exactly zero weight included.
+template <int count, class F>
+inline void for_each_support_node(const Grid& grid, const NodeWeights<count>& w, F&& f) {
+  constexpr int side = count == 4 ? 2 : 3;
+  for (int b = 0; b < side; ++b) {
+    for (int a = 0; a < side; ++a) {
+      f(w.support_origin + a + grid.nodes_r() * b);
+    }
+  }
 }
 
 /// The weights of particle i for the chosen shape functions.

@@ -35,8 +35,8 @@ inline double inverse_square_slope_factor(const GradedAxis& r_axis, int cell, do
 template <int count>
 inline double radial_slope_in_s(const GradedAxis& r_axis, const NodeWeights<count>& w,
                                 const double (&omega)[count], double r) {
-  constexpr int columns = count == 4 ? 2 : 3;
-  constexpr int rows = count / columns;
+  const int columns = w.columns;
+  const int rows = w.size / columns;
   // The cell between columns 0 and 1: column 0's dN/dr is minus column 1's (minus columns 1 and
   // 2's with GIMP, the rest of which is the next cell's part).
   double left = 0.0;
@@ -44,7 +44,7 @@ inline double radial_slope_in_s(const GradedAxis& r_axis, const NodeWeights<coun
     left += w.dN_dr[columns * b] * (omega[columns * b] - omega[columns * b + 1]);
   }
   double slope = inverse_square_slope_factor(r_axis, w.first_r, r) * left;
-  if constexpr (columns == 3) {
+  if (columns == 3) {
     double right = 0.0;
     for (int b = 0; b < rows; ++b) {
       right += w.dN_dr[3 * b + 2] * (omega[3 * b + 2] - omega[3 * b + 1]);

@@ -152,10 +152,10 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
           for (const OutlineGap& g : gaps) {
             if (!cut && g.surface_gap == nullptr) {
               const double gap = g.distance(p.r[i], p.y[i]) - half_size;
-              for (int k = 0; k < w.size; ++k) {
-                double& node_gap = g.gap[static_cast<std::size_t>(w.node[k])];
+              for_each_support_node(grid, w, [&](int node) {
+                double& node_gap = g.gap[static_cast<std::size_t>(node)];
                 node_gap = std::min(node_gap, gap);
-              }
+              });
               continue;
             }
             // The nearest edge's normal: its tangent runs along r for an edge nearer horizontal,
@@ -168,15 +168,16 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
             const double x = along_r ? p.r[i] : p.y[i];
             const double cell = along_r ? grid.r_axis().cell_size(p.cell_r[i])
                                         : grid.y_axis().cell_size(p.cell_y[i]);
-            for (int k = 0; k < w.size; ++k) {
-              const auto node = static_cast<std::size_t>(w.node[k]);
+            for_each_support_node(grid, w, [&](int support_node) {
+              const auto node = static_cast<std::size_t>(support_node);
               double& node_gap = g.gap[node];
               node_gap = std::min(node_gap, gap);
-              const double offset = x - (along_r ? grid.node_r(w.node[k]) : grid.node_y(w.node[k]));
+              const double offset =
+                  x - (along_r ? grid.node_r(support_node) : grid.node_y(support_node));
               if (g.surface_gap != nullptr && std::abs(offset) <= cell) {
                 g.surface_gap[node].add(gap, offset);
               }
-            }
+            });
           }
         }
         std::array<double, 2>* gradient = mixed ? fields->mass_gradient(body) : nullptr;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -69,6 +70,56 @@ TEST(GimpShapeFunctions, WeightsAreTheHatsMeanOverTheDomain) {
     EXPECT_NEAR(first_moment, x, 1e-14) << "x = " << x;  // linear completeness
     EXPECT_NEAR(w.dS[0] + w.dS[1] + w.dS[2], 0.0, 1e-9); // rigid translation strains nothing
   }
+}
+
+// The particle passes loop over the nodes gimp_weights lists, which leaves out those of exactly
+// zero weight: every node of the 3 x 3 support that it leaves out must have the hats' mean zero
+// (quadrature, as above), every node it lists must carry the mean, and a domain inside its cell
+// must list its cell's 4 nodes alone. Points all over a graded grid, domains of several sizes,
+// the first and last cells included.
+TEST(GimpShapeFunctions, TheListedNodesAreExactlyThoseThatWeigh) {
+  const Grid grid{graded(), graded()};
+  const GradedAxis& axis = grid.r_axis();
+  int sizes[10] = {};
+  for (double r = 0.004; r < 1.2; r += 0.0317) {
+    for (double y = 0.006; y < 1.2; y += 0.0419) {
+      for (const double half : {0.004, 0.0125, 0.03}) {
+        const int cr = axis.locate(r);
+        const int cy = axis.locate(y);
+        const NodeWeights<9> w = gimp_weights(grid, cr, cy, r, y, half, half);
+        ASSERT_TRUE(w.size == 4 || w.size == 6 || w.size == 9);
+        ++sizes[w.size];
+        // The listed nodes: columns from first_r, and the weights the quadrature gives.
+        double listed_sum = 0.0;
+        for (int k = 0; k < w.size; ++k) {
+          const int nr = w.node[k] % grid.nodes_r();
+          const int ny = w.node[k] / grid.nodes_r();
+          EXPECT_EQ(nr, w.first_r + k % w.columns);
+          const double l_r = std::min({half, axis.domain_reach(cr), r, axis.end() - r});
+          const double l_y = std::min({half, axis.domain_reach(cy), y, axis.end() - y});
+          EXPECT_NEAR(w.N[k], mean_hat(axis, nr, r, l_r) * mean_hat(axis, ny, y, l_y), 1e-8);
+          listed_sum += w.N[k];
+        }
+        // Partition of unity over the listed nodes alone: nothing that weighs is left out.
+        EXPECT_NEAR(listed_sum, 1.0, 1e-14) << r << ", " << y;
+        // Inside its cell in both directions: exactly the cell's 4 nodes, the bilinear weights.
+        const bool inside = r - half >= axis.node(cr) && r + half <= axis.node(cr + 1) &&
+                            y - half >= axis.node(cy) && y + half <= axis.node(cy + 1);
+        if (inside) {
+          const CellWeights bilinear = bilinear_weights(grid, cr, cy, r, y);
+          ASSERT_EQ(w.size, 4);
+          for (int k = 0; k < 4; ++k) {
+            EXPECT_EQ(w.node[k], bilinear.node[k]);
+            EXPECT_NEAR(w.N[k], bilinear.N[k], 1e-15);
+          }
+        }
+      }
+    }
+  }
+  // Each kind of support occurred.
+  EXPECT_GT(sizes[4], 0);
+  EXPECT_GT(sizes[6], 0);
+  EXPECT_GT(sizes[9], 0);
 }
 
 TEST(GimpShapeFunctions, DomainsAreKeptInsideTheGridAndWithinTwoCells) {
