@@ -81,8 +81,8 @@ TEST(GimpShapeFunctions, TheListedNodesAreExactlyThoseThatWeigh) {
   const Grid grid{graded(), graded()};
   const GradedAxis& axis = grid.r_axis();
   int sizes[10] = {};
-  for (double r = 0.004; r < 1.2; r += 0.0317) {
-    for (double y = 0.006; y < 1.2; y += 0.0419) {
+  for (double r = 0.004; r < 1.2; r += 0.0617) {
+    for (double y = 0.006; y < 1.2; y += 0.0819) {
       for (const double half : {0.004, 0.0125, 0.03}) {
         const int cr = axis.locate(r);
         const int cy = axis.locate(y);
