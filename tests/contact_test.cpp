@@ -376,7 +376,7 @@ TEST(HertzImpact, SphereTouchesOnTimeBouncesWithItsEnergyAndLastsTheElastodynami
   // Hertz's time is quasi-static; this sphere rings with a quarter of the contact's period and its
   // patch reaches 0.13 R. The reference is the elastodynamic contact time of the same impact from
   // independent finite elements (tools/hertz_fe.py: -4.18 % of Hertz's on 1 mm and -4.23 % on
-  // 0.5 mm elements; docs/verification.md), -4.2 %. The 2 % is held against it: measured
+  // 0.5 mm elements; docs/verification.md), -4.2 %. The target, 2 %, is held against it: measured
   // -0.15 % here (-4.35 % of Hertz), -0.26 % and +0.20 % on 1 and 0.5 mm cells. It fails with
   // what came before: contact taken where any particle of a node's cells touches (-7.4 % of
   // Hertz, -3.3 % of the reference) and the staircase seeding (-24 %).

@@ -90,13 +90,13 @@ TEST(GimpShapeFunctions, TheListedNodesAreExactlyThoseThatWeigh) {
         ASSERT_TRUE(w.size == 4 || w.size == 6 || w.size == 9);
         ++sizes[w.size];
         // The listed nodes: columns from first_r, and the weights the quadrature gives.
+        const double l_r = std::min({half, axis.domain_reach(cr), r, axis.end() - r});
+        const double l_y = std::min({half, axis.domain_reach(cy), y, axis.end() - y});
         double listed_sum = 0.0;
         for (int k = 0; k < w.size; ++k) {
           const int nr = w.node[k] % grid.nodes_r();
           const int ny = w.node[k] / grid.nodes_r();
           EXPECT_EQ(nr, w.first_r + k % w.columns);
-          const double l_r = std::min({half, axis.domain_reach(cr), r, axis.end() - r});
-          const double l_y = std::min({half, axis.domain_reach(cy), y, axis.end() - y});
           EXPECT_NEAR(w.N[k], mean_hat(axis, nr, r, l_r) * mean_hat(axis, ny, y, l_y), 1e-8);
           listed_sum += w.N[k];
         }
