@@ -117,8 +117,9 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
   const passes::WaterVelocityResult water =
       passes::update_water_velocities<mode>(scene_, step, settings_.mass_scaling);
   // With the pore pressure solved on the grid the drag is booked there, at the corrected
-  // velocities: the predictor's relative flow, driven by p^n alone, is in part a mode the remap
-  // and the correction do not keep, and the pressure's work on it is not booked either.
+  // velocities: the predictor's drag and the correction's add to one drag implicit in the
+  // corrected relative flow, and the pore pressure's work is booked on the same velocities
+  // (docs/saturated.md, "The step's energy identity").
   return {.external_work = water.support_work,
           .drag = settings_.implicit_pore_pressure ? 0.0 : water.drag};
 }
