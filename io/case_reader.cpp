@@ -651,6 +651,10 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
                                   ") replaces the FLIP/PIC blend: leave flip_fraction at 1 (got " +
                                   format_number(s.flip_fraction) + ")");
   }
+  if (s.bbar_consistent_force && !s.bbar) {
+    table->fail("bbar_consistent_force", "is B-bar's transpose in the internal force: it needs "
+                                         "bbar = true");
+  }
   if (!(s.energy_residual_limit > s.energy_residual_warning)) {
     table->fail("energy_residual_limit", "must exceed energy_residual_warning (" +
                                              format_number(s.energy_residual_warning) + "), got " +

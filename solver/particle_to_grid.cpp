@@ -4,6 +4,7 @@
 // node's angular velocity, docs/design.md). With contact, each particle writes to its body's field
 // (and to its mass gradient where one is kept).
 #include "engine/shape_functions.hpp"
+#include "solver/cell_slots.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 
@@ -18,10 +19,12 @@ namespace mpile::passes {
 namespace {
 
 /// Scatters particle i's mass, momentum, forces and, in axisymmetric mode, its angular momentum,
-/// rotational inertia and torque to the nodes of one field; returns its weights.
+/// rotational inertia and torque to the nodes of one field; returns its weights. `mean_shift` is
+/// added to its normal stresses (B-bar's cell mean stress: bbar_mean_stress_shift).
 template <GeometryMode mode, ShapeFunctions shape>
 [[gnu::always_inline]] inline auto scatter(GridNode* nodes, const Grid& grid, const Particles& p,
-                                           std::size_t i, double g_r, double g_y) {
+                                           std::size_t i, double g_r, double g_y,
+                                           double mean_shift) {
   const auto w = particle_weights<shape>(grid, p, i);
   const double m = p.mass[i];
   const double weight = p.volume[i]; // integration weight (A r per radian in axisymmetry)
@@ -29,8 +32,8 @@ template <GeometryMode mode, ShapeFunctions shape>
   const double m_v_r = m * p.v_r[i];
   const double m_v_y = m * p.v_y[i];
   // Stresses times the integration weight, so that each node needs only multiply-adds.
-  const double w_rr = weight * s[RR];
-  const double w_yy = weight * s[YY];
+  const double w_rr = weight * (s[RR] + mean_shift);
+  const double w_yy = weight * (s[YY] + mean_shift);
   const double w_ry = weight * s[RY];
   for (int k = 0; k < w.size; ++k) {
     GridNode& node = nodes[static_cast<std::size_t>(w.node[k])];
@@ -48,7 +51,7 @@ template <GeometryMode mode, ShapeFunctions shape>
     // tau_rtheta on gamma_ytheta = r d(omega)/dy and gamma_rtheta = r d(omega)/dr (seed eq. 8's
     // dv/dr - v/r with v = r omega: its -v/r term cancels the rigid part exactly).
     const double r = p.r[i];
-    const double w_hoop = weight * s[TT] * (1.0 / r);
+    const double w_hoop = weight * (s[TT] + mean_shift) * (1.0 / r);
     const double w_yt = weight * r * s[YT];
     const double w_rt = weight * r * s[RT];
     const double m_r = m * r;
@@ -116,31 +119,41 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
 
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
+  const bool bbar = settings.bbar && settings.bbar_consistent_force;
   bins.for_each_block_colored([&](int block, std::span<const std::int32_t> particles) {
+    const auto [cr0, cy0] = bins.block_origin(block);
+    const bool mixed = contact && bins.block_tag(block) != 0;
+    thread_local std::vector<double> shift;
+    if (bbar) {
+      bbar_mean_stress_shift(
+          p, particles, CellSlots<contact>{scene, p, cr0, cy0, bins.block_cells(), mixed}, shift);
+    }
+    const auto shift_of = [&](std::size_t k) { return bbar ? shift[k] : 0.0; };
     if constexpr (!contact) {
-      for (const std::int32_t q : particles) {
-        scatter<mode, shape>(grid.nodes.data(), grid, p, static_cast<std::size_t>(q), g_r, g_y);
+      for (std::size_t k = 0; k < particles.size(); ++k) {
+        scatter<mode, shape>(grid.nodes.data(), grid, p, static_cast<std::size_t>(particles[k]),
+                             g_r, g_y, shift_of(k));
       }
     } else {
       // A block of soil particles scatters to field 0 alone, as without contact, and keeps no
       // mass gradient; it needs the gaps only where its nodes meet a structure's reach.
-      const bool mixed = bins.block_tag(block) != 0;
       const NodeBox block_nodes = block_node_box(grid, bins, block);
       bool near_outline = false;
       for (const OutlineGap& g : gaps) {
         near_outline = near_outline || block_nodes.intersects(g.reach);
       }
       if (!mixed && !near_outline) {
-        for (const std::int32_t q : particles) {
-          scatter<mode, shape>(grid.nodes.data(), grid, p, static_cast<std::size_t>(q), g_r, g_y);
+        for (std::size_t k = 0; k < particles.size(); ++k) {
+          scatter<mode, shape>(grid.nodes.data(), grid, p, static_cast<std::size_t>(particles[k]),
+                               g_r, g_y, shift_of(k));
         }
         return;
       }
-      for (const std::int32_t q : particles) {
-        const auto i = static_cast<std::size_t>(q);
+      for (std::size_t k = 0; k < particles.size(); ++k) {
+        const auto i = static_cast<std::size_t>(particles[k]);
         const std::uint16_t body = p.body[i];
         const auto w = scatter<mode, shape>(mixed ? fields->nodes(body) : grid.nodes.data(), grid,
-                                            p, i, g_r, g_y);
+                                            p, i, g_r, g_y, shift_of(k));
         if (near_outline && (!mixed || fields->is_soil(body))) {
           // Half the particle's size (a square domain of its area in the r-y plane), widened by
           // 1 % so that a particle whose domain ends on the outline counts as touching it.
@@ -183,10 +196,10 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
         std::array<double, 2>* gradient = mixed ? fields->mass_gradient(body) : nullptr;
         if (gradient != nullptr) {
           const double m = p.mass[i];
-          for (int k = 0; k < w.size; ++k) {
-            auto& g = gradient[static_cast<std::size_t>(w.node[k])];
-            g[0] += m * w.dN_dr[k];
-            g[1] += m * w.dN_dy[k];
+          for (int a = 0; a < w.size; ++a) {
+            auto& g = gradient[static_cast<std::size_t>(w.node[a])];
+            g[0] += m * w.dN_dr[a];
+            g[1] += m * w.dN_dy[a];
           }
         }
       }

@@ -26,6 +26,7 @@
 #include "solver/passes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -66,7 +67,29 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
   Particles& p = scene.particles;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
-  bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const bool consistent = settings.bbar && settings.bbar_consistent_force;
+  bins.for_each_block_colored([&](int block, std::span<const std::int32_t> particles) {
+    // With B-bar the water's divergence is its cell's volume-weighted mean (pore_pressure_from_
+    // flow); B-bar's consistent force takes the cell's mean pore pressure for the water, as the
+    // mixture's takes the cell's mean stress (bbar_mean_stress_shift).
+    thread_local std::vector<std::array<double, 2>> cell_pressure;
+    const auto [cr0, cy0] = bins.block_origin(block);
+    const int block_cells = bins.block_cells();
+    const auto cell_of = [&](std::size_t i) {
+      return static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
+    };
+    if (consistent) {
+      cell_pressure.assign(static_cast<std::size_t>(block_cells * block_cells), {0.0, 0.0});
+      for (const std::int32_t q : particles) {
+        const auto i = static_cast<std::size_t>(q);
+        if (const LiquidPhase* phase = phases[p.material[i]]) {
+          auto& sum = cell_pressure[cell_of(i)];
+          sum[0] += p.volume[i] * p.state[i * stride + static_cast<std::size_t>(phase->pore_slot)];
+          sum[1] += p.volume[i];
+        }
+      }
+    }
     for_each_coupled(
         particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, const double* state) {
           const double n = state[phase.porosity_slot];
@@ -76,7 +99,12 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
           const double drag = water_mass * phase.drag_per_mass;
           // The pore pressure's share of the water's internal force, as the particle-to-grid pass
           // takes the total stress's, with sigma = p 1.
-          const double weighted = p.volume[i] * state[phase.pore_slot];
+          double pressure = state[phase.pore_slot];
+          if (consistent) {
+            const auto& sum = cell_pressure[cell_of(i)];
+            pressure = sum[0] / sum[1];
+          }
+          const double weighted = p.volume[i] * pressure;
           const double hoop = has_theta(mode) ? weighted / p.r[i] : 0.0;
           const auto weights = particle_weights<shape>(grid, p, i);
           for (int k = 0; k < weights.size; ++k) {

@@ -42,6 +42,10 @@ const std::vector<SolverParameter>& solver_parameters() {
               "0: the FLIP/PIC blend; m >= 1: XPIC(m); excludes flip_fraction < 1", &S::xpic_order,
               {closed(0.0), closed(S::max_xpic_order)}),
       setting("bbar", "", "B-bar: cell-mean volumetric strain increment", &S::bbar, {}),
+      setting("bbar_consistent_force", "",
+              "B-bar's transpose in the internal force: the cell-mean mean stress and pore "
+              "pressure, so that the forces do the work the strains store (needs bbar)",
+              &S::bbar_consistent_force, {}),
       setting(
           "cell_mean_pore_pressure", "",
           "each cell's saturated particles share their volume-weighted mean excess pore pressure "
@@ -111,6 +115,8 @@ void SolverSettings::validate() const {
           "energy_residual_limit must exceed energy_residual_warning (" +
               std::to_string(energy_residual_warning) + "), got " +
               std::to_string(energy_residual_limit));
+  require(!bbar_consistent_force || bbar,
+          "bbar_consistent_force is B-bar's transpose: it needs bbar = true");
   require(!implicit_pore_pressure || musl,
           "implicit_pore_pressure corrects the remapped velocities: it needs MUSL");
   // Two blocks of one colour are a block apart; a GIMP particle writes to nodes one cell outside

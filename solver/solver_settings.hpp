@@ -32,6 +32,10 @@ struct SolverSettings {
   bool musl = true;
   /// Replace each particle's volumetric strain increment by its cell's volume-weighted mean.
   bool bbar = true;
+  /// With B-bar, take B-bar's transpose in the internal force: each particle's mean stress (and a
+  /// coupled particle's pore pressure in its water's force) as its cell's volume-weighted mean, so
+  /// that the nodal forces do the work the strains store (physics.md section 4). Needs bbar.
+  bool bbar_consistent_force = false;
   /// Replace the excess pore pressure of each cell's saturated particles (undrained or coupled) by
   /// their volume-weighted mean after every stress update: the pore pressure as one value per cell,
   /// against the per-particle checkerboard of nearly incompressible soil.

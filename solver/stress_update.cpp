@@ -4,6 +4,7 @@
 // writes only to its own particles and to the B-bar sums of its own cells.
 #include "engine/shape_functions.hpp"
 #include "engine/theta_gradient.hpp"
+#include "solver/cell_slots.hpp"
 #include "solver/particle_fields.hpp"
 #include "solver/passes.hpp"
 #include "solver/rigid_interiors.hpp"
@@ -51,29 +52,6 @@ double stress_power(const Stress& s, const StrainIncrement& de) {
   return s[RR] * de[RR] + s[YY] * de[YY] + s[TT] * de[TT] + s[RY] * de[RY] + s[YT] * de[YT] +
          s[RT] * de[RT];
 }
-
-/// The B-bar sum a particle adds to: its cell in its block, per velocity field. A cell the soil
-/// and a structure share holds two independent velocity fields: averaged together, the
-/// structure's particles took the soil's volumetric strain (a steel pile tip entering a cell of
-/// sand grew 1.4 GPa of hoop tension in 0.8 ms while moving inwards, and the run blew up).
-template <bool contact> struct CellSlots {
-  const Scene& scene;
-  const Particles& p;
-  int cr0, cy0, block_cells;
-  bool mixed;
-  std::size_t cells() const { return static_cast<std::size_t>(block_cells * block_cells); }
-  std::size_t fields() const {
-    return mixed ? static_cast<std::size_t>(scene.grid.field_count()) : 1;
-  }
-  std::size_t operator()(std::size_t i) const {
-    std::size_t field = 0;
-    if constexpr (contact) {
-      field = mixed ? static_cast<std::size_t>(scene.field_of(p.body[i])) : 0;
-    }
-    return field * cells() +
-           static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
-  }
-};
 
 /// One block's sums, reduced serially afterwards: no shared writes, and a fixed order.
 struct BlockResult {
