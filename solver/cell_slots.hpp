@@ -45,18 +45,18 @@ void bbar_mean_stress_shift(const Particles& p, std::span<const std::int32_t> pa
   weighted_mean.assign(slot.fields() * slot.cells(), 0.0);
   volume.assign(slot.fields() * slot.cells(), 0.0);
   shift.resize(particles.size());
+  // First each particle's stress trace, then the shift from its mean to its cell's.
   for (std::size_t k = 0; k < particles.size(); ++k) {
     const auto i = static_cast<std::size_t>(particles[k]);
     const Stress& s = p.stress[i];
     const std::size_t c = slot(i);
-    weighted_mean[c] += p.volume[i] * (s[RR] + s[YY] + s[TT]) / 3.0;
+    shift[k] = s[RR] + s[YY] + s[TT];
+    weighted_mean[c] += p.volume[i] * shift[k] / 3.0;
     volume[c] += p.volume[i];
   }
   for (std::size_t k = 0; k < particles.size(); ++k) {
-    const auto i = static_cast<std::size_t>(particles[k]);
-    const Stress& s = p.stress[i];
-    const std::size_t c = slot(i);
-    shift[k] = weighted_mean[c] / volume[c] - (s[RR] + s[YY] + s[TT]) / 3.0;
+    const std::size_t c = slot(static_cast<std::size_t>(particles[k]));
+    shift[k] = weighted_mean[c] / volume[c] - shift[k] / 3.0;
   }
 }
 

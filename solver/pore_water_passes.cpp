@@ -23,6 +23,7 @@
 #include "engine/materials/pore_water.hpp"
 #include "engine/parallel.hpp"
 #include "engine/shape_functions.hpp"
+#include "solver/cell_slots.hpp"
 #include "solver/passes.hpp"
 
 #include <algorithm>
@@ -75,12 +76,9 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
     // mixture's takes the cell's mean stress (bbar_mean_stress_shift).
     thread_local std::vector<std::array<double, 2>> cell_pressure;
     const auto [cr0, cy0] = bins.block_origin(block);
-    const int block_cells = bins.block_cells();
-    const auto cell_of = [&](std::size_t i) {
-      return static_cast<std::size_t>((p.cell_r[i] - cr0) + block_cells * (p.cell_y[i] - cy0));
-    };
+    const CellSlots<false> cell_of{scene, p, cr0, cy0, bins.block_cells(), false};
     if (consistent) {
-      cell_pressure.assign(static_cast<std::size_t>(block_cells * block_cells), {0.0, 0.0});
+      cell_pressure.assign(cell_of.cells(), {0.0, 0.0});
       for (const std::int32_t q : particles) {
         const auto i = static_cast<std::size_t>(q);
         if (const LiquidPhase* phase = phases[p.material[i]]) {
