@@ -119,16 +119,16 @@ void particle_to_grid(Scene& scene, const ParticleBins& bins, const SolverSettin
 
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
-  const bool bbar = settings.bbar && settings.bbar_consistent_force;
+  const bool consistent = settings.bbar_consistent_force; // validated: only with B-bar
   bins.for_each_block_colored([&](int block, std::span<const std::int32_t> particles) {
     const auto [cr0, cy0] = bins.block_origin(block);
     const bool mixed = contact && bins.block_tag(block) != 0;
     thread_local std::vector<double> shift;
-    if (bbar) {
+    if (consistent) {
       bbar_mean_stress_shift(
           p, particles, CellSlots<contact>{scene, p, cr0, cy0, bins.block_cells(), mixed}, shift);
     }
-    const auto shift_of = [&](std::size_t k) { return bbar ? shift[k] : 0.0; };
+    const auto shift_of = [&](std::size_t k) { return consistent ? shift[k] : 0.0; };
     if constexpr (!contact) {
       for (std::size_t k = 0; k < particles.size(); ++k) {
         scatter<mode, shape>(grid.nodes.data(), grid, p, static_cast<std::size_t>(particles[k]),

@@ -69,7 +69,7 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
   const auto stride = static_cast<std::size_t>(p.state_stride);
-  const bool consistent = settings.bbar && settings.bbar_consistent_force;
+  const bool consistent = settings.bbar_consistent_force; // validated: only with B-bar
   bins.for_each_block_colored([&](int block, std::span<const std::int32_t> particles) {
     // With B-bar the water's divergence is its cell's volume-weighted mean (pore_pressure_from_
     // flow); B-bar's consistent force takes the cell's mean pore pressure for the water, as the
