@@ -50,7 +50,6 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
                        spec.mode == GeometryMode::axisymmetric
                            ? "axisymmetric: extensive quantities per radian"
                            : "plane strain: extensive quantities per metre");
-    file.set_attribute("/", "status", "running");
   } else if (H5Aexists_by_name(file.id(), "/", "case_resolved", H5P_DEFAULT) > 0) {
     // A restart continues its own case's history, never one another run left in the directory;
     // the checkpoint has judged which changes (outputs, end criteria) the continuation makes.
@@ -70,6 +69,9 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
     throw std::runtime_error(path + " is the history of another case (or " + spec.file +
                              " was edited since it was written)");
   }
+  // Running again after a restart: the status the last part closed with ("interrupted at ...")
+  // would tell a reader of the growing file that nothing more is coming.
+  file.set_attribute("/", "status", "running");
   // The case that runs from here on: its file, its bases merged and --set applied.
   file.set_attribute("/", "case_text", spec.text);
   file.set_attribute("/", "case_resolved", spec.resolved);

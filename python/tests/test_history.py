@@ -6,7 +6,7 @@ import time
 import h5py
 import numpy as np
 import pytest
-from conftest import write_history
+from conftest import REPOSITORY, mpile_binary, write_history
 
 import mpile
 from mpile.files import RunFileError
@@ -123,6 +123,42 @@ def test_reads_while_a_writer_holds_the_file_open(synthetic_run, tmp_path):
     finally:
         writer.stdin.close()
         writer.wait(timeout=30)
+
+
+def test_a_restarted_run_reads_as_running_until_it_stops(tmp_path):
+    """A restart reopens the history its first part closed as interrupted: while it runs, a reader
+    (tools/convergence.py --running, a sweep's table) must see it running, not finished."""
+    binary = mpile_binary()
+    if binary is None:
+        pytest.skip("no mpile program: set MPILE to its path (ctest does)")
+    case = REPOSITORY / "cases" / "verification" / "v7_block_on_incline.toml"
+    out = tmp_path / "run"
+    # mu = 0.6 > tan 30 deg: the block sticks, so a long phase stays on the incline.
+    run = [binary, "run", str(case), "--out", str(out), "--threads", "1",
+           "--set", "contact.0.friction=0.6", "--set", "phases.0.duration=1000"]
+    first = subprocess.run(run + ["--stop-after", "20"], capture_output=True, timeout=120)
+    assert first.returncode == 130, first.stderr
+    interrupted = mpile.open_history(out)
+    assert interrupted.attrs["status"].startswith("interrupted at")
+    rows = interrupted.sizes["time"]
+    second = subprocess.Popen(run + ["--restart", str(out / "checkpoint.h5")],
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        seen = None
+        deadline = time.monotonic() + 60.0  # rows are written every 2 s
+        while seen is None and time.monotonic() < deadline and second.poll() is None:
+            time.sleep(0.2)
+            try:
+                ds = mpile.open_history(out)
+            except (OSError, RunFileError):
+                continue  # caught between the writer's open and close: read again
+            if ds.sizes["time"] > rows:
+                seen = ds.attrs["status"]
+        assert seen == "running"
+    finally:
+        second.terminate()
+        second.wait(timeout=60)
+    assert mpile.open_history(out).attrs["status"].startswith("interrupted at")
 
 
 def test_real_run(real_run):
