@@ -66,7 +66,13 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run->add_option("--out", run_options.output_directory,
                   "output directory (default: [output].directory, else out/<case name>)");
-  run->add_option("--restart", run_options.restart, "continue from this checkpoint file");
+  auto* restart =
+      run->add_option("--restart", run_options.restart, "continue from this checkpoint file");
+  const char* continue_help =
+      "continue the run in the output directory from its checkpoint if it stopped before its end "
+      "(interrupted or killed), do nothing if it is complete, else start it afresh: a batch job "
+      "or sweep resubmitted as it is";
+  run->add_flag("--continue", run_options.continue_run, continue_help)->excludes(restart);
   const char* set_help = "set one value of the case, key.path=value in TOML syntax (repeatable; "
                          "recorded in history.h5), e.g. --set monopile.friction=0.3";
   run->add_option("--set", run_options.overrides, set_help)->allow_extra_args(false);

@@ -1,6 +1,7 @@
 #include "app/run_command.hpp"
 
 #include "app/progress_reporter.hpp"
+#include "app/run_continuation.hpp"
 #include "app/run_observers.hpp"
 #include "io/case_builder.hpp"
 #include "io/case_error.hpp"
@@ -98,23 +99,33 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   CaseSpec spec;
   std::unique_ptr<Scene> scene;
   Checkpoint restored;
-  const bool restarting = !options.restart.empty();
+  std::string restart = options.restart;
+  std::string continuation_reason;
   try {
     spec = read_case_file(options.case_path, options.overrides);
+    if (options.continue_run && restart.empty()) {
+      const Continuation c = find_continuation(output_directory(options, spec), spec.resolved);
+      if (c.complete) {
+        out << "mpile: " << c.reason << "; nothing to continue\n";
+        return exit_success;
+      }
+      restart = c.checkpoint;
+      continuation_reason = c.reason;
+    }
     scene = build_scene(spec);
-    if (!restarting) {
+    if (restart.empty()) {
       for (const MonitorSpec& monitor : spec.output.monitors) {
         monitored_particle(monitor, *scene); // refused here, before anything is written
       }
     }
-    if (restarting) {
-      restored = read_checkpoint(options.restart, spec, *scene);
+    if (!restart.empty()) {
+      restored = read_checkpoint(restart, spec, *scene);
       if (restored.progress.phase >= spec.phases.size()) {
         // A complete run goes on only when its last phase may now end later.
         const std::string last = "phases." + std::to_string(spec.phases.size() - 1) + ".";
         if (std::none_of(restored.changed_keys.begin(), restored.changed_keys.end(),
                          [&](const std::string& key) { return key.starts_with(last); })) {
-          throw CaseError(options.restart +
+          throw CaseError(restart +
                           ": the run in this checkpoint is complete; nothing to continue (to "
                           "extend it, change the last phase's duration or stop_at, or add a "
                           "phase)");
@@ -125,6 +136,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   } catch (const std::exception&) {
     return refuse_case(err, options.case_path);
   }
+  const bool restarting = !restart.empty();
   // Before anything is written: with --strict a likely slip of units refuses the run.
   print_case_warnings(err, spec.warnings, options.strict);
   if (options.strict && refused_when_strict(spec.warnings)) {
@@ -152,6 +164,11 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (stop_requested != 0) {
     err << "mpile: interrupted before the run started; nothing was written\n";
     return exit_interrupted;
+  }
+
+  if (!continuation_reason.empty()) {
+    out << "mpile: --continue: " << continuation_reason
+        << (restarting ? "" : ": the run starts from the beginning") << '\n';
   }
 
   // Nothing is written before the case has been read, built and judged runnable.
@@ -190,10 +207,13 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
   };
   if (log_file) {
     log.also_to(&log_file);
-    to_log_file(std::string("mpile ") + MPILE_VERSION + ": " +
-                (restarting ? "continuing " + spec.file + " from " + options.restart
-                            : "running " + spec.file) +
-                " on " + std::to_string(options.threads) + " threads");
+    to_log_file(
+        std::string("mpile ") + MPILE_VERSION + ": " +
+        (restarting ? "continuing " + spec.file + " from " + restart : "running " + spec.file) +
+        " on " + std::to_string(options.threads) + " threads");
+    if (!continuation_reason.empty()) {
+      to_log_file("--continue: " + continuation_reason);
+    }
     // The warnings printed as the run began, beside its outputs where they are read.
     print_case_warnings(log_file, spec.warnings, false);
     log_file.flush();
@@ -217,7 +237,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
         throw;
       }
       // The checkpoint and the history it continues do not fit together: bad input.
-      err << "mpile: " << options.restart << ": cannot continue the history in " << directory;
+      err << "mpile: " << restart << ": cannot continue the history in " << directory;
       if (!std::filesystem::exists(directory + "/history.h5")) {
         err << ": it has no history.h5; restart into the output directory of the run that wrote "
                "the checkpoint (--out)\n";
@@ -252,7 +272,7 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
     };
     if (restarting) {
       snapshots.restore(progress.snapshots);
-      out << "mpile: continuing " << spec.file << " from " << options.restart
+      out << "mpile: continuing " << spec.file << " from " << restart
           << " at t = " << format_time(solver->time()) << " s\n";
     } else {
       runner.start();

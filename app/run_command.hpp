@@ -10,6 +10,9 @@ struct RunOptions {
   std::string case_path;
   std::string output_directory;       // empty: the case's [output].directory, else out/<case stem>
   std::string restart;                // checkpoint to continue from
+  /// --continue: continue the run in the output directory from its checkpoint if it stopped
+  /// before its end, do nothing if it is complete, else start afresh (app/run_continuation.hpp).
+  bool continue_run = false;
   std::vector<std::string> overrides; // --set key.path=value, applied over the case in order
   int threads = 0;
   /// Stop after this many steps as if interrupted (writing a checkpoint); 0: run to the end.

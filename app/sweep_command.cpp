@@ -86,7 +86,9 @@ std::string snakefile(const std::string& sweep_file) {
   std::ostringstream s;
   s << "# The workflow of the sweep " << sweep_file << ", written by `mpile sweep`.\n"
     << "# Run from this directory: snakemake --cores 2 --keep-going; on a cluster, see\n"
-    << "# docs/sweeps.md. Each variant's run is variants/<id>/ (run.log beside its outputs).\n"
+    << "# docs/sweeps.md. Each variant's run is variants/<id>/: its outputs, its run.log, and\n"
+    << "# output.log, what its last attempt printed. A variant stopped before its end (Ctrl-C,\n"
+    << "# a time limit, a lost node) continues from its checkpoint (mpile run --continue).\n"
     << "import os\n"
     << "import shlex\n"
     << "import sys\n"
@@ -116,7 +118,7 @@ std::string snakefile(const std::string& sweep_file) {
     << "    output:\n"
     << "        touch(\"variants/{variant}/finished\"),\n"
     << "    log:\n"
-    << "        \"variants/{variant}/run.log\",\n"
+    << "        \"variants/{variant}/output.log\",\n"
     << "    params:\n"
     << "        sets=lambda w: \" \".join(\"--set \" + shlex.quote(s) for s in "
        "VARIANTS[w.variant][\"sets\"]),\n"
@@ -125,7 +127,8 @@ std::string snakefile(const std::string& sweep_file) {
     << "        mem_mb=2000,\n"
     << "    shell:\n"
     << "        literal(SWEEP[\"mpile\"]) + \" run \" + literal(SWEEP[\"case\"]) + \" "
-       "{params.sets} --out variants/{wildcards.variant} --threads {threads} > {log} 2>&1\"\n\n\n"
+       "{params.sets} --out variants/{wildcards.variant} --continue --threads {threads} > {log} "
+       "2>&1\"\n\n\n"
     << "rule gather:\n"
     << "    input:\n"
     << "        finished,\n"
@@ -299,10 +302,10 @@ int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& 
     for (const std::string& set : v.sets) {
       values += " --set " + set;
     }
-    if (fs::exists(run / "run.log")) {
-      report << "  " << v.id << " failed:" << values << "\n    " << (run / "run.log").string()
+    if (fs::exists(run / "output.log")) {
+      report << "  " << v.id << " failed:" << values << "\n    " << (run / "output.log").string()
              << " ends:\n"
-             << tail(run / "run.log", 4);
+             << tail(run / "output.log", 4);
     } else {
       report << "  " << v.id << " did not run:" << values << "\n";
     }

@@ -10,7 +10,8 @@ the single material point, one of which leaves the grid):
 - the same command again reruns only the failed variant (Snakemake's markers), the finished
   variants' outputs untouched;
 - a Snakemake profile (here a local one) runs it the same way;
-- SIGTERM to a running sweep stops Snakemake and its runs (checkpoints written), exit status 130.
+- SIGTERM to a running sweep stops Snakemake and its runs (checkpoints written), exit status 130;
+  the same command again continues each interrupted variant from its checkpoint.
 
   run_sweep.py MPILE SWEEP_FILE WORK_DIRECTORY
 """
@@ -93,7 +94,7 @@ check(wrong.returncode != 0 and "the sweep gathers no kinetic_end (it gathers ki
 
 finished_history = os.path.join(out, "variants", "v01", "history.h5")
 before = os.stat(finished_history).st_mtime_ns
-failed_log = os.path.join(out, "variants", "v02", "run.log")
+failed_log = os.path.join(out, "variants", "v02", "output.log")
 os.utime(failed_log, ns=(0, 0))
 again = sweep()
 check(again.returncode == 1, f"second run: exit status {again.returncode}, expected 1")
@@ -137,6 +138,26 @@ try:
 except subprocess.TimeoutExpired:
     slow.kill()
     check(False, "the interrupted sweep did not stop within 30 s")
+time.sleep(0.5)
+
+# The same command again continues the interrupted variants from their checkpoints (mpile run
+# --continue), then is interrupted once more.
+resumed = subprocess.Popen([mpile_binary, "sweep", slow_file, "--out", os.path.join(work, "slow"), "--cores", "2"],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+for _ in range(100):
+    if "continuing" in open(log).read():
+        break
+    time.sleep(0.1)
+resumed.send_signal(signal.SIGTERM)
+try:
+    resumed.communicate(timeout=30)
+    text = open(log).read()
+    check("--continue: the run in variants/v01 stopped before its end (interrupted at t = " in text
+          and "from variants/v01/checkpoint.h5 on " in text, f"the second sweep did not continue v01: {text[-800:]}")
+    check(text.count("checkpoint") >= 2, "the continued run wrote no checkpoint when interrupted again")
+except subprocess.TimeoutExpired:
+    resumed.kill()
+    check(False, "the continued sweep did not stop within 30 s")
 time.sleep(0.5)
 left = subprocess.run(["pgrep", "-af", f"{os.path.join(work, 'slow')}|phases.0.duration=20000.0"],
                       capture_output=True, text=True).stdout

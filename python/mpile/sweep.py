@@ -46,7 +46,9 @@ def _status(run):
     if (run / "finished").exists():
         return "finished"
     if not (run / "history.h5").exists():
-        return "failed" if (run / "run.log").exists() else "not run"
+        # output.log is what the attempt printed (run.log in sweeps written before it existed).
+        tried = (run / "output.log").exists() or (run / "run.log").exists()
+        return "failed" if tried else "not run"
     try:
         with read_only(run / "history.h5") as history:
             status = str(plain(history.attrs.get("status", "unknown")))
