@@ -8,8 +8,8 @@ namespace mpile {
 
 struct RunOptions {
   std::string case_path;
-  std::string output_directory;       // empty: the case's [output].directory, else out/<case stem>
-  std::string restart;                // checkpoint to continue from
+  std::string output_directory; // empty: the case's [output].directory, else out/<case stem>
+  std::string restart;          // checkpoint to continue from
   /// --continue: continue the run in the output directory from its checkpoint if it stopped
   /// before its end, do nothing if it is complete, else start afresh (app/run_continuation.hpp).
   bool continue_run = false;
