@@ -85,7 +85,9 @@ std::string sweep_record(const SweepSpec& sweep, const std::string& case_path,
 std::string snakefile(const std::string& sweep_file) {
   std::ostringstream s;
   s << "# The workflow of the sweep " << sweep_file << ", written by `mpile sweep`.\n"
-    << "# Run from this directory: snakemake --cores 2 --keep-going; on a cluster, see\n"
+    << "# Run from this directory: snakemake --cores 2 --keep-going --rerun-triggers mtime params\n"
+    << "# input (a finished variant reruns for changed values, not another mpile); on a cluster, "
+       "see\n"
     << "# docs/sweeps.md. Each variant's run is variants/<id>/: its outputs, its run.log, and\n"
     << "# output.log, what its last attempt printed. A variant stopped before its end (Ctrl-C,\n"
     << "# a time limit, a lost node) continues from its checkpoint (mpile run --continue).\n"
@@ -256,13 +258,11 @@ int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& 
     return exit_failure;
   }
   const int cores = options.cores > 0 ? options.cores : tbb::info::default_concurrency();
-  std::vector<std::string> snakemake{"snakemake",
-                                     "--snakefile",
-                                     (directory / "Snakefile").string(),
-                                     "--directory",
-                                     directory.string(),
-                                     "--keep-going",
-                                     "--quiet",
+  std::vector<std::string> snakemake{"snakemake", "--snakefile", (directory / "Snakefile").string(),
+                                     "--directory", directory.string(), "--keep-going",
+                                     // A finished variant is rerun for changed values, not for a
+                                     // changed workflow text (another mpile build or its path).
+                                     "--rerun-triggers", "mtime", "params", "input", "--quiet",
                                      "rules"};
   if (options.profile.empty()) {
     snakemake.insert(snakemake.end(), {"--cores", std::to_string(cores)});
