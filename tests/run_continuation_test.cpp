@@ -50,6 +50,14 @@ void set_status(const std::filesystem::path& out, const std::string& status) {
   file.close();
 }
 
+/// The whole run in DIRECTORY/whole, and the same run stopped after 40 steps in DIRECTORY/NAME.
+void run_whole_and_interrupted(const std::filesystem::path& directory, const std::string& name) {
+  ASSERT_EQ(run(block_on_incline(directory / "whole")), exit_success);
+  RunOptions first = block_on_incline(directory / name);
+  first.stop_after_steps = 40;
+  ASSERT_EQ(run(first), exit_interrupted);
+}
+
 void expect_the_whole_runs_history(const std::filesystem::path& whole,
                                    const std::filesystem::path& continued) {
   for (const char* name : {"/time", "/dt", "/energy/kinetic", "/energy/external_work"}) {
@@ -60,11 +68,7 @@ void expect_the_whole_runs_history(const std::filesystem::path& whole,
 
 TEST(RunContinuation, AnInterruptedRunContinuesToTheWholeRunsResultThenHasNothingLeft) {
   const auto directory = fresh_directory("continue_interrupted");
-  ASSERT_EQ(run(block_on_incline(directory / "whole")), exit_success);
-
-  RunOptions first = block_on_incline(directory / "split");
-  first.stop_after_steps = 40;
-  ASSERT_EQ(run(first), exit_interrupted);
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_interrupted(directory, "split"));
   RunOptions again = block_on_incline(directory / "split");
   again.continue_run = true;
   std::string printed;
@@ -84,10 +88,7 @@ TEST(RunContinuation, AnInterruptedRunContinuesToTheWholeRunsResultThenHasNothin
 
 TEST(RunContinuation, AKilledRunContinuesFromItsLastCheckpoint) {
   const auto directory = fresh_directory("continue_killed");
-  ASSERT_EQ(run(block_on_incline(directory / "whole")), exit_success);
-  RunOptions first = block_on_incline(directory / "killed");
-  first.stop_after_steps = 40;
-  ASSERT_EQ(run(first), exit_interrupted);
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_interrupted(directory, "killed"));
   // What a killed process leaves: its history still says running.
   set_status(directory / "killed", "running");
 
