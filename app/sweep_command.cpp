@@ -85,12 +85,12 @@ std::string sweep_record(const SweepSpec& sweep, const std::string& case_path,
 std::string snakefile(const std::string& sweep_file) {
   std::ostringstream s;
   s << "# The workflow of the sweep " << sweep_file << ", written by `mpile sweep`.\n"
-    << "# Run from this directory: snakemake --cores 2 --keep-going --rerun-triggers mtime params\n"
-    << "# input (a finished variant reruns for changed values, not another mpile); on a cluster, "
-       "see\n"
-    << "# docs/sweeps.md. Each variant's run is variants/<id>/: its outputs, its run.log, and\n"
-    << "# output.log, what its last attempt printed. A variant stopped before its end (Ctrl-C,\n"
-    << "# a time limit, a lost node) continues from its checkpoint (mpile run --continue).\n"
+    << "# Run from this directory:\n"
+    << "#   snakemake --cores 2 --keep-going --rerun-triggers mtime params input\n"
+    << "# (a finished variant reruns for changed values, not for another mpile build); on a\n"
+    << "# cluster, see docs/sweeps.md. Each variant's run is variants/<id>/: its outputs, its\n"
+    << "# run.log, and output.log, what its last attempt printed. A variant stopped before its\n"
+    << "# end (Ctrl-C, a time limit, a lost node) continues from its checkpoint (--continue).\n"
     << "import os\n"
     << "import shlex\n"
     << "import sys\n"
@@ -258,12 +258,21 @@ int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& 
     return exit_failure;
   }
   const int cores = options.cores > 0 ? options.cores : tbb::info::default_concurrency();
-  std::vector<std::string> snakemake{"snakemake", "--snakefile", (directory / "Snakefile").string(),
-                                     "--directory", directory.string(), "--keep-going",
-                                     // A finished variant is rerun for changed values, not for a
-                                     // changed workflow text (another mpile build or its path).
-                                     "--rerun-triggers", "mtime", "params", "input", "--quiet",
-                                     "rules"};
+  // Both Snakemake calls: the workflow, and what reruns a finished variant (changed values, not a
+  // changed workflow text: another mpile build or its path).
+  const std::vector<std::string> workflow{"snakemake",
+                                          "--snakefile",
+                                          (directory / "Snakefile").string(),
+                                          "--directory",
+                                          directory.string(),
+                                          "--rerun-triggers",
+                                          "mtime",
+                                          "params",
+                                          "input",
+                                          "--quiet",
+                                          "rules"};
+  std::vector<std::string> snakemake = workflow;
+  snakemake.push_back("--keep-going");
   if (options.profile.empty()) {
     snakemake.insert(snakemake.end(), {"--cores", std::to_string(cores)});
   } else {
@@ -314,9 +323,10 @@ int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& 
     // The table of the variants that did finish, so that a study is not held up by one case.
     // Here, not through a profile: the gathering is a local job, and a cluster profile's settings
     // would only be in its way.
-    run_program({"snakemake", "--snakefile", (directory / "Snakefile").string(), "--directory",
-                 directory.string(), "--quiet", "rules", "--cores", "1", "--config", "partial=1",
-                 "--forcerun", "gather", "--", "gather"});
+    std::vector<std::string> gather = workflow;
+    gather.insert(gather.end(), {"--cores", "1", "--config", "partial=1", "--forcerun", "gather",
+                                 "--", "gather"});
+    run_program(gather);
     err << "mpile: " << failed << " of " << sweep.variants.size()
         << " variants did not finish (run the same command to retry them):\n"
         << report.str();
