@@ -29,6 +29,13 @@ template <GeometryMode mode>
 double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
                        CorrectionPass pass);
 
+/// resolve_contact after the momentum balance at the DOF velocities the rigid bodies end the step
+/// with: a force-driven DOF's velocity follows from the reaction the correction gives it, so the
+/// two are solved together (regula falsi per DOF, to rounding); other DOFs keep `predicted`.
+template <GeometryMode mode>
+double resolve_contact_with_rigid_bodies(Scene& scene, const SolverSettings& settings,
+                                         const StepParameters& step,
+                                         const std::vector<std::array<double, 3>>& predicted);
 /// Force-driven DOFs take the contact reactions; fields are set to the final rigid motion.
 void finish_rigid_bodies(Scene& scene, const SolverSettings& settings, const StepParameters& step,
                          const std::vector<std::array<double, 3>>& predicted);

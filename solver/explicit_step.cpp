@@ -226,7 +226,7 @@ EnergyIncrement ExplicitSolver::correct_for_contact(const passes::StepParameters
                                 passes::ConstraintFields::structures);
   const auto predicted = passes::predict_rigid_bodies(scene_, settings_, step);
   const double dissipated =
-      passes::resolve_contact<mode>(scene_, settings_, step, passes::CorrectionPass::after_balance);
+      passes::resolve_contact_with_rigid_bodies<mode>(scene_, settings_, step, predicted);
   passes::finish_rigid_bodies(scene_, settings_, step, predicted);
   return {.external_work = supports, .contact = dissipated};
 }
