@@ -637,8 +637,7 @@ public:
   explicit CorrectedNodes(Grid& grid) : grid_(grid) {}
   void save(const Scene& scene) {
     for (const ContactPair& pair : scene.contacts) {
-      const NodeBox& reach =
-          grid_.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
+      const NodeBox& reach = grid_.structure_fields[static_cast<std::size_t>(pair.field - 1)].reach;
       soil_box_ = NodeBox::hull(soil_box_, reach);
       if (pair.rigid_body < 0) {
         fields_.push_back({pair.field, reach, copy(grid_.field_nodes(pair.field), reach)});
@@ -746,10 +745,9 @@ double resolve_contact_with_rigid_bodies(Scene& scene, const SolverSettings& set
                       FlipIncrement::record);
     }
     // The outlines' nodal areas do not change within the step: integrated at the first only.
-    dissipated = evaluation == 1 ? resolve_contact<mode>(scene, settings, step,
-                                                         CorrectionPass::after_balance)
-                                 : resolve_pairs<mode>(scene, settings, step,
-                                                       CorrectionPass::after_balance);
+    dissipated = evaluation == 1
+                     ? resolve_contact<mode>(scene, settings, step, CorrectionPass::after_balance)
+                     : resolve_pairs<mode>(scene, settings, step, CorrectionPass::after_balance);
     bool converged = true;
     for (std::size_t b = 0; b < scene.rigid_bodies.size(); ++b) {
       const RigidBody& body = scene.rigid_bodies[b];
@@ -762,8 +760,8 @@ double resolve_contact_with_rigid_bodies(Scene& scene, const SolverSettings& set
         const double closed = predicted[b][k] + step.dt * body.contact[k] / m;
         const double g = u[b][k] - closed;
         // Converged to rounding against the velocities in play (the step's change included).
-        const double scale = std::abs(u[b][k]) + std::abs(closed) +
-                             std::abs(predicted[b][k] - body.velocity[k]);
+        const double scale =
+            std::abs(u[b][k]) + std::abs(closed) + std::abs(predicted[b][k] - body.velocity[k]);
         if (std::abs(g) <= 1e-12 * scale) {
           continue;
         }

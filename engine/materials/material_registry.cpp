@@ -1,6 +1,7 @@
 #include "engine/materials/material_registry.hpp"
 
 #include "engine/materials/hardening_soil.hpp"
+#include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/materials/mohr_coulomb.hpp"
 #include "engine/materials/undrained_soil.hpp"
@@ -37,6 +38,32 @@ MaterialType hardening_soil_type() {
   return type;
 }
 
+/// Hypoplasticity with intergranular strain, from its parameters' declaration (hypoplastic.cpp).
+MaterialType hypoplastic_type() {
+  MaterialType type{"hypoplastic",
+                    "hypoplasticity (von Wolffersdorff 1996) with Bauer's limit void ratios and "
+                    "the intergranular strain of Niemunis and Herle (1997): the void ratio as "
+                    "state, cyclic accumulation of strain and pore pressure",
+                    {},
+                    {}};
+  const HypoplasticParameters defaults;
+  std::vector<std::pair<std::string, double HypoplasticParameters::*>> members;
+  for (const HypoplasticField& f : hypoplastic_fields()) {
+    type.parameters.push_back(
+        {f.name, f.unit, f.meaning,
+         f.optional ? std::optional<double>(defaults.*f.member) : std::nullopt, f.range});
+    members.emplace_back(f.name, f.member);
+  }
+  type.create = [members](const MaterialParameters& p) -> std::unique_ptr<Material> {
+    HypoplasticParameters h;
+    for (const auto& [name, member] : members) {
+      h.*member = p.at(name);
+    }
+    return std::make_unique<Hypoplastic>(h);
+  };
+  return type;
+}
+
 } // namespace
 
 const std::vector<MaterialType>& material_types() {
@@ -66,6 +93,7 @@ const std::vector<MaterialType>& material_types() {
              p.at("friction_angle"), p.at("dilatancy_angle"), p.at("tension_limit"));
        }},
       hardening_soil_type(),
+      hypoplastic_type(),
   };
   return types;
 }

@@ -1,0 +1,388 @@
+// Hypoplasticity with intergranular strain (docs/hypoplasticity.md): the parameters' declaration,
+// the rate of von Wolffersdorff's model with Niemunis and Herle's intergranular strain, and its
+// integration over a strain increment by Heun's method in error-controlled substeps.
+#include "engine/materials/hypoplastic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace mpile {
+
+namespace {
+
+double radians(double degrees) {
+  return degrees * std::numbers::pi / 180.0;
+}
+
+/// A : B of two symmetric tensors stored as (rr, yy, thth, ry, ytheta, rtheta), tensor shear.
+double contract(const Stress& a, const Stress& b) {
+  return a[RR] * b[RR] + a[YY] * b[YY] + a[TT] * b[TT] +
+         2.0 * (a[RY] * b[RY] + a[YT] * b[YT] + a[RT] * b[RT]);
+}
+
+double norm(const Stress& a) {
+  return std::sqrt(contract(a, a));
+}
+
+/// tr(A^3) = A : (A A) of a symmetric tensor.
+double trace_of_cube(const Stress& a) {
+  Stress square;
+  square[RR] = a[RR] * a[RR] + a[RY] * a[RY] + a[RT] * a[RT];
+  square[YY] = a[RY] * a[RY] + a[YY] * a[YY] + a[YT] * a[YT];
+  square[TT] = a[RT] * a[RT] + a[YT] * a[YT] + a[TT] * a[TT];
+  square[RY] = a[RR] * a[RY] + a[RY] * a[YY] + a[RT] * a[YT];
+  square[YT] = a[RY] * a[RT] + a[YY] * a[YT] + a[YT] * a[TT];
+  square[RT] = a[RR] * a[RT] + a[RY] * a[YT] + a[RT] * a[TT];
+  return contract(a, square);
+}
+
+/// The hypoplastic tangent at a state: L : X = c (F^2 X + a^2 s (s : X)) and N = n_scale (s + s*),
+/// with s = sigma / tr(sigma) and s* its deviator.
+struct Tangent {
+  Stress s{};
+  Stress n{}; // N
+  double c = 0.0;
+  double f2 = 0.0;                      // F^2
+  double a2 = 0.0;                      // a^2
+  double s_norm2 = 0.0;                 // s : s
+  Stress apply(const Stress& x) const { // L : X
+    const double sx = a2 * contract(s, x);
+    Stress out;
+    for (std::size_t k = 0; k < 6; ++k) {
+      out[k] = c * (f2 * x[k] + sx * s[k]);
+    }
+    return out;
+  }
+};
+
+} // namespace
+
+std::span<const HypoplasticField> hypoplastic_fields() {
+  // Ranges: the model's own (von Wolffersdorff 1996; Herle and Gudehus 1999 give the parameters'
+  // meaning and typical values), and the intergranular strain's (Niemunis and Herle 1997: m_R >=
+  // m_T > 1, R of order 1e-5 to 1e-4).
+  static const HypoplasticField fields[] = {
+      {"critical_friction_angle", &HypoplasticParameters::critical_friction_angle, false, "degrees",
+       between(10.0, true, 60.0, true), "phi_c, the critical state friction angle"},
+      {"granular_hardness", &HypoplasticParameters::granular_hardness, false, "Pa", above(0.0),
+       "h_s, the granulate hardness of Bauer's compression law"},
+      {"exponent", &HypoplasticParameters::exponent, false, "-", between(0.0, false, 1.0, true),
+       "n, the exponent of Bauer's compression law"},
+      {"e_d0", &HypoplasticParameters::e_d0, false, "-", above(0.0),
+       "minimum void ratio at zero pressure (densest packing)"},
+      {"e_c0", &HypoplasticParameters::e_c0, false, "-", above(0.0),
+       "critical void ratio at zero pressure, between e_d0 and e_i0"},
+      {"e_i0", &HypoplasticParameters::e_i0, false, "-", above(0.0),
+       "maximum void ratio at zero pressure (isotropic compression of the loosest state)"},
+      {"alpha", &HypoplasticParameters::alpha, false, "-", between(0.0, false, 1.0, true),
+       "pycnotropy exponent of f_d: the peak friction and dilatancy of dense sand"},
+      {"beta", &HypoplasticParameters::beta, false, "-", between(0.0, false, 10.0, true),
+       "pycnotropy exponent of f_e: the stiffness of dense sand"},
+      {"void_ratio", &HypoplasticParameters::void_ratio, false, "-", above(0.0),
+       "e0, the initial void ratio, at most e_i0"},
+      {"intergranular_strain", &HypoplasticParameters::intergranular_strain, true, "-",
+       between(0.0, true, 1.0, true), "1: with the intergranular strain, 0: without"},
+      {"r_max", &HypoplasticParameters::r_max, true, "-", between(0.0, false, 1e-2, true),
+       "R, the size of the intergranular strain's elastic range"},
+      {"m_r", &HypoplasticParameters::m_r, true, "-", at_least(1.0),
+       "m_R, the stiffness multiplier after a 180 degree reversal, at least m_T"},
+      {"m_t", &HypoplasticParameters::m_t, true, "-", at_least(1.0),
+       "m_T, the stiffness multiplier after a 90 degree change of direction"},
+      {"beta_r", &HypoplasticParameters::beta_r, true, "-", above(0.0),
+       "beta_R, the evolution exponent of the intergranular strain"},
+      {"chi", &HypoplasticParameters::chi, true, "-", above(0.0),
+       "chi, the interpolation exponent between the reversal's and the hypoplastic stiffness"},
+      {"tolerance", &HypoplasticParameters::tolerance, true, "-", between(1e-10, true, 0.1, true),
+       "relative error allowed per substep of the integration"},
+      {"minimum_pressure", &HypoplasticParameters::minimum_pressure, true, "Pa", above(0.0),
+       "mean pressure below which the stress is set isotropic at it (sand carries no tension)"},
+      {"density", &HypoplasticParameters::density, false, "kg/m^3", above(0.0),
+       "initial bulk density"},
+  };
+  return fields;
+}
+
+Hypoplastic::Hypoplastic(const HypoplasticParameters& p) : parameters_(p) {
+  for (const HypoplasticField& f : hypoplastic_fields()) {
+    require_in_range(f.name, f.range, p.*f.member);
+  }
+  auto require = [](bool ok, const std::string& message) {
+    if (!ok) {
+      throw std::invalid_argument(message);
+    }
+  };
+  require(p.e_d0 < p.e_c0 && p.e_c0 < p.e_i0, "the limit void ratios need e_d0 < e_c0 < e_i0");
+  require(p.void_ratio <= p.e_i0, "void_ratio must be at most e_i0 (no looser state exists)");
+  require(p.m_r >= p.m_t, "m_r must be at least m_t");
+  require(p.intergranular_strain == 0.0 || p.intergranular_strain == 1.0,
+          "intergranular_strain must be 0 or 1");
+  const double sin_phi = std::sin(radians(p.critical_friction_angle));
+  a_ = std::sqrt(3.0) * (3.0 - sin_phi) / (2.0 * std::sqrt(2.0) * sin_phi);
+  f_b_ratio_ = std::pow(p.e_i0 / p.e_c0, p.beta);
+  f_b_divisor_ = 3.0 + a_ * a_ -
+                 a_ * std::sqrt(3.0) * std::pow((p.e_i0 - p.e_d0) / (p.e_c0 - p.e_d0), p.alpha);
+  // Below zero the isotropic compression's stiffness f_b would change sign (Herle and Gudehus
+  // 1999): such parameters describe no granular material.
+  require(f_b_divisor_ > 0.0, "the parameters give 3 + a^2 - a sqrt(3) ((e_i0 - e_d0) / (e_c0 - "
+                              "e_d0))^alpha <= 0: lower alpha or widen e_c0 - e_d0");
+}
+
+double Hypoplastic::limit_void_ratio(double e_x0, double p) const {
+  return e_x0 * std::exp(-std::pow(3.0 * p / parameters_.granular_hardness, parameters_.exponent));
+}
+
+double Hypoplastic::critical_stress_ratio() const {
+  const double sin_phi = std::sin(radians(parameters_.critical_friction_angle));
+  return 6.0 * sin_phi / (3.0 - sin_phi);
+}
+
+namespace {
+
+/// The tangent of von Wolffersdorff's model at stress `stress` (p > 0) and void ratio e.
+Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b_ratio,
+                            double f_b_divisor, const Stress& stress, double e) {
+  Tangent t;
+  const double trace = stress[RR] + stress[YY] + stress[TT]; // < 0 in compression
+  const double p = -trace / 3.0;
+  for (std::size_t k = 0; k < 6; ++k) {
+    t.s[k] = stress[k] / trace;
+  }
+  Stress deviator = t.s;
+  for (std::size_t k = 0; k < 3; ++k) {
+    deviator[k] -= 1.0 / 3.0;
+  }
+  t.s_norm2 = contract(t.s, t.s);
+  const double deviator_norm2 = contract(deviator, deviator);
+  const double tan_psi = std::sqrt(3.0 * deviator_norm2);
+  // Lode's angle; F does not depend on it when the deviator vanishes (tan psi = 0 gives F = 1).
+  double cos_3theta = 1.0;
+  if (deviator_norm2 > 1e-24) {
+    cos_3theta = -std::sqrt(6.0) * trace_of_cube(deviator) / std::pow(deviator_norm2, 1.5);
+    cos_3theta = std::clamp(cos_3theta, -1.0, 1.0);
+  }
+  const double tan2 = tan_psi * tan_psi;
+  const double f =
+      std::sqrt(tan2 / 8.0 + (2.0 - tan2) / (2.0 + std::sqrt(2.0) * tan_psi * cos_3theta)) -
+      tan_psi / (2.0 * std::sqrt(2.0));
+  const double ratio = 3.0 * p / q.granular_hardness;
+  const double bauer = std::exp(-std::pow(ratio, q.exponent));
+  const double e_i = q.e_i0 * bauer;
+  const double e_c = q.e_c0 * bauer;
+  const double e_d = q.e_d0 * bauer;
+  const double f_b = q.granular_hardness / q.exponent * (1.0 + e_i) / e_i * f_b_ratio *
+                     std::pow(ratio, 1.0 - q.exponent) / f_b_divisor;
+  const double f_e = std::pow(e_c / e, q.beta);
+  // Denser than e_d the model has no state: f_d is held at zero there (no dilatancy term).
+  const double f_d = std::pow(std::max(e - e_d, 0.0) / (e_c - e_d), q.alpha);
+  t.c = f_b * f_e / t.s_norm2;
+  t.f2 = f * f;
+  t.a2 = a * a;
+  const double n_scale = t.c * f_d * f * a;
+  for (std::size_t k = 0; k < 6; ++k) {
+    t.n[k] = n_scale * (t.s[k] + deviator[k]);
+  }
+  return t;
+}
+
+} // namespace
+
+HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d) const {
+  const HypoplasticParameters& q = parameters_;
+  const Tangent t = hypoplastic_tangent(q, a_, f_b_ratio_, f_b_divisor_, at.stress, at.e);
+  HypoplasticPoint out;
+  out.e = (1.0 + at.e) * (d[RR] + d[YY] + d[TT]);
+  const Stress ld = t.apply(d);
+  if (q.intergranular_strain == 0.0) {
+    const double d_norm = norm(d);
+    for (std::size_t k = 0; k < 6; ++k) {
+      out.stress[k] = ld[k] + t.n[k] * d_norm;
+    }
+    return out;
+  }
+  const double h_norm = norm(at.h);
+  const double rho = std::min(h_norm / q.r_max, 1.0);
+  Stress direction{}; // h / |h|; zero at h = 0 (rho = 0: the stiffness is m_R L whatever D)
+  if (h_norm > 0.0) {
+    for (std::size_t k = 0; k < 6; ++k) {
+      direction[k] = at.h[k] / h_norm;
+    }
+  }
+  const double along = contract(direction, d); // h_hat : D
+  const double rho_chi = std::pow(rho, q.chi);
+  const double blend = rho_chi * q.m_t + (1.0 - rho_chi) * q.m_r;
+  const Stress lh = t.apply(direction);
+  if (along > 0.0) {
+    // Loading along the intergranular strain: towards the hypoplastic response as rho -> 1.
+    const double rho_beta = std::pow(rho, q.beta_r);
+    for (std::size_t k = 0; k < 6; ++k) {
+      out.stress[k] = blend * ld[k] + rho_chi * ((1.0 - q.m_t) * lh[k] + t.n[k]) * along;
+      out.h[k] = d[k] - rho_beta * direction[k] * along;
+    }
+  } else {
+    // Reversal or neutral: stiff (m_R L after 180 degrees, m_T L after 90 degrees at rho = 1).
+    for (std::size_t k = 0; k < 6; ++k) {
+      out.stress[k] = blend * ld[k] + rho_chi * (q.m_r - q.m_t) * lh[k] * along;
+      out.h[k] = d[k];
+    }
+  }
+  return out;
+}
+
+void Hypoplastic::initialise_state(const Stress& /*stress*/, double* state) const {
+  // Called at the particles' creation and again after a K0 procedure: the void ratio is set once
+  // (later calls find it set and keep what the soil has become); h starts at zero, so that the
+  // first loading meets the small-strain stiffness m_R L.
+  if (state[VOID_RATIO] <= 0.0) {
+    state[VOID_RATIO] = parameters_.void_ratio;
+    for (int k = 0; k < 6; ++k) {
+      state[H_FIRST + k] = 0.0;
+    }
+    state[SUBSTEP] = 1.0;
+  }
+}
+
+void Hypoplastic::update_stress(const StressUpdateBatch& batch) const {
+  for (std::size_t k = 0; k < batch.particles.size(); ++k) {
+    const auto i = static_cast<std::size_t>(batch.particles[k]);
+    batch.constrained_modulus[k] = update_point(
+        batch.stress[i], batch.state + i * static_cast<std::size_t>(batch.state_stride),
+        batch.strain[k]);
+  }
+}
+
+double Hypoplastic::update_point(Stress& stress, double* state,
+                                 const StrainIncrement& strain) const {
+  const HypoplasticParameters& q = parameters_;
+  const double p_min = q.minimum_pressure;
+  if (state[VOID_RATIO] <= 0.0) {
+    initialise_state(stress, state); // a particle no K0 procedure or water set up
+  }
+  const Stress d{strain[RR],       strain[YY],       strain[TT],
+                 0.5 * strain[RY], 0.5 * strain[YT], 0.5 * strain[RT]};
+  HypoplasticPoint point;
+  point.stress = stress;
+  point.e = state[VOID_RATIO];
+  for (int k = 0; k < 6; ++k) {
+    point.h[static_cast<std::size_t>(k)] = state[H_FIRST + k];
+  }
+  // Sand carries no tension: below p_min the stress is set isotropic at p_min, so that s = sigma /
+  // tr(sigma) stays defined (docs/hypoplasticity.md, "Low pressure").
+  auto floor_pressure = [p_min](Stress& s) {
+    if (mean_pressure(s) < p_min) {
+      s = Stress{-p_min, -p_min, -p_min, 0.0, 0.0, 0.0};
+    }
+  };
+  floor_pressure(point.stress);
+  // Substeps as fractions of the increment, Heun's method with Euler's embedded error; the last
+  // increment's final substep is this one's first guess.
+  double t = 0.0;
+  double dt = std::clamp(state[SUBSTEP], 1e-6, 1.0);
+  const double smallest = 1e-6;
+  while (t < 1.0) {
+    dt = std::min(dt, 1.0 - t);
+    const HypoplasticPoint k1 = rate(point, d);
+    HypoplasticPoint euler = point;
+    for (std::size_t k = 0; k < 6; ++k) {
+      euler.stress[k] += dt * k1.stress[k];
+      euler.h[k] += dt * k1.h[k];
+    }
+    euler.e += dt * k1.e;
+    bool admissible = mean_pressure(euler.stress) >= p_min;
+    double error = 0.0;
+    HypoplasticPoint heun = point;
+    if (admissible) {
+      const HypoplasticPoint k2 = rate(euler, d);
+      Stress stress_error{}, h_error{};
+      for (std::size_t k = 0; k < 6; ++k) {
+        heun.stress[k] += 0.5 * dt * (k1.stress[k] + k2.stress[k]);
+        heun.h[k] += 0.5 * dt * (k1.h[k] + k2.h[k]);
+        stress_error[k] = heun.stress[k] - euler.stress[k];
+        h_error[k] = heun.h[k] - euler.h[k];
+      }
+      heun.e += 0.5 * dt * (k1.e + k2.e);
+      admissible = mean_pressure(heun.stress) >= p_min;
+      error = norm(stress_error) / std::max(norm(heun.stress), 3.0 * p_min);
+      if (q.intergranular_strain != 0.0) {
+        error = std::max(error, norm(h_error) / q.r_max);
+      }
+    }
+    if (dt > smallest && (!admissible || error > q.tolerance)) {
+      dt *= admissible ? std::max(0.2, 0.9 * std::sqrt(q.tolerance / error)) : 0.25;
+      continue;
+    }
+    point = admissible ? heun : euler;
+    floor_pressure(point.stress);
+    // h stays within its sphere |h| <= R (its rate keeps it there; rounding may not).
+    const double h_norm = norm(point.h);
+    if (q.intergranular_strain != 0.0 && h_norm > q.r_max) {
+      for (double& component : point.h) {
+        component *= q.r_max / h_norm;
+      }
+    }
+    t += dt;
+    if (error > 0.0) {
+      dt *= std::clamp(0.9 * std::sqrt(q.tolerance / error), 0.2, 4.0);
+    } else {
+      dt *= 4.0;
+    }
+  }
+  stress = point.stress;
+  state[VOID_RATIO] = point.e;
+  for (int k = 0; k < 6; ++k) {
+    state[H_FIRST + k] = point.h[static_cast<std::size_t>(k)];
+  }
+  state[SUBSTEP] = std::min(dt, 1.0);
+  return constrained_modulus(stress, state);
+}
+
+double Hypoplastic::constrained_modulus(const Stress& stress, const double* state) const {
+  Stress s = stress;
+  if (mean_pressure(s) < parameters_.minimum_pressure) {
+    const double p = parameters_.minimum_pressure;
+    s = Stress{-p, -p, -p, 0.0, 0.0, 0.0};
+  }
+  const Tangent t =
+      hypoplastic_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, s,
+                          state[VOID_RATIO] > 0.0 ? state[VOID_RATIO] : parameters_.void_ratio);
+  // The largest eigenvalue of F^2 I + a^2 s (x) s is F^2 + a^2 s:s; N adds at most |N| per unit
+  // |D|; after a reversal the stiffness is m_R times L.
+  const double multiplier = parameters_.intergranular_strain != 0.0 ? parameters_.m_r : 1.0;
+  return multiplier * t.c * (t.f2 + t.a2 * t.s_norm2) + norm(t.n);
+}
+
+double Hypoplastic::shear_modulus(const Stress& stress, const double* state) const {
+  Stress s = stress;
+  if (mean_pressure(s) < parameters_.minimum_pressure) {
+    const double p = parameters_.minimum_pressure;
+    s = Stress{-p, -p, -p, 0.0, 0.0, 0.0};
+  }
+  const Tangent t =
+      hypoplastic_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, s,
+                          state[VOID_RATIO] > 0.0 ? state[VOID_RATIO] : parameters_.void_ratio);
+  const double multiplier = parameters_.intergranular_strain != 0.0 ? parameters_.m_r : 1.0;
+  return multiplier * 0.5 * t.c * t.f2;
+}
+
+double Hypoplastic::elastic_energy_density(const Stress& stress, const double* state) const {
+  Stress s = stress;
+  if (mean_pressure(s) < parameters_.minimum_pressure) {
+    return 0.0;
+  }
+  const Tangent t =
+      hypoplastic_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, s,
+                          state[VOID_RATIO] > 0.0 ? state[VOID_RATIO] : parameters_.void_ratio);
+  const double multiplier = parameters_.intergranular_strain != 0.0 ? parameters_.m_r : 1.0;
+  const double bulk = multiplier * t.c * (t.f2 + t.a2 / 3.0) / 3.0;
+  const double shear = multiplier * 0.5 * t.c * t.f2;
+  const double p = mean_pressure(s);
+  Stress deviator = s;
+  for (std::size_t k = 0; k < 3; ++k) {
+    deviator[k] += p;
+  }
+  return p * p / (2.0 * bulk) + contract(deviator, deviator) / (4.0 * shear);
+}
+
+} // namespace mpile
