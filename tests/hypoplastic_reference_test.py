@@ -5,7 +5,7 @@ strain's stiffnesses (m_R L at h = 0 and after a reversal, L:D + N|D| when fully
 dilatancy of dense and contraction of loose sand, undrained cyclic liquefaction, the small-cycle
 ratcheting the intergranular strain removes, and the integrator's own convergence.
 
-    /usr/bin/python3 -m pytest tests/hypoplastic_reference_test.py -q      (about 30 s)
+    /usr/bin/python3 -m pytest tests/hypoplastic_reference_test.py -q      (under 10 s)
 
 Each tolerance says why it is what it is; each test can fail (one of them shows it does, by
 breaking the model on purpose).

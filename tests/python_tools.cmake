@@ -255,3 +255,14 @@ add_test(NAME HertzFe.FourMillimetreElementsKeepMassEnergyAndNearlyHertzsTime
 set_tests_properties(HertzFe.FourMillimetreElementsKeepMassEnergyAndNearlyHertzsTime PROPERTIES
   PASS_REGULAR_EXPRESSION
   "mass 0\\.666[4-9][0-9] kg/rad[^\n]*\ncontact time 4[4-9]\\.[0-9]+ ms against Hertz's 48\\.986 [^\n]*kinetic energy back 0\\.99[89]")
+
+# Hypoplasticity: the independent reference integrator against the model's closed forms (its own
+# pytest), and the engine's element tests against it (docs/hypoplasticity.md).
+add_test(NAME HypoplasticReference.Pytest
+         COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
+                 ${PROJECT_SOURCE_DIR}/tests/hypoplastic_reference_test.py)
+add_test(NAME Hypoplastic.ElementTestsMeetTheIndependentIntegration
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/hypoplastic_against_reference.py
+                 $<TARGET_FILE:mpile> ${CMAKE_CURRENT_BINARY_DIR}/hypoplastic_reference)
+set_tests_properties(Hypoplastic.ElementTestsMeetTheIndependentIntegration PROPERTIES
+                     PASS_REGULAR_EXPRESSION "all within 0.0001\n")

@@ -91,29 +91,33 @@ liquefaction criterion) locate them to about 1e-12 by re-stepping from the last 
 
 Karlsruhe fine sand (KARLSRUHE_FINE_SAND)
 -----------------------------------------
-Wichtmann and Triantafyllidis (2016, Acta Geotechnica 11:739-761 and 763-774) published the
-laboratory database of Karlsruhe fine sand (d50 = 0.14 mm, Cu = 1.5, e_min = 0.677, e_max = 1.054).
-The hypoplastic set with intergranular strain below is the one used for it by Wichtmann, Fuentes and
-Triantafyllidis (2019, Soil Dynamics and Earthquake Engineering 124:172-183, "Inspection of three
-sophisticated constitutive models based on monotonic and cyclic tests on fine sand: Hypoplasticity
-vs. Sanisand vs. ISA", the parameter table of the hypoplastic model) and taken over by later
-back-analyses of vibratory driving in this sand (Machacek et al. 2021, Computers and Geotechnics;
-Chrisopoulos and Vogelsang 2019, Soil Dyn. Earthq. Eng. 122:248-260 use the same sand).
-What could and could not be confirmed here (the papers' tables themselves could not be read from
-this machine; see each entry):
-- e_d0 = 0.677 and e_c0 = 1.054: equal to the database's e_min and e_max (Wichtmann and
-  Triantafyllidis 2016), the usual choice e_d0 = e_min, e_c0 = e_max; e_d0 = 0.677 is also the value
-  the project's issue gives. Confirmed as values in use for this sand.
-- h_s = 4000 MPa, n = 0.27, e_i0 = 1.212 (= 1.15 e_c0), m_R = 2.2, m_T = 1.1, R = 1e-4: the same
-  numbers appear as the Karlsruhe-sand set of a public calibration script
-  (github.com/kokerozas/AdvanceHypoplasticModel2026, input_data_karlsuhe.m, "Final parameters
-  karlsuhe sand"), which is a corroboration, not the primary source.
-- phi_c = 33.1 deg, alpha = 0.14, beta = 2.5, beta_R = 0.1, chi = 5.5: NOT confirmed from a text
-  read here; they are the values recalled for Wichtmann et al. (2019)'s table (by the engineer who
-  asked for this file, and consistent with the author's own recollection). The script above uses
-  its own phi_c = 32.5, alpha, beta, beta_R = 0.15, chi = 5.0 for a modified model, so it neither
-  confirms nor contradicts them. Check them against the paper before quoting them as its numbers.
-The reference numbers in tests and docs are of this dict as written, whatever the paper says.
+Wichtmann and Triantafyllidis (2016, Acta Geotechnica 11:739-761 and 763-774) published a
+laboratory database of Karlsruhe fine sand (monotonic and cyclic triaxial, oedometric and isotropic
+tests). The set below is, as recalled, the hypoplastic set with intergranular strain of Wichtmann,
+Fuentes and Triantafyllidis (2019, Soil Dynamics and Earthquake Engineering 124:172-183, "Inspection
+of three sophisticated constitutive models based on monotonic and cyclic tests on fine sand:
+Hypoplasticity vs. Sanisand vs. ISA", its parameter table for hypoplasticity). Back-analyses of
+vibratory driving in Karlsruhe sand (Chrisopoulos and Vogelsang 2019, Soil Dyn. Earthq. Eng.
+122:248-260; Machacek, Staubach, Tafili, Zachert and Wichtmann 2021, Computers and Geotechnics 138,
+as recalled) also use hypoplasticity with intergranular strain; whether their sets equal this one
+was not checked.
+Neither paper's table could be read from this machine. What was confirmed, number by number, from
+two public input files that use this sand (a corroboration, not the primary source):
+- [S] github.com/patrickstaubach/abaqus-implicit, step.inp (by P. Staubach; the material "soil" of
+  a demonstration model, read in the order of its UMAT, HPP_Staubach_implicit.f): phi_c = 0.578 rad (33.1 degrees), h_s = 4e6 kPa, n = 0.27,
+  e_d0 = 0.677, e_c0 = 1.054, e_i0 = 1.212, alpha = 0.14, beta = 2.5, m_T = 1.2, m_R = 2.4,
+  R = 1e-4, beta_R = 0.1, chi = 6.
+- [K] github.com/kokerozas/AdvanceHypoplasticModel2026, input_data_karlsuhe.m ("Final parameters
+  karlsuhe sand", for a modified model): h_s = 4e6 kPa, n = 0.27, e_d0 = 0.677, e_c0 = 1.054,
+  e_i0 = 1.212, m_R = 2.2, m_T = 1.1, R = 1e-4 (and its own phi_c = 32.5, beta_R = 0.15, chi = 5).
+So the eight hypoplastic parameters and R, beta_R are those of [S] (h_s, n, e_d0, e_c0, e_i0 and R
+also [K]'s);
+e_d0 = 0.677 is also the value of the project's issue. m_R = 2.2 and m_T = 1.1 are [K]'s, where [S]
+has 2.4 and 1.2; chi = 5.5 is NOT confirmed ([S] has 6, [K] 5): m_R, m_T and chi are the values
+recalled for Wichtmann et al. (2019)'s table, by the engineer who asked for this file and by its
+author independently. Check them against the paper before quoting them as its numbers; the
+alternatives change only the intergranular-strain results.
+The reference numbers in the tests and in any doc are of this dict as written.
 
 There is no hypoplastic set for the seed paper's sand (it is a Hardening Soil sand, phi = 37.5
 degrees, cases/monopile/base/seed_monopile.toml); `--params` takes `kfs` or a JSON file of the keys
@@ -132,21 +136,21 @@ import numpy as np
 # Parameters
 # --------------------------------------------------------------------------------------------------
 
-# Karlsruhe fine sand; sources and what is confirmed: see the module docstring.
+# Karlsruhe fine sand; [S], [K] and what is confirmed: see the module docstring.
 KARLSRUHE_FINE_SAND = {
-    "phi_c": 33.1,    # degrees, critical friction angle (Wichtmann et al. 2019; not confirmed here)
-    "h_s": 4.0e9,     # Pa, granular hardness (Wichtmann et al. 2019; corroborated, see docstring)
-    "n": 0.27,        # exponent of Bauer's law (as h_s)
-    "e_d0": 0.677,    # e_min of the database (Wichtmann and Triantafyllidis 2016); issue text
-    "e_c0": 1.054,    # e_max of the database (Wichtmann and Triantafyllidis 2016)
-    "e_i0": 1.212,    # 1.15 e_c0 (Wichtmann et al. 2019; corroborated)
-    "alpha": 0.14,    # peak-friction exponent (Wichtmann et al. 2019; not confirmed here)
-    "beta": 2.5,      # stiffness exponent (Wichtmann et al. 2019; not confirmed here)
-    "R": 1.0e-4,      # intergranular strain radius (corroborated)
-    "m_R": 2.2,       # stiffness factor after a 180-degree reversal (corroborated)
-    "m_T": 1.1,       # stiffness factor after a 90-degree change (corroborated)
-    "beta_R": 0.1,    # evolution exponent of h (Wichtmann et al. 2019; not confirmed here)
-    "chi": 5.5,       # interpolation exponent (Wichtmann et al. 2019; not confirmed here)
+    "phi_c": 33.1,    # degrees, critical friction angle   [S]
+    "h_s": 4.0e9,     # Pa, granular hardness               [S], [K]
+    "n": 0.27,        # exponent of Bauer's law             [S], [K]
+    "e_d0": 0.677,    # densest void ratio at p = 0         [S], [K], the issue
+    "e_c0": 1.054,    # critical void ratio at p = 0        [S], [K]
+    "e_i0": 1.212,    # loosest void ratio at p = 0         [S], [K] (1.15 e_c0)
+    "alpha": 0.14,    # peak-friction exponent of f_d       [S]
+    "beta": 2.5,      # stiffness exponent of f_e           [S]
+    "R": 1.0e-4,      # intergranular strain radius         [S], [K]
+    "m_R": 2.2,       # stiffness factor, 180-degree turn   [K]; [S] has 2.4
+    "m_T": 1.1,       # stiffness factor, 90-degree turn    [K]; [S] has 1.2
+    "beta_R": 0.1,    # evolution exponent of h             [S]
+    "chi": 5.5,       # interpolation exponent              NOT confirmed: [S] has 6, [K] 5
     "igs": True,      # with intergranular strain; False: sigma_dot = L:D + N|D|
 }
 
@@ -192,7 +196,8 @@ def without_igs(params):
 
 
 class OutOfDomain(ValueError):
-    """A state where the model is undefined: p_s <= 0, or F undefined far beyond the critical surface."""
+    """A state where the model is undefined: p_s <= 0, e <= 0, or F undefined far beyond the
+    critical surface."""
 
 
 # --------------------------------------------------------------------------------------------------
@@ -202,7 +207,6 @@ class OutOfDomain(ValueError):
 SQRT2 = math.sqrt(2.0)
 SQRT3 = math.sqrt(3.0)
 SQRT6 = math.sqrt(6.0)
-SHEAR_PAIRS = ((0, 1), (1, 2), (0, 2))  # ry, ytheta, rtheta: the engine's order
 I6 = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])  # the second-order identity, Mandel
 EYE6 = np.eye(6)  # the symmetric fourth-order identity I4, Mandel
 
@@ -246,14 +250,17 @@ class State:
 
     @classmethod
     def triaxial(cls, sigma_axial, sigma_lateral, e, h=None):
-        """sigma_yy = -sigma_axial, sigma_rr = sigma_thth = -sigma_lateral (inputs compression positive)."""
-        return cls(np.diag([-float(sigma_lateral), -float(sigma_axial), -float(sigma_lateral)]), e, h)
+        """sigma_yy = -sigma_axial, sigma_rr = sigma_thth = -sigma_lateral (inputs compression
+        positive)."""
+        lateral, axial = -float(sigma_lateral), -float(sigma_axial)
+        return cls(np.diag([lateral, axial, lateral]), e, h)
 
     def copy(self):
         return State(self.sigma.copy(), self.e, self.h.copy())
 
     def __repr__(self):
-        return f"State(sigma={engine6(self.sigma).tolist()}, e={self.e!r}, h={engine6(self.h).tolist()})"
+        return (f"State(sigma={engine6(self.sigma).tolist()}, e={self.e!r}, "
+                f"h={engine6(self.h).tolist()})")
 
 
 # --------------------------------------------------------------------------------------------------
@@ -289,7 +296,9 @@ def lode_factor(s_dev_m):
         cos3t = -SQRT6 * float(np.trace(S @ S @ S)) / norm ** 3
         cos3t = min(1.0, max(-1.0, cos3t))
     denominator = 2.0 + SQRT2 * tan_psi * cos3t
-    radicand = tan_psi ** 2 / 8.0 + (2.0 - tan_psi ** 2) / denominator if denominator > 0.0 else -1.0
+    radicand = -1.0
+    if denominator > 0.0:
+        radicand = tan_psi ** 2 / 8.0 + (2.0 - tan_psi ** 2) / denominator
     if radicand < 0.0:
         raise OutOfDomain(f"F undefined: tan psi = {tan_psi:.6g}, cos 3theta = {cos3t:.6g}")
     return math.sqrt(radicand) - tan_psi / (2.0 * SQRT2), cos3t
@@ -304,6 +313,8 @@ def fb_denominator(params):
 
 def density_factors(params, e, p):
     """(f_b, f_e, f_d) at void ratio e and mean pressure p > 0 (Pa)."""
+    if not e > 0.0:
+        raise OutOfDomain(f"void ratio {e!r}")
     e_i, e_c, e_d = limit_void_ratios(params, p)
     beta, n, h_s = params["beta"], params["n"], params["h_s"]
     f_b = (h_s / n) * ((1.0 + e_i) / e_i) * (params["e_i0"] / params["e_c0"]) ** beta \
@@ -337,7 +348,7 @@ def _igs_matrices(params, L, N, h_m):
         M = params["m_R"] * L
         return M, M, np.zeros(6), 0.0
     h_hat = h_m / norm
-    rho = min(norm / params["R"], 1.0)  # |h| <= R holds exactly; min() guards rounding only
+    rho = norm / params["R"]  # <= 1 exactly; the integrator's overshoot (~rtol) is pulled back
     rc = rho ** params["chi"]
     base = (rc * params["m_T"] + (1.0 - rc) * params["m_R"]) * L
     L_h = L @ h_hat
@@ -346,9 +357,10 @@ def _igs_matrices(params, L, N, h_m):
     return loading, unloading, h_hat, rho
 
 
-def _rates_m(params, sigma_m, e, h_m, D_m):
-    """(sigma_dot, e_dot, h_dot) in Mandel form for a given strain rate D (Mandel)."""
-    L, N = hypoplastic_tensors(params, sigma_m, e)
+def _rates_m(params, sigma_m, e, h_m, D_m, LN=None):
+    """(sigma_dot, e_dot, h_dot) in Mandel form for a given strain rate D (Mandel); LN: (L, N) at
+    this state if already computed."""
+    L, N = hypoplastic_tensors(params, sigma_m, e) if LN is None else LN
     e_dot = (1.0 + e) * (D_m[0] + D_m[1] + D_m[2])
     if not params["igs"]:
         return L @ D_m + N * math.sqrt(float(D_m @ D_m)), e_dot, np.zeros(6)
@@ -392,28 +404,27 @@ class Control:
 
     def __init__(self, strain_rate, stress_rate=None, stress_mask=None):
         self.strain_rate = np.asarray(strain_rate, dtype=float)
-        self.stress_rate = np.zeros(6) if stress_rate is None else np.asarray(stress_rate, dtype=float)
+        self.stress_rate = np.zeros(6) if stress_rate is None else np.asarray(stress_rate, float)
         self.stress_mask = np.zeros(6, bool) if stress_mask is None else np.asarray(stress_mask, bool)
         self.u = np.flatnonzero(self.stress_mask)  # unknown strain rates
         self.k = np.flatnonzero(~self.stress_mask)  # known ones
         self.guess = None  # last solution: the Newton start
 
-    def solve(self, params, sigma_m, e, h_m):
-        """The full D (Mandel) meeting the controls at this state."""
+    def solve(self, params, L, N, h_m):
+        """The full D (Mandel) meeting the controls at a state with hypoplastic tensors L, N and
+        intergranular strain h_m."""
         D = np.where(self.stress_mask, 0.0, self.strain_rate)
         u, k = self.u, self.k
         if u.size == 0:
             return D
-        L, N = hypoplastic_tensors(params, sigma_m, e)
         target = self.stress_rate[u]
         if params["igs"]:
             loading, unloading, h_hat, _ = _igs_matrices(params, L, N, h_m)
             for M, is_loading in ((loading, True), (unloading, False)):
                 D[u] = np.linalg.solve(M[np.ix_(u, u)], target - M[np.ix_(u, k)] @ D[k])
                 if (float(h_hat @ D) > 0.0) == is_loading:
-                    self.guess = D[u].copy()
                     return D
-            raise ArithmeticError("mixed control: neither branch of the intergranular strain is consistent")
+            raise ArithmeticError("mixed control: neither intergranular-strain branch is consistent")
         # Without intergranular strain: Newton on L_uu D_u + N_u |D| = target - L_uk D_k.
         if self.guess is not None:
             D[u] = self.guess
@@ -421,15 +432,14 @@ class Control:
             D[u] = np.linalg.solve(L[np.ix_(u, u)], target - L[np.ix_(u, k)] @ D[k])
         rhs = target - L[np.ix_(u, k)] @ D[k]
         Luu = L[np.ix_(u, u)]
-        scale = float(np.abs(target).sum() + np.abs(L[np.ix_(u, k)] @ D[k]).sum()) + 1e-300
-        for _ in range(60):
+        for _ in range(50):
             norm = math.sqrt(float(D @ D))
             residual = Luu @ D[u] + N[u] * norm - rhs
             J = Luu + np.outer(N[u], D[u] / norm) if norm > 0.0 else Luu
             step = np.linalg.solve(J, residual)
             D[u] -= step
-            if float(np.abs(residual).max()) <= 1e-15 * scale \
-                    or float(np.abs(step).max()) <= 1e-15 * (float(np.abs(D).max()) + 1e-300):
+            # quadratic convergence: a step of 1e-13 of D leaves an error of order 1e-26
+            if float(np.abs(step).max()) <= 1e-13 * (float(np.abs(D).max()) + 1e-300):
                 self.guess = D[u].copy()
                 return D
         raise ArithmeticError("mixed control: Newton did not converge")
@@ -439,7 +449,7 @@ class Control:
 # Dormand-Prince 5(4) with error control, exact stops and located events
 # --------------------------------------------------------------------------------------------------
 
-_C = (0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0)
+# The Butcher tableau (the nodes c are not needed: the rates do not depend on t).
 _A = (
     (),
     (1 / 5,),
@@ -468,8 +478,9 @@ def _pack(state, eps=None):
 
 def _rhs(params, control, y):
     sigma_m, e, h_m = y[S_SIG], y[S_E], y[S_H]
-    D = control.solve(params, sigma_m, e, h_m)
-    sd, ed, hd = _rates_m(params, sigma_m, e, h_m, D)
+    LN = hypoplastic_tensors(params, sigma_m, e)
+    D = control.solve(params, *LN, h_m)
+    sd, ed, hd = _rates_m(params, sigma_m, e, h_m, D, LN)
     out = np.empty(19)
     out[S_SIG] = sd
     out[S_E] = ed
@@ -532,24 +543,23 @@ def integrate(params, control, y0, t_end, stops=(), events=(), rtol=RTOL, record
     h = t_end / 64.0
     g_prev = [ev.g(y) for ev in events]
     stop_index = 0
+    h_free = h  # the step the error control asks for, before a stop shortens it
     for _ in range(max_steps):
         target = stops[stop_index]
-        h = min(h, target - t)
-        hits_stop = h >= target - t
-        if hits_stop:
-            h = target - t
+        hits_stop = h_free >= target - t
+        h = target - t if hits_stop else h_free
         try:
             y_new, k_new, err = _dp_step(params, control, y, k1, h)
             norm = float(np.abs(err / (rtol * _error_scale(params, y))).max())
             if not math.isfinite(norm):
                 raise OutOfDomain("non-finite step")
         except (OutOfDomain, ArithmeticError, np.linalg.LinAlgError):
-            if h < 1e-14 * max(t_end, 1.0):
+            if h < 1e-14 * t_end:
                 raise
-            h *= 0.25
+            h_free = 0.25 * h
             continue
         if norm > 1.0:
-            h *= max(0.1, 0.9 * norm ** -0.2)
+            h_free = h * max(0.1, 0.9 * norm ** -0.2)
             continue
         # accepted
         g_new = [ev.g(y_new) for ev in events]
@@ -568,7 +578,8 @@ def integrate(params, control, y0, t_end, stops=(), events=(), rtol=RTOL, record
             stop_index += 1
             if stop_index == len(stops):
                 return np.array(ts), np.array(ys), None
-        h *= min(5.0, 0.9 * max(norm, 1e-10) ** -0.2)
+        grown = h * min(5.0, 0.9 * max(norm, 1e-10) ** -0.2)
+        h_free = max(grown, h_free) if hits_stop else grown
     raise ArithmeticError("integrate: too many steps")
 
 
@@ -631,11 +642,11 @@ def path_result(ts, ys, **extra):
         "eps": eps,
         "h": h,
         "e": ys[:, S_E].copy(),
-        "eps_1": -eps[:, 1, 1],
-        "eps_r": -eps[:, 0, 0],
-        "eps_v": -np.trace(eps, axis1=1, axis2=2),
-        "sigma_1": -sig[:, 1, 1],
-        "sigma_3": -sig[:, 0, 0],
+        "eps_1": 0.0 - eps[:, 1, 1],  # 0.0 - x: no -0.0 in the output
+        "eps_r": 0.0 - eps[:, 0, 0],
+        "eps_v": 0.0 - np.trace(eps, axis1=1, axis2=2),
+        "sigma_1": 0.0 - sig[:, 1, 1],
+        "sigma_3": 0.0 - sig[:, 0, 0],
         "p": p,
         "q": sign * q_size,
         "h_norm": np.sqrt(np.einsum("nij,nij->n", h, h)),
@@ -659,7 +670,12 @@ def _concat(results, **extra):
     return out
 
 
-def _run(params, state, control, t_end, steps, eps0=None, events=(), rtol=RTOL, record_steps=False):
+def run_path(params, state, control, t_end, steps=100, eps0=None, events=(), rtol=RTOL,
+             record_steps=False):
+    """The general mixed-control path: `control` (a Control) per unit t for t in [0, t_end], output
+    at `steps` equal intervals (and every accepted step if record_steps), from `state` with the
+    accumulated strain eps0 (3x3, default 0). Returns path_result(...) with `event`, the name of
+    the Event that stopped it early, or None."""
     params = check_params(params)
     y0 = _pack(state, eps0)
     stops = [t_end * k / steps for k in range(1, steps + 1)] if steps else ()
@@ -677,12 +693,18 @@ def _mask(*stress_components):
 # Path drivers (inputs compression positive, like the laboratory and the engine's element tests)
 # --------------------------------------------------------------------------------------------------
 
+def strain_path(params, state, D, t_end, steps=100, rtol=RTOL):
+    """Fully strain-controlled: the constant strain rate D (3x3, tension positive, tensor shears)
+    for t in [0, t_end]."""
+    return run_path(params, state, Control(mandel(D)), t_end, steps, rtol=rtol)
+
+
 def oedometer(params, state, eps_axial_total, steps=100, rtol=RTOL):
     """Oedometer, strain controlled: D_yy prescribed, lateral and shear strain rates zero.
     eps_axial_total > 0 compresses, < 0 unloads (compression-positive axial strain)."""
     sign = 1.0 if eps_axial_total >= 0.0 else -1.0
     control = Control([0.0, -sign, 0.0, 0.0, 0.0, 0.0])
-    return _run(params, state, control, abs(eps_axial_total), steps, rtol=rtol)
+    return run_path(params, state, control, abs(eps_axial_total), steps, rtol=rtol)
 
 
 def oedometer_stress(params, state, sigma_axial_targets, steps=100, rtol=RTOL):
@@ -694,7 +716,7 @@ def oedometer_stress(params, state, sigma_axial_targets, steps=100, rtol=RTOL):
         current = -state.sigma[1, 1]
         sign = 1.0 if target >= current else -1.0
         control = Control(np.zeros(6), [0.0, -sign, 0.0, 0.0, 0.0, 0.0], _mask(1))
-        r = _run(params, state, control, abs(target - current), steps, eps, rtol=rtol)
+        r = run_path(params, state, control, abs(target - current), steps, eps, rtol=rtol)
         parts.append(r)
         state, eps = r["state"], r["eps"][-1]
     return _concat(parts)
@@ -706,7 +728,7 @@ def isotropic(params, state, p_target, steps=100, rtol=RTOL):
     current = -np.trace(state.sigma) / 3.0
     sign = 1.0 if p_target >= current else -1.0
     control = Control(np.zeros(6), [-sign, -sign, -sign, 0.0, 0.0, 0.0], _mask(0, 1, 2))
-    return _run(params, state, control, abs(p_target - current), steps, rtol=rtol)
+    return run_path(params, state, control, abs(p_target - current), steps, rtol=rtol)
 
 
 def drained_triaxial(params, state, eps1_max, steps=100, rtol=RTOL):
@@ -714,7 +736,7 @@ def drained_triaxial(params, state, eps1_max, steps=100, rtol=RTOL):
     extension), sigma_r = sigma_theta held (their rates zero), shear strains zero."""
     sign = 1.0 if eps1_max >= 0.0 else -1.0
     control = Control([0.0, -sign, 0.0, 0.0, 0.0, 0.0], np.zeros(6), _mask(0, 2))
-    return _run(params, state, control, abs(eps1_max), steps, rtol=rtol)
+    return run_path(params, state, control, abs(eps1_max), steps, rtol=rtol)
 
 
 def _undrained_extras(r, p0):
@@ -730,7 +752,7 @@ def undrained_triaxial(params, state, eps1_max, steps=100, rtol=RTOL):
     sign = 1.0 if eps1_max >= 0.0 else -1.0
     control = Control([0.5 * sign, -sign, 0.5 * sign, 0.0, 0.0, 0.0])
     p0 = -np.trace(state.sigma) / 3.0
-    return _undrained_extras(_run(params, state, control, abs(eps1_max), steps, rtol=rtol), p0)
+    return _undrained_extras(run_path(params, state, control, abs(eps1_max), steps, rtol=rtol), p0)
 
 
 def _q_of(y):
@@ -747,8 +769,10 @@ def undrained_cyclic_triaxial(params, state, q_amplitude, n_cycles, p_ratio=0.05
     minus the smallest eps_1 so far) above eps_da. Returns the path (every accepted step) with
     n_liq, the number of cycles at liquefaction (quarter cycles counted as |q| moves: 0 -> A is one
     quarter, A -> -A two; fractional within the last segment by |q - q_start|/A; None if it did not
-    liquefy), liquefied_by ('p_ratio', 'eps_da' or None), and per completed cycle (q back at 0 from
-    below) the arrays cycle_du (p0 - p), cycle_p and cycle_eps_1 (compression positive)."""
+    liquefy), liquefied_by ('p_ratio', 'eps_da', 'max_segment_strain' if a segment ran
+    max_segment_strain of axial strain without reaching its q, or None), and per completed cycle (q
+    back at 0 from below) the arrays cycle_du (p0 - p), cycle_p and cycle_eps_1 (compression
+    positive). du = p0 - p and du_cell = p0 - p + q/3 along the path, as in undrained_triaxial."""
     params = check_params(params)
     A = float(q_amplitude)
     p0 = -np.trace(state.sigma) / 3.0
@@ -809,7 +833,8 @@ def drained_strain_cycles(params, state, eps_amplitude, n_cycles, steps=20, rtol
     for _ in range(n_cycles):
         for sign, length in ((1.0, A), (-1.0, 2.0 * A), (1.0, A)):
             control = Control([0.0, -sign, 0.0, 0.0, 0.0, 0.0], np.zeros(6), _mask(0, 2))
-            r = _run(params, state, control, length, steps * int(round(length / A)), eps, rtol=rtol)
+            n = steps * int(round(length / A))
+            r = run_path(params, state, control, length, n, eps, rtol=rtol)
             parts.append(r)
             state, eps = r["state"], r["eps"][-1]
         cycle_eps_v.append(-np.trace(eps))
@@ -822,10 +847,10 @@ def shear_modulus_decay(params, state, gamma_amplitudes, steps=50, rtol=RTOL):
     strains zero. For each amplitude, from the same initial state: gamma 0 -> +g -> -g -> +g, and
     G_sec = (tau(+g) - tau(-g)) / (2 g) on the last (reloading) branch, tau = sigma_ytheta.
 
-    Returns gamma (the amplitudes), G_sec, G0 and G_ratio = G_sec / G0, where G0 = m_R L_ytheta,ytheta
-    / 2 ... in Mandel form m_R L[4, 4] / 2 at the initial state (the initial tangent shear modulus
-    with h = 0; f_b f_e F^2 m_R / (2 s:s) for a state without ytheta shear stress). Without
-    intergranular strain m_R is taken as 1."""
+    Returns gamma (the amplitudes), G_sec, G0 and G_ratio = G_sec / G0. G0 is the initial tangent
+    shear modulus with h = 0, m_R L_ytheta,ytheta,ytheta,ytheta (Mandel: m_R L[4, 4] / 2) at the
+    initial state: m_R f_b f_e F^2 / (2 s:s) when sigma_ytheta = 0 (m_R taken as 1 without the
+    intergranular strain)."""
     params = check_params(params)
     L, _ = hypoplastic_tensors(params, mandel(state.sigma), state.e)
     G0 = (params["m_R"] if params["igs"] else 1.0) * L[4, 4] / 2.0
@@ -837,7 +862,7 @@ def shear_modulus_decay(params, state, gamma_amplitudes, steps=50, rtol=RTOL):
         for sign, length in ((1.0, g), (-1.0, 2.0 * g), (1.0, 2.0 * g)):
             # Mandel D_4 = sqrt(2) D_ytheta = sqrt(2) gamma_dot / 2
             control = Control([0.0, 0.0, 0.0, 0.0, sign / SQRT2, 0.0], np.zeros(6), _mask(0, 1, 2))
-            r = _run(params, s, control, length, steps, rtol=rtol)
+            r = run_path(params, s, control, length, steps, rtol=rtol)
             s = r["state"]
             taus.append(s.sigma[1, 2])
         G_sec.append((taus[2] - taus[1]) / (2.0 * g))

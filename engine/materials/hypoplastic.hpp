@@ -34,7 +34,7 @@ struct HypoplasticParameters {
   double m_t = 2.0;                  // stiffness multiplier after a 90 degree change of direction
   double beta_r = 0.5;               // evolution exponent of h
   double chi = 6.0;                  // interpolation exponent between m_R L and the hypoplastic M
-  double tolerance = 1e-4;           // relative error per substep of the integration
+  double tolerance = 1e-5;           // relative error per substep of the integration
   double minimum_pressure = 100.0;   // Pa: p below it is raised to it, isotropically (no tension)
   double density = 0.0;              // kg/m^3, initial bulk density
 };
