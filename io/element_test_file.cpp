@@ -164,6 +164,16 @@ void read_path(TomlTable& top, ElementTestSpec& spec) {
     }
     spec.cycles = count(table, "cycles", 1, 1);
     spec.increments = count(table, "increments", 100, 4);
+  } else if (type == "cyclic_deviator") {
+    spec.path = ElementPath::cyclic_deviator;
+    spec.amplitude = table.positive("deviator_amplitude");
+    spec.cycles = count(table, "cycles", 1, 1);
+    spec.increments = count(table, "increments", 100, 4);
+    spec.liquefaction_strain = table.number_or("liquefaction_strain", 0.05);
+    if (!(spec.liquefaction_strain > 0.0) || spec.liquefaction_strain >= 1.0) {
+      table.fail("liquefaction_strain",
+                 "must lie in (0, 1) (a fraction), got " + format_number(spec.liquefaction_strain));
+    }
   } else if (type == "strain_table") {
     spec.path = ElementPath::strain_table;
     const TomlValue& raw = table.raw("strain_increments");
@@ -195,7 +205,7 @@ void read_path(TomlTable& top, ElementTestSpec& spec) {
   } else {
     table.fail("type", "unknown path '" + type +
                            "' (triaxial, oedometer, isotropic, unload_reload, cyclic_triaxial, "
-                           "cyclic_torsion, strain_table)");
+                           "cyclic_torsion, cyclic_deviator, strain_table)");
   }
   // Each count is bounded, but their product is the number of increments (and CSV rows): 1e7
   // cycles of 1e7 increments ran on for ever with growing memory.

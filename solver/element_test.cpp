@@ -35,6 +35,9 @@ public:
       table_.columns.push_back("gamma_ytheta");
       table_.columns.push_back("tau_ytheta");
     }
+    if (spec.path == ElementPath::cyclic_deviator) {
+      table_.columns.push_back("cycle");
+    }
     record();
   }
 
@@ -76,6 +79,9 @@ public:
     case ElementPath::cyclic_triaxial:
     case ElementPath::cyclic_torsion:
       cyclic();
+      break;
+    case ElementPath::cyclic_deviator:
+      cyclic_deviator();
       break;
     case ElementPath::strain_table:
       for (long r = 0; r < spec_.repeat; ++r) {
@@ -175,6 +181,36 @@ private:
     }
   }
 
+  /// Stress-controlled cyclic triaxial: q = amplitude sin(2 pi k / increments) on top of the
+  /// initial deviator, the radial and hoop (total) stresses held; undrained with the material's
+  /// water, drained without. Ends at the first increment where the axial strain's double amplitude,
+  /// its largest minus its smallest value since the start, reaches liquefaction_strain (under
+  /// cyclic mobility the strain also walks towards extension, so that a range within one cycle
+  /// may stay small while the sample has failed), or after the cycles.
+  void cyclic_deviator() {
+    const Stress held = point_.stress();
+    const double n = static_cast<double>(spec_.increments);
+    const long total = spec_.increments * spec_.cycles;
+    double lowest = axial_strain(), highest = axial_strain();
+    for (long k = 1; k <= total; ++k) {
+      MixedIncrement increment;
+      for (Component c : {RR, YY, TT}) {
+        increment.stress_controlled[c] = true;
+        increment.value[c] = held[c];
+      }
+      increment.value[YY] -=
+          spec_.amplitude * std::sin(2.0 * std::numbers::pi * static_cast<double>(k) / n);
+      cycle_ = static_cast<double>(k) / n;
+      step(increment);
+      lowest = std::min(lowest, axial_strain());
+      highest = std::max(highest, axial_strain());
+      if (highest - lowest >= spec_.liquefaction_strain) {
+        table_.cycles_to_liquefaction = cycle_;
+        return;
+      }
+    }
+  }
+
   void record() {
     // Soil-mechanics signs; 0 - x rather than -x, so that no "-0" reaches the file.
     auto compression = [](double x) { return 0.0 - x; };
@@ -190,6 +226,9 @@ private:
       row.push_back(compression(e[YT]));
       row.push_back(compression(s[YT]));
     }
+    if (spec_.path == ElementPath::cyclic_deviator) {
+      row.push_back(cycle_);
+    }
     table_.rows.push_back(std::move(row));
   }
 
@@ -197,6 +236,7 @@ private:
   ElementPoint point_;
   ElementTestTable table_;
   long increments_ = 0;
+  double cycle_ = 0.0; // cyclic_deviator: cycles run so far
 };
 
 } // namespace

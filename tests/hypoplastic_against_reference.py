@@ -76,6 +76,34 @@ def main():
         compare(f"drained cycles eps_v after cycle {cycle}", rows[cycle * per_cycle]["eps_v"],
                 r["cycle_eps_v"][cycle - 1], failures)
 
+    # Undrained stress-controlled cycles: the excess pore pressure at the end of cycles (q back at
+    # 0) and the cycle at which the double amplitude of axial strain reaches 5 %. The engine's q
+    # follows a sine, the reference's straight ramps between the same turning points; the model is
+    # rate independent, so the two meet at every q. The reference counts a cycle's part by |q|
+    # moved, a quarter per amplitude; the engine's row at liquefaction is converted to that count.
+    rows = element_test(mpile, "hypoplastic_undrained_cycles", out)
+    amplitude, p0 = 30e3, 100e3
+    r = ref.undrained_cyclic_triaxial(kfs, ref.State.isotropic(p0, 0.85), amplitude, 60,
+                                      eps_da=0.05)
+    ends = [row for row in rows if row["cycle"] > 0 and abs(row["cycle"] - round(row["cycle"])) < 1e-9]
+    for cycle in (1, 10, 20, 30):
+        row = ends[cycle - 1]
+        excess = p0 - (row["p"] + row["pore_pressure"])
+        compare(f"undrained cycles: excess pore pressure after cycle {cycle}", excess,
+                r["cycle_du"][cycle - 1], failures)
+    last = rows[-1]
+    quarter = int(last["cycle"] * 4.0 + 1e-9)
+    start = (0.0, amplitude, 0.0, -amplitude)[quarter % 4]
+    counted = (quarter + abs(last["q"] - start) / amplitude) / 4.0
+    # The engine stops at the first increment past 5 % (1e-3 of a cycle each); the reference at
+    # the crossing itself.
+    error = abs(counted - r["n_liq"])
+    status = "ok" if error <= 2e-3 else "FAILED"
+    print(f"undrained cycles to liquefaction: engine {counted:.5f}, reference {r['n_liq']:.5f}, "
+          f"difference {error:.1e} cycles {status}")
+    if error > 2e-3:
+        failures.append("cycles to liquefaction")
+
     if failures:
         print(f"{len(failures)} comparison(s) outside {RELATIVE:g}: {', '.join(failures)}")
         return 1

@@ -6,7 +6,10 @@
 #include "app/element_test_command.hpp"
 #include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/material_registry.hpp"
+#include "io/case_phases.hpp"
 #include "io/element_test_file.hpp"
+#include "tests/bitwise.hpp"
+#include "tests/case_run.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -215,6 +218,78 @@ TEST(Hypoplastic, IntergranularStrainStopsSmallDrainedCyclesFromRatcheting) {
   const double kept = elastic.rows.back().at(elastic.column("eps_v"));
   EXPECT_GT(compacted, 1e-3);
   EXPECT_LT(std::abs(kept), 1e-3 * compacted);
+}
+
+/// A rigid disc pressed by a force and twisted by a harmonic torque on Karlsruhe fine sand under
+/// gravity (cases/stability/stiff_contact_block.toml with the soil hypoplastic): the theta
+/// components of h, the contact with a force-driven body and the stress pass in one short run.
+std::string twisted_disc(const std::string& drainage) {
+  std::string text = read_text(source / "cases/stability/stiff_contact_block.toml");
+  text = replaced(text, R"([materials.soil]
+type = "linear_elastic"
+young_modulus = 1e6
+poisson_ratio = 0.3
+density = 2000.0)",
+                  R"([materials.soil]
+type = "hypoplastic"
+critical_friction_angle = 33.1
+granular_hardness = 4000e6
+exponent = 0.27
+e_d0 = 0.677
+e_c0 = 1.054
+e_i0 = 1.212
+alpha = 0.14
+beta = 2.5
+m_r = 2.2
+m_t = 1.1
+beta_r = 0.1
+chi = 5.5
+void_ratio = 0.8
+density = 1472.0
+)" + drainage);
+  text = replaced(text, R"(region = { r = [0.0, 0.4], y = [0.5, 0.6] })",
+                  R"(region = { r = [0.0, 0.4], y = [0.5, 0.6] }
+[bodies.rigid]
+force_y = { type = "ramp", value = -2000.0, duration = 0.005 }
+torque = { type = "harmonic", amplitude = 300.0, frequency = 60.0 })");
+  text = replaced(text, "duration = 0.5", "duration = 0.02");
+  return text;
+}
+
+TEST(Hypoplastic, ATwistedDiscOnSandIsBitwiseIdenticalForOneTwoAndThreeThreads) {
+  for (const std::string drainage : {"", "drainage = \"undrained\"\n"}) {
+    std::vector<Particles> runs;
+    std::vector<std::vector<RigidBody>> bodies;
+    for (const int threads : {1, 2, 3}) {
+      with_threads(threads, [&] {
+        // As `mpile run` starts: the K0 stresses first, then the solver, whose first step
+        // follows from the stiffness they give the sand.
+        const CaseSpec spec = read_case_text(twisted_disc(drainage), "test.toml");
+        const std::unique_ptr<Scene> scene = build_scene(spec);
+        RunProgress progress;
+        RunLog log;
+        const std::unique_ptr<ExplicitSolver> solver =
+            CasePhases(spec, *scene).start(progress, log);
+        solver->advance_to(0.005);
+        runs.push_back(scene->particles);
+        bodies.push_back(scene->rigid_bodies);
+      });
+    }
+    // The disc moved and the sand's intergranular strain turned in theta.
+    ASSERT_LT(bodies[0].at(0).displacement[RIGID_Y], 0.0);
+    double theta_h = 0.0;
+    for (std::size_t i = 0; i < runs[0].size(); ++i) {
+      theta_h = std::max(theta_h,
+                         std::abs(runs[0].state[i * static_cast<std::size_t>(runs[0].state_stride) +
+                                                Hypoplastic::H_FIRST + YT]));
+    }
+    EXPECT_GT(theta_h, 0.0) << drainage;
+    for (std::size_t k = 1; k < runs.size(); ++k) {
+      expect_particles_identical(runs[0], runs[k]);
+      EXPECT_TRUE(bitwise_equal(runs[0].state, runs[k].state)) << drainage;
+      expect_rigid_bodies_identical(bodies[0], bodies[k]);
+    }
+  }
 }
 
 TEST(Hypoplastic, ParametersOutsideTheModelsRangeAreRefusedByName) {

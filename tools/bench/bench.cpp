@@ -11,6 +11,7 @@
 // speed-up is a ratio measured in one run, not two absolute figures from two days.
 #include "cases/verification/verification_cases.hpp"
 #include "engine/materials/hardening_soil.hpp"
+#include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/case_builder.hpp"
@@ -46,11 +47,30 @@ using namespace mpile;
 
 /// A soil column on a fixed base, confined by rollers, from K0 stresses under gravity with local
 /// damping: the quasi-static kind of step the monopile cases spend most of their particles on.
-enum class Soil { elastic, hardening_soil };
+enum class Soil { elastic, hardening_soil, hypoplastic };
 
 std::unique_ptr<Material> soil_material(Soil soil) {
   if (soil == Soil::elastic) {
     return std::make_unique<LinearElastic>(50e6, 0.3, 1650.0);
+  }
+  if (soil == Soil::hypoplastic) {
+    // Karlsruhe fine sand at e0 = 0.8 with its intergranular strain (docs/hypoplasticity.md).
+    HypoplasticParameters p;
+    p.critical_friction_angle = 33.1;
+    p.granular_hardness = 4000e6;
+    p.exponent = 0.27;
+    p.e_d0 = 0.677;
+    p.e_c0 = 1.054;
+    p.e_i0 = 1.212;
+    p.alpha = 0.14;
+    p.beta = 2.5;
+    p.void_ratio = 0.8;
+    p.m_r = 2.2;
+    p.m_t = 1.1;
+    p.beta_r = 0.1;
+    p.chi = 5.5;
+    p.density = 1472.0;
+    return std::make_unique<Hypoplastic>(p);
   }
   return verification::seed_sand();
 }
@@ -130,6 +150,10 @@ std::map<std::string, SceneSpec> scenes() {
     all["elastic-plane-" + label] = {
         "elastic-plane-" + label, [count = count] {
           return quasi_static(soil_column(GeometryMode::plane_strain, count, Soil::elastic));
+        }};
+    all["hypoplastic-" + label] = {
+        "hypoplastic-" + label, [count = count] {
+          return quasi_static(soil_column(GeometryMode::axisymmetric, count, Soil::hypoplastic));
         }};
     all["hardening-soil-" + label] = {
         "hardening-soil-" + label, [count = count] {
