@@ -115,7 +115,7 @@ std::string snakefile(const std::string& sweep_file) {
     << "    return markers\n\n\n"
     << "rule all:\n"
     << "    input:\n"
-    << "        \"results.csv\",\n\n\n"
+    << "        \"gathered\",\n\n\n"
     << "rule run:\n"
     << "    output:\n"
     << "        touch(\"variants/{variant}/finished\"),\n"
@@ -134,9 +134,11 @@ std::string snakefile(const std::string& sweep_file) {
     << "rule gather:\n"
     << "    input:\n"
     << "        finished,\n"
+    // Its output is a marker, not the tables: Snakemake deletes a job's outputs before it runs
+    // (and after it fails), which lost the last complete results.csv and results.nc whenever a
+    // gathering failed; mpile.sweep.gather replaces them itself, all or none.
     << "    output:\n"
-    << "        \"results.csv\",\n"
-    << "        \"results.nc\",\n"
+    << "        touch(\"gathered\"),\n"
     << "    run:\n"
     << "        try:\n"
     << "            import mpile.sweep\n"

@@ -5,6 +5,7 @@
 #include "io/toml_reader.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -84,8 +85,22 @@ std::vector<GatherSpec> read_gather(TomlTable& top) {
     GatherSpec spec;
     spec.name = g.string("name");
     spec.line = g.line_of("name");
-    if (spec.name.empty() || spec.name.find_first_of(" ,\"\n") != std::string::npos) {
-      g.fail("name", "must be a column name without spaces, commas or quotes");
+    // A column of results.csv and a variable of results.nc (HDF5, where '/' separates groups and
+    // netCDF wants a letter, digit or '_' first): a name that breaks either was found only after
+    // every variant had run, when the gathering failed.
+    const bool printable = std::all_of(spec.name.begin(), spec.name.end(), [](char c) {
+      return static_cast<unsigned char>(c) >= 0x80 || std::isgraph(static_cast<unsigned char>(c));
+    });
+    const unsigned char first = spec.name.empty() ? 0 : static_cast<unsigned char>(spec.name[0]);
+    if (spec.name.empty() || !printable || spec.name.find_first_of(",\"/") != std::string::npos ||
+        (first < 0x80 && !std::isalnum(first) && first != '_')) {
+      g.fail("name", "\"" + spec.name +
+                         "\" cannot name a column of results.csv and results.nc: use letters, "
+                         "digits and _ (no spaces, commas, quotes or '/'), starting with a letter, "
+                         "digit or _");
+    }
+    if (spec.name == "variant" || spec.name == "status") {
+      g.fail("name", "\"" + spec.name + "\" is a column of every sweep's table already");
     }
     if (!names.insert(spec.name).second) {
       g.fail("name", "\"" + spec.name + "\" is gathered twice");

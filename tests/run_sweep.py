@@ -8,7 +8,8 @@ the single material point, one of which leaves the grid):
   to round-off, and a quarter period into the stiffer spring (omega = 4 pi, T/4 = 0.125 s) at the
   small velocity nearly all of it is elastic;
 - the same command again, even through another copy of mpile, reruns only the failed variant
-  (Snakemake's markers), the finished variants' outputs untouched;
+  (Snakemake's markers), the finished variants' outputs untouched; its gathering, failing on a
+  damaged history, leaves the first run's results.csv and results.nc as they were;
 - a Snakemake profile (here a local one) runs it the same way;
 - SIGTERM to a running sweep stops Snakemake and its runs (checkpoints written), exit status 130;
   the same command again continues each interrupted variant from its checkpoint.
@@ -100,8 +101,24 @@ os.utime(failed_log, ns=(0, 0))
 # which must not rerun what finished.
 moved = os.path.join(work, "mpile-moved")
 shutil.copy2(mpile_binary, moved)
+# A finished variant's history damaged since: the second run's gathering fails on it, and the
+# first run's table must survive that (Snakemake deleted a failed job's declared outputs, and
+# gathering wrote the files in place).
+with open(os.path.join(out, "results.csv"), "rb") as f:
+    table_before = f.read()
+nc_before = os.path.getsize(os.path.join(out, "results.nc"))
+damaged = os.path.join(out, "variants", "v03", "history.h5")
+shutil.copy2(damaged, damaged + ".kept")
+with open(damaged, "wb") as f:
+    f.write(b"not an HDF5 file")
 again = sweep(moved)
+shutil.move(damaged + ".kept", damaged)
 check(again.returncode == 1, f"second run: exit status {again.returncode}, expected 1")
+with open(os.path.join(out, "results.csv"), "rb") as f:
+    check(f.read() == table_before, "a failed gathering changed or removed results.csv")
+check(os.path.exists(os.path.join(out, "results.nc"))
+      and os.path.getsize(os.path.join(out, "results.nc")) == nc_before,
+      "a failed gathering changed or removed results.nc")
 check(os.stat(finished_history).st_mtime_ns == before, "the finished variant v01 ran again")
 check(os.stat(failed_log).st_mtime_ns != 0, "the failed variant v02 was not retried")
 

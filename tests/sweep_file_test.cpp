@@ -96,7 +96,15 @@ TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
       {"an unknown reduction", "at_time = 0.0", "reduce = \"median\"",
        ":11: gather[0].reduce: must be last, max, min, mean or max_abs"},
       {"a name with a space", "name = \"kinetic_start\"", "name = \"kinetic start\"",
-       ":9: gather[0].name: must be a column name"},
+       ":9: gather[0].name: \"kinetic start\" cannot name a column"},
+      // results.nc is HDF5: '/' separates its groups, and the gathering died after every
+      // variant had run.
+      {"a name with a slash", "name = \"kinetic_start\"", "name = \"tip/F_y\"",
+       ":9: gather[0].name: \"tip/F_y\" cannot name a column"},
+      {"a name starting with a dot", "name = \"kinetic_start\"", "name = \".kinetic\"",
+       ":9: gather[0].name: \".kinetic\" cannot name a column"},
+      {"a name every table has", "name = \"kinetic_start\"", "name = \"status\"",
+       ":9: gather[0].name: \"status\" is a column of every sweep's table already"},
       {"at_penetration without a body", "at_time = 0.0", "at_penetration = 0.1",
        ":8: gather[0].body: missing (required): (the rigid body"},
       {"a series with a leading slash", "series = \"energy/kinetic\"", "series = \"/energy\"",

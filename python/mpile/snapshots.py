@@ -11,6 +11,7 @@ Needs numpy and VTK (`vtkmodules`, Debian's python3-vtk9 or ParaView's own); pan
 only for the tables.
 """
 import os
+import re
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 
@@ -46,8 +47,12 @@ def read_xml(path, reader_class, kind):
     reader = reader_class()
     if not reader.CanReadFile(str(path)):
         raise RunFileError(f"{path} is not a VTK XML {kind}")
+    errors = collect_errors(reader)
     reader.SetFileName(str(path))
     reader.Update()
+    if errors:
+        raise RunFileError(f"{path} is not a readable VTK XML {kind}, cut short or damaged: "
+                           + "; ".join(errors))
     grid = reader.GetOutput()
     data = grid.GetPointData()
     arrays = {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
@@ -58,6 +63,32 @@ def read_xml(path, reader_class, kind):
         if array.IsA("vtkStringArray"):
             fields[array.GetName()] = [array.GetValue(j) for j in range(array.GetNumberOfValues())]
     return grid, arrays, fields
+
+
+def collect_errors(reader):
+    """A list that gathers the error messages of a VTK XML `reader` and its XML parser, which are
+    then no longer printed.
+
+    Given a file cut short (a run stopped while writing it, a partial copy), the reader reports
+    errors and returns an empty data set, which would pass for a snapshot without particles: the
+    caller raises on any message instead. The pipeline's own "returned failure" that follows a
+    parser error is silenced and left out, as it says nothing about the file.
+    """
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.vtkCommonCore import VTK_STRING, vtkCommand
+
+    messages = []
+
+    @calldata_type(VTK_STRING)
+    def keep(caller, event, text):
+        # VTK's text is "ERROR: In <source>, line <n>\n<class> (<address>): <message>".
+        found = re.search(r"\(0x[0-9a-fA-F]+\): (.*)", text, re.DOTALL)
+        messages.append(" ".join((found.group(1) if found else text).split()))
+
+    tag = reader.AddObserver(vtkCommand.ErrorEvent, keep)
+    reader.SetParserErrorObserver(reader.GetCommand(tag))
+    reader.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda caller, event: None)
+    return messages
 
 
 def read_vtu(path):

@@ -18,7 +18,9 @@ get there; `status` says whether the variant finished.
     frame = mpile.open_sweep("out/sweeps/gdp_torque", form="pandas")
 """
 import math
+import os
 import tomllib
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -104,12 +106,49 @@ def quantity(history, spec):
     return float(reduce(values)), units
 
 
+def check_gather_names(sweep, path):
+    """Raises RunFileError naming the first [[gather]] entry of the sweep file at `path` whose name
+    cannot be a column of the table (`name_problem`), before anything is read or written."""
+    taken = {"variant", "status", *sweep.get("parameters", [])}
+    for number, spec in enumerate(sweep.get("gather", []), start=1):
+        name = spec.get("name")
+        problem = name_problem(name, taken)
+        if problem:
+            raise RunFileError(f"{path}: [[gather]] number {number} (name = {name!r}): the name {problem}")
+        taken.add(name)
+
+
+def name_problem(name, taken):
+    """Why `name` cannot be a gathered quantity's column in results.csv and variable in results.nc
+    (the names in `taken` are columns already), or "" when it can.
+
+    results.nc is netCDF-4 in HDF5: there '/' separates groups (h5netcdf fails on it with a bare
+    KeyError) and "." is the group itself, and netCDF's rule for names wants a first character
+    that is a letter, a digit, '_' or not ASCII, and no control characters. results.csv's columns
+    hold no spaces, commas or double quotes, as the sweep file's reader requires. A name equal to
+    variant, status, a parameter or another quantity would silently overwrite that column.
+    """
+    if not isinstance(name, str) or not name:
+        return "is missing or empty"
+    if "/" in name:
+        return "contains '/', which results.nc (HDF5) would read as a path through groups"
+    bad = next((c for c in name if c.isspace() or not c.isprintable() or c in ',"'), None)
+    if bad is not None:
+        return f"contains {bad!r}: a column name holds no spaces, commas, double quotes or control characters"
+    if name[0].isascii() and not (name[0].isalnum() or name[0] == "_"):
+        return f"starts with {name[0]!r}: a netCDF variable name starts with a letter, a digit or '_'"
+    if name in taken:
+        return "is a column already (variant, status, a parameter or another gathered quantity)"
+    return ""
+
+
 def table(directory):
     """The results as a pandas DataFrame (one row per variant) and the quantities' units."""
     import pandas as pd
 
     directory = Path(directory)
     sweep = read_sweep(directory)
+    check_gather_names(sweep, directory / "sweep.toml")
     rows, units = [], {}
     for variant in sweep["variants"]:
         run = directory / "variants" / variant["id"]
@@ -144,14 +183,37 @@ def to_xarray(frame, sweep, units):
 
 
 def gather(directory):
-    """Writes results.csv, results.nc and results.png into the sweep's output directory."""
+    """Writes results.csv, results.nc and results.png into the sweep's output directory, all or
+    none: a gathering that fails leaves the previous results as they were (see `replacing`)."""
     directory = Path(directory)
     sweep = read_sweep(directory)
     frame, units = table(directory)
-    frame.to_csv(directory / "results.csv", index=False)
-    to_xarray(frame, sweep, units).to_netcdf(directory / "results.nc", engine="h5netcdf")
-    if sweep.get("gather"):
-        plot(directory, frame=frame, units=units).savefig(directory / "results.png", dpi=120)
+    names = ["results.csv", "results.nc"] + (["results.png"] if sweep.get("gather") else [])
+    with replacing(*(directory / name for name in names)) as temporaries:
+        frame.to_csv(temporaries[0], index=False)
+        to_xarray(frame, sweep, units).to_netcdf(temporaries[1], engine="h5netcdf")
+        if sweep.get("gather"):
+            plot(directory, frame=frame, units=units).savefig(temporaries[2], dpi=120, format="png")
+
+
+@contextmanager
+def replacing(*paths):
+    """Temporary paths beside `paths` to write to, renamed over them when the block ends without
+    an error and removed when it raises.
+
+    A gathering can fail midway (a full disk, an unreadable history, an interrupt): writing the
+    results in place would leave them deleted or half written, and the table of a long study is
+    worth keeping until a complete new one is there. A rename within one directory is atomic, so
+    a reader sees the old file or the new one, never a part.
+    """
+    temporaries = [path.with_name(f".{path.name}.{os.getpid()}.tmp") for path in paths]
+    try:
+        yield temporaries
+        for temporary, path in zip(temporaries, paths):
+            os.replace(temporary, path)
+    finally:
+        for temporary in temporaries:
+            temporary.unlink(missing_ok=True)
 
 
 def open_sweep(directory, form="xarray"):

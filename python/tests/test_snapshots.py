@@ -163,3 +163,26 @@ def test_vertical_force_across_sections(tmp_path):
     np.testing.assert_allclose(snapshot.vertical_force(heights, slab=3 * h), whole, rtol=1e-12)
     with pytest.raises(ValueError, match="slab must be positive"):
         snapshot.vertical_force(0.5, slab=0.0)
+
+
+@pytest.mark.parametrize("cut_at, problem", [
+    ("half", r"Cannot read .* too short|not long enough"),       # in the appended data
+    (b"<PointData", r"Error parsing XML in stream at line \d+"),  # in the XML header
+])
+def test_truncated_snapshot_is_refused(tmp_path, capfd, cut_at, problem):
+    """A .vtu cut short (a run stopped while writing it, a partial copy): VTK reports errors and
+    returns an empty data set, which must not pass for a snapshot without particles. The error
+    names the file and VTK's reason, and VTK's own messages are not printed besides."""
+    whole = tmp_path / "particles_000000.vtu"
+    ids = np.arange(200)
+    write_vtu(whole, ids, ids * 0.01, ids * 0.02, ids * 1.0)
+    data = whole.read_bytes()
+    end = len(data) // 2 if cut_at == "half" else data.index(cut_at) + len(cut_at)
+    cut = tmp_path / "cut.vtu"
+    cut.write_bytes(data[:end])
+    snapshot = mpile.open_snapshots(cut)[0]  # nothing read yet
+    with pytest.raises(RunFileError, match=r"cut\.vtu is not a readable VTK XML unstructured grid \(\.vtu\), "
+                                           r"cut short or damaged: .*(" + problem + ")"):
+        snapshot.positions
+    assert "ERR|" not in capfd.readouterr().err
+    assert mpile.open_snapshots(whole)[0].positions.shape == (200, 2)  # the whole file still reads
