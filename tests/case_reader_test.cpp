@@ -130,7 +130,8 @@ std::vector<BadInput> bad_inputs() {
       {"axisymmetric grid behind the axis", edited("r = [{ start = 0.0,", "r = [{ start = -0.5,"),
        "grid.r: starts at r = -0.5 < 0", ""},
       {"unknown material type", edited("type = \"linear_elastic\"", "type = \"elastic\""),
-       "materials.soil.type: must be \"linear_elastic\", \"mohr_coulomb\" or \"hardening_soil\", "
+       "materials.soil.type: must be \"linear_elastic\", \"mohr_coulomb\", \"hardening_soil\" or "
+       "\"hypoplastic\", "
        "got \"elastic\"",
        "type = \"elastic\""},
       {"velocity not finite",

@@ -12,7 +12,7 @@ set_tests_properties(PythonPackage.Pytest PROPERTIES ENVIRONMENT "MPILE=$<TARGET
 add_test(NAME PythonPackage.PipInstallAndImport
          COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider -m install
                  ${PROJECT_SOURCE_DIR}/python/tests)
-set_tests_properties(PythonPackage.PipInstallAndImport PROPERTIES
+set_tests_properties(PythonPackage.PipInstallAndImport PROPERTIES LABELS python
                      PASS_REGULAR_EXPRESSION "1 passed" FAIL_REGULAR_EXPRESSION " (failed|skipped|error)")
 
 # tools/paraview_open_run.py under ParaView's own Python, where ParaView is installed: the pipeline

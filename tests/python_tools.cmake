@@ -261,6 +261,8 @@ set_tests_properties(HertzFe.FourMillimetreElementsKeepMassEnergyAndNearlyHertzs
 add_test(NAME HypoplasticReference.Pytest
          COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
                  ${PROJECT_SOURCE_DIR}/tests/hypoplastic_reference_test.py)
+# Python alone, no engine code: nothing for a sanitizer to look at (label python, release only).
+set_tests_properties(HypoplasticReference.Pytest PROPERTIES LABELS python)
 add_test(NAME Hypoplastic.ElementTestsMeetTheIndependentIntegration
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/hypoplastic_against_reference.py
                  $<TARGET_FILE:mpile> ${CMAKE_CURRENT_BINARY_DIR}/hypoplastic_reference)
