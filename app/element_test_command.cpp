@@ -63,10 +63,11 @@ int element_test_command(const ElementTestOptions& options, std::ostream& out, s
       << " to " << csv.string() << "\n  end: eps_1 = " << last[0] << ", eps_v = " << last[1]
       << ", sigma_1 = " << last[2] << " Pa, sigma_3 = " << last[3] << " Pa, q = " << last[5]
       << " Pa\n";
-  if (spec.path == ElementPath::cyclic_deviator) {
+  if (spec.path == ElementPath::cyclic_deviator || spec.path == ElementPath::cyclic_simple_shear) {
     if (table.cycles_to_liquefaction > 0.0) {
-      out << "  liquefied (double amplitude of axial strain " << spec.liquefaction_strain
-          << ") after " << table.cycles_to_liquefaction << " cycles\n";
+      out << "  liquefied (double amplitude of "
+          << (spec.path == ElementPath::cyclic_deviator ? "axial" : "shear") << " strain "
+          << spec.liquefaction_strain << ") after " << table.cycles_to_liquefaction << " cycles\n";
     } else {
       out << "  not liquefied after " << spec.cycles << " cycles\n";
     }

@@ -164,9 +164,10 @@ void read_path(TomlTable& top, ElementTestSpec& spec) {
     }
     spec.cycles = count(table, "cycles", 1, 1);
     spec.increments = count(table, "increments", 100, 4);
-  } else if (type == "cyclic_deviator") {
-    spec.path = ElementPath::cyclic_deviator;
-    spec.amplitude = table.positive("deviator_amplitude");
+  } else if (type == "cyclic_deviator" || type == "cyclic_simple_shear") {
+    const bool shear = type == "cyclic_simple_shear";
+    spec.path = shear ? ElementPath::cyclic_simple_shear : ElementPath::cyclic_deviator;
+    spec.amplitude = table.positive(shear ? "shear_stress_amplitude" : "deviator_amplitude");
     spec.cycles = count(table, "cycles", 1, 1);
     spec.increments = count(table, "increments", 100, 4);
     spec.liquefaction_strain = table.number_or("liquefaction_strain", 0.05);
@@ -205,7 +206,7 @@ void read_path(TomlTable& top, ElementTestSpec& spec) {
   } else {
     table.fail("type", "unknown path '" + type +
                            "' (triaxial, oedometer, isotropic, unload_reload, cyclic_triaxial, "
-                           "cyclic_torsion, cyclic_deviator, strain_table)");
+                           "cyclic_torsion, cyclic_deviator, cyclic_simple_shear, strain_table)");
   }
   // Each count is bounded, but their product is the number of increments (and CSV rows): 1e7
   // cycles of 1e7 increments ran on for ever with growing memory.

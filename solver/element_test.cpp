@@ -31,11 +31,11 @@ public:
     for (const std::string& name : material.state_names()) {
       table_.columns.push_back(name);
     }
-    if (spec.path == ElementPath::cyclic_torsion) {
+    if (spec.path == ElementPath::cyclic_torsion || spec.path == ElementPath::cyclic_simple_shear) {
       table_.columns.push_back("gamma_ytheta");
       table_.columns.push_back("tau_ytheta");
     }
-    if (spec.path == ElementPath::cyclic_deviator) {
+    if (stress_cycles()) {
       table_.columns.push_back("cycle");
     }
     record();
@@ -81,7 +81,8 @@ public:
       cyclic();
       break;
     case ElementPath::cyclic_deviator:
-      cyclic_deviator();
+    case ElementPath::cyclic_simple_shear:
+      stress_controlled_cycles();
       break;
     case ElementPath::strain_table:
       for (long r = 0; r < spec_.repeat; ++r) {
@@ -181,29 +182,45 @@ private:
     }
   }
 
-  /// Stress-controlled cyclic triaxial: q = amplitude sin(2 pi k / increments) on top of the
-  /// initial deviator, the radial and hoop (total) stresses held; undrained with the material's
-  /// water, drained without. Ends at the first increment where the axial strain's double amplitude,
-  /// its largest minus its smallest value since the start, reaches liquefaction_strain (under
-  /// cyclic mobility the strain also walks towards extension, so that a range within one cycle
-  /// may stay small while the sample has failed), or after the cycles.
-  void cyclic_deviator() {
+  bool stress_cycles() const {
+    return spec_.path == ElementPath::cyclic_deviator ||
+           spec_.path == ElementPath::cyclic_simple_shear;
+  }
+
+  /// Stress-controlled cycles of amplitude A, sin(2 pi k / increments) on top of the initial
+  /// stress. cyclic_deviator: q cycles, the radial and hoop (total) stresses held (the cyclic
+  /// triaxial test). cyclic_simple_shear: tau_ytheta cycles, every normal strain held at zero
+  /// (constant-volume simple shear; the soil beside a shaft twisted in cycles). Undrained with the
+  /// material's water, drained without. Ends at the first increment where the double amplitude of
+  /// the axial strain (or the shear strain gamma_ytheta), its largest minus its smallest value
+  /// since the start, reaches liquefaction_strain (under cyclic mobility the strain also walks to
+  /// one side, so that a range within one cycle may stay small while the sample has failed), or
+  /// after the cycles.
+  void stress_controlled_cycles() {
+    const bool shear = spec_.path == ElementPath::cyclic_simple_shear;
     const Stress held = point_.stress();
     const double n = static_cast<double>(spec_.increments);
     const long total = spec_.increments * spec_.cycles;
-    double lowest = axial_strain(), highest = axial_strain();
+    auto measured = [&] { return shear ? -point_.strain()[YT] : axial_strain(); };
+    double lowest = measured(), highest = measured();
     for (long k = 1; k <= total; ++k) {
-      MixedIncrement increment;
-      for (Component c : {RR, YY, TT}) {
-        increment.stress_controlled[c] = true;
-        increment.value[c] = held[c];
-      }
-      increment.value[YY] -=
+      const double wave =
           spec_.amplitude * std::sin(2.0 * std::numbers::pi * static_cast<double>(k) / n);
+      MixedIncrement increment; // strains zero unless stress-controlled
+      if (shear) {
+        increment.stress_controlled[YT] = true;
+        increment.value[YT] = held[YT] - wave;
+      } else {
+        for (Component c : {RR, YY, TT}) {
+          increment.stress_controlled[c] = true;
+          increment.value[c] = held[c];
+        }
+        increment.value[YY] -= wave;
+      }
       cycle_ = static_cast<double>(k) / n;
       step(increment);
-      lowest = std::min(lowest, axial_strain());
-      highest = std::max(highest, axial_strain());
+      lowest = std::min(lowest, measured());
+      highest = std::max(highest, measured());
       if (highest - lowest >= spec_.liquefaction_strain) {
         table_.cycles_to_liquefaction = cycle_;
         return;
@@ -222,11 +239,12 @@ private:
         compression(e[YY]),          compression(e[RR] + e[YY] + e[TT]), sigma_1, sigma_3,
         compression(trace(s) / 3.0), sigma_1 >= sigma_3 ? q : -q};
     row.insert(row.end(), point_.state().begin(), point_.state().end());
-    if (spec_.path == ElementPath::cyclic_torsion) {
+    if (spec_.path == ElementPath::cyclic_torsion ||
+        spec_.path == ElementPath::cyclic_simple_shear) {
       row.push_back(compression(e[YT]));
       row.push_back(compression(s[YT]));
     }
-    if (spec_.path == ElementPath::cyclic_deviator) {
+    if (stress_cycles()) {
       row.push_back(cycle_);
     }
     table_.rows.push_back(std::move(row));

@@ -23,6 +23,7 @@ enum class ElementPath {
   cyclic_triaxial,
   cyclic_torsion,
   cyclic_deviator,
+  cyclic_simple_shear,
   strain_table
 };
 
@@ -47,10 +48,11 @@ struct ElementTestSpec {
   std::vector<double> stress_targets; // oedometer vertical stresses, isotropic mean stresses
   double deviator = 0.0;              // unload_reload: reverse at this q (Pa)
   double unload_deviator = 0.0;       // unload_reload: reload from this q (Pa)
-  double amplitude = 0.0;             // cyclic: axial strain, engineering shear strain or q (Pa)
+  double amplitude = 0.0;             // cyclic: axial or engineering shear strain, q or tau (Pa)
   long cycles = 0;
-  /// cyclic_deviator: the double amplitude of axial strain (largest minus smallest since the
-  /// start) that counts as liquefaction; the path ends at the first increment that reaches it.
+  /// cyclic_deviator (axial strain) and cyclic_simple_shear (engineering shear strain): the
+  /// double amplitude, largest minus smallest since the start, that counts as liquefaction; the
+  /// path ends at the first increment that reaches it.
   double liquefaction_strain = 0.05;
   std::vector<std::array<double, 6>> strain_increments; // strain_table, compression positive
   long repeat = 1;                                      // strain_table
@@ -59,12 +61,13 @@ struct ElementTestSpec {
 /// The results, one row per increment after the initial state. Columns: eps_1, eps_v, sigma_1,
 /// sigma_3, p, q (compression positive: eps_1 and sigma_1 vertical, sigma_3 radial, q signed as
 /// sigma_1 - sigma_3 and equal in size to sqrt(3 J2)), the material's state variables, and for
-/// cyclic torsion gamma_ytheta and tau_ytheta, for the cyclic deviator the cycle (N, fractional).
+/// cyclic torsion and simple shear gamma_ytheta and tau_ytheta, for the stress-controlled cyclic
+/// paths the cycle (N, fractional).
 struct ElementTestTable {
   std::vector<std::string> columns;
   std::vector<std::vector<double>> rows;
-  /// cyclic_deviator: the cycles run until the double amplitude of axial strain reached
-  /// liquefaction_strain; 0 when it was not reached.
+  /// cyclic_deviator and cyclic_simple_shear: the cycles run until the strain's double amplitude
+  /// reached liquefaction_strain; 0 when it was not reached.
   double cycles_to_liquefaction = 0.0;
   /// The column's index; throws std::out_of_range for an unknown name.
   std::size_t column(const std::string& name) const;
