@@ -846,7 +846,14 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
   if (const char* budget = std::getenv("MPILE_MEMORY_BUDGET_MIB")) {
     char* end = nullptr;
     const double mib = std::strtod(budget, &end);
-    if (end != budget && *end == '\0' && mib > 0.0 && mib * 1048576.0 < physical) {
+    // A budget that does not parse is an error, not no budget: "2MiB" or "0" switched it off
+    // without a word.
+    if (end == budget || *end != '\0' || !std::isfinite(mib) || !(mib > 0.0)) {
+      throw CaseError(top.file() + ": MPILE_MEMORY_BUDGET_MIB = '" + budget +
+                      "' is not a memory budget: give a number of MiB above zero (for example "
+                      "2048), or unset it for none");
+    }
+    if (mib * 1048576.0 < physical) {
       physical = mib * 1048576.0;
       whose = "MPILE_MEMORY_BUDGET_MIB's";
     }

@@ -100,6 +100,15 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
     }
     const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
     water.column_pressure = water_density * g * (water.level - water.seabed);
+    // The deepest ocean is 11 km: 1.1e8 Pa on its floor. A level of 1e308 m made the pressure
+    // infinite, and the run wrote inf and NaN into every total stress it reported.
+    if (!std::isfinite(water.column_pressure) || water.column_pressure > 2e8) {
+      table->fail("level", format_number(water.level) + " m puts " +
+                               format_number(water.level - water.seabed) +
+                               " m of water on the seabed, a pressure of " +
+                               format_number(water.column_pressure) +
+                               " Pa: above the 2e8 Pa of 20 km of water (a length in mm?)");
+    }
     column_pressure = water.column_pressure;
     spec.water = water;
   }

@@ -652,7 +652,7 @@ TEST(CaseReader, RejectsEachBadMonopileInputWithFileLineKeyAndReason) {
 // MPILE_MEMORY_BUDGET_MIB bounds what a case may need below what the machine has (a shared
 // machine, or a sanitizer build whose address space cannot be limited): the quick monopile case
 // (about 2 MB) reads within 10 MiB and is refused at 1 MiB, at the key that drives it, naming the
-// budget; an unreadable value is ignored.
+// budget; an unreadable value is refused.
 TEST(CaseReader, AMemoryBudgetSetForTheProcessBoundsTheCase) {
   const std::string text = monopile_edited("", "");
   struct Budget {
@@ -665,9 +665,19 @@ TEST(CaseReader, AMemoryBudgetSetForTheProcessBoundsTheCase) {
     Budget budget("10");
     EXPECT_NO_THROW(read_case_text(text, "case.toml"));
   }
-  {
-    Budget budget("junk");
-    EXPECT_NO_THROW(read_case_text(text, "case.toml"));
+  // A budget that does not parse is refused, naming it (before, it switched the budget off).
+  for (const char* junk : {"junk", "2MiB", "0", "-2", "", "inf", "nan"}) {
+    Budget budget(junk);
+    try {
+      read_case_text(text, "case.toml");
+      ADD_FAILURE() << "accepted the budget '" << junk << "'";
+    } catch (const CaseError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("case.toml: MPILE_MEMORY_BUDGET_MIB = '" +
+                                                std::string(junk) + "' is not a memory budget",
+                                            0),
+                0u)
+          << e.what();
+    }
   }
   Budget budget("1");
   try {

@@ -179,6 +179,11 @@ TEST(Sea, BadWaterTableIsRefusedAtItsLine) {
   const std::vector<Bad> bad{
       {"below the grid", column + "[water]\nlevel = -1.0\n", "lies below the grid", "level ="},
       {"below the seabed", column + "[water]\nlevel = 9.0\n", "lies below the seabed", "level ="},
+      // An overflowing sea: an infinite pressure on the seabed, then inf and NaN in every
+      // reported stress.
+      {"an overflowing sea", column + "[water]\nlevel = 1e308\n", "a pressure of inf Pa",
+       "level ="},
+      {"a level in mm", column + "[water]\nlevel = 30000.0\n", "(a length in mm?)", "level ="},
       {"negative cavitation stress", column + "[water]\ncavitation_stress = -1.0\n", "must be >= 0",
        "cavitation_stress ="},
       {"no saturated soil",
