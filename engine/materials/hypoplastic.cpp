@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -160,7 +161,8 @@ Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b
   // Lode's angle; F does not depend on it when the deviator vanishes (tan psi = 0 gives F = 1).
   double cos_3theta = 1.0;
   if (deviator_norm2 > 1e-24) {
-    cos_3theta = -std::sqrt(6.0) * trace_of_cube(deviator) / std::pow(deviator_norm2, 1.5);
+    cos_3theta =
+        -std::sqrt(6.0) * trace_of_cube(deviator) / (deviator_norm2 * std::sqrt(deviator_norm2));
     cos_3theta = std::clamp(cos_3theta, -1.0, 1.0);
   }
   const double tan2 = tan_psi * tan_psi;
@@ -168,12 +170,14 @@ Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b
       std::sqrt(tan2 / 8.0 + (2.0 - tan2) / (2.0 + std::sqrt(2.0) * tan_psi * cos_3theta)) -
       tan_psi / (2.0 * std::sqrt(2.0));
   const double ratio = 3.0 * p / q.granular_hardness;
-  const double bauer = std::exp(-std::pow(ratio, q.exponent));
+  // (3 p / h_s)^n once: Bauer's exponent and, divided into 3 p / h_s, f_b's (3 p / h_s)^(1 - n).
+  const double ratio_n = std::pow(ratio, q.exponent);
+  const double bauer = std::exp(-ratio_n);
   const double e_i = q.e_i0 * bauer;
   const double e_c = q.e_c0 * bauer;
   const double e_d = q.e_d0 * bauer;
   const double f_b = q.granular_hardness / q.exponent * (1.0 + e_i) / e_i * f_b_ratio *
-                     std::pow(ratio, 1.0 - q.exponent) / f_b_divisor;
+                     (ratio / ratio_n) / f_b_divisor;
   const double f_e = std::pow(e_c / e, q.beta);
   // Denser than e_d the model has no state: f_d is held at zero there (no dilatancy term).
   const double f_d = std::pow(std::max(e - e_d, 0.0) / (e_c - e_d), q.alpha);
@@ -211,12 +215,14 @@ HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d) 
     }
   }
   const double along = contract(direction, d); // h_hat : D
-  const double rho_chi = std::pow(rho, q.chi);
+  // rho^chi and rho^beta_R from one logarithm (zero at h = 0).
+  const double log_rho = rho > 0.0 ? std::log(rho) : -std::numeric_limits<double>::infinity();
+  const double rho_chi = std::exp(q.chi * log_rho);
   const double blend = rho_chi * q.m_t + (1.0 - rho_chi) * q.m_r;
   const Stress lh = t.apply(direction);
   if (along > 0.0) {
     // Loading along the intergranular strain: towards the hypoplastic response as rho -> 1.
-    const double rho_beta = std::pow(rho, q.beta_r);
+    const double rho_beta = std::exp(q.beta_r * log_rho);
     for (std::size_t k = 0; k < 6; ++k) {
       out.stress[k] = blend * ld[k] + rho_chi * ((1.0 - q.m_t) * lh[k] + t.n[k]) * along;
       out.h[k] = d[k] - rho_beta * direction[k] * along;
