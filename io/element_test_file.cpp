@@ -6,7 +6,9 @@
 #include "io/toml_reader.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -247,7 +249,7 @@ ElementTestSpec read_element_test_text(const std::string& text, const std::strin
 ElementTestSpec read_element_test_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) {
-    throw CaseError(path + ": cannot open the element-test file");
+    throw CaseError(path + ": cannot open the element-test file: " + std::strerror(errno));
   }
   std::ostringstream text;
   text << in.rdbuf();

@@ -1,9 +1,9 @@
 #pragma once
 
 // The contact and rigid-body passes of a step (physics.md sections 5 and 6), used only by scenes
-// with contact. Order within a step: predict_rigid_bodies, resolve_contact (recording),
-// finish_rigid_bodies; after the MUSL remap: reset_rigid_fields, resolve_contact (not recording);
-// after the particles moved: move_rigid_bodies.
+// with contact. Order within a step: predict_rigid_bodies, resolve_contact_with_rigid_bodies
+// (recording), finish_rigid_bodies; after the MUSL remap: reset_rigid_fields, resolve_contact (not
+// recording); after the particles moved: move_rigid_bodies.
 
 #include "solver/passes.hpp"
 
@@ -29,9 +29,18 @@ template <GeometryMode mode>
 double resolve_contact(Scene& scene, const SolverSettings& settings, const StepParameters& step,
                        CorrectionPass pass);
 
+/// resolve_contact without refreshing the outlines' nodal areas: the pairs' correction alone.
+template <GeometryMode mode>
+double resolve_contact_pairs(Scene& scene, const SolverSettings& settings,
+                             const StepParameters& step, CorrectionPass pass);
+/// Sets a rigid body's field to the motion of DOF velocities u, its FLIP increment the change from
+/// the body's velocity at the start of the step.
+void set_rigid_motion(Grid& grid, const RigidBody& body, const std::array<double, 3>& u,
+                      double mass_floor);
 /// resolve_contact after the momentum balance at the DOF velocities the rigid bodies end the step
 /// with: a force-driven DOF's velocity follows from the reaction the correction gives it, so the
-/// two are solved together (regula falsi per DOF, to rounding); other DOFs keep `predicted`.
+/// two are solved together (regula falsi per DOF, to rounding); other DOFs keep `predicted`
+/// (solver/rigid_contact.cpp).
 template <GeometryMode mode>
 double resolve_contact_with_rigid_bodies(Scene& scene, const SolverSettings& settings,
                                          const StepParameters& step,

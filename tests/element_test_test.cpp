@@ -420,7 +420,13 @@ TEST(ElementTest, CommandExitsWithStatusTwoOnBadInput) {
   EXPECT_NE(err.str().find(file.string() + ":6: material.poisson_ratio: "), std::string::npos)
       << err.str();
   options.file = "/nonexistent/element.toml";
-  EXPECT_EQ(element_test_command(options, out, err), exit_bad_input);
+  std::ostringstream missing;
+  EXPECT_EQ(element_test_command(options, out, missing), exit_bad_input);
+  // With the system's reason, as a case file's (it gave none).
+  EXPECT_NE(missing.str().find("/nonexistent/element.toml: cannot open the element-test file: No "
+                               "such file or directory"),
+            std::string::npos)
+      << missing.str();
 }
 
 } // namespace

@@ -35,5 +35,7 @@ Report run_hs_oedometer(const Options& options);           // VHS, hs_oedometer.
 
 /// The seed paper's dry sand (Hardening Soil, its Table 5), as hs_oedometer.toml declares it.
 std::unique_ptr<Material> seed_sand();
+/// Karlsruhe fine sand (hypoplastic, e0 = 0.85, dry), as hypoplastic_torsion_ring.toml declares it.
+std::unique_ptr<Material> karlsruhe_fine_sand();
 
 } // namespace mpile::verification

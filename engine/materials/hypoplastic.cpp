@@ -346,47 +346,50 @@ double Hypoplastic::update_point(Stress& stress, double* state,
   return constrained_modulus(stress, state);
 }
 
-double Hypoplastic::constrained_modulus(const Stress& stress, const double* state) const {
-  Stress s = stress;
-  if (mean_pressure(s) < parameters_.minimum_pressure) {
-    const double p = parameters_.minimum_pressure;
+namespace {
+
+/// The tangent at a stress raised to the floor pressure where it lies below it, and at the
+/// particle's void ratio (the initial one before the state is set): what the time step, the
+/// absorbing faces and the ledger read.
+Tangent floored_tangent(const HypoplasticParameters& q, double a, double f_b_ratio,
+                        double f_b_divisor, Stress s, const double* state) {
+  if (mean_pressure(s) < q.minimum_pressure) {
+    const double p = q.minimum_pressure;
     s = Stress{-p, -p, -p, 0.0, 0.0, 0.0};
   }
-  const Tangent t =
-      hypoplastic_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, s,
-                          state[VOID_RATIO] > 0.0 ? state[VOID_RATIO] : parameters_.void_ratio);
+  const double e = state[Hypoplastic::VOID_RATIO];
+  return hypoplastic_tangent(q, a, f_b_ratio, f_b_divisor, s, e > 0.0 ? e : q.void_ratio);
+}
+
+/// The small-strain stiffness's multiple of L: m_R after a reversal, with the intergranular strain.
+double reversal_multiplier(const HypoplasticParameters& q) {
+  return q.intergranular_strain != 0.0 ? q.m_r : 1.0;
+}
+
+} // namespace
+
+double Hypoplastic::constrained_modulus(const Stress& stress, const double* state) const {
+  const Tangent t = floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state);
   // The largest eigenvalue of F^2 I + a^2 s (x) s is F^2 + a^2 s:s; N adds at most |N| per unit
   // |D|; after a reversal the stiffness is m_R times L.
-  const double multiplier = parameters_.intergranular_strain != 0.0 ? parameters_.m_r : 1.0;
-  return multiplier * t.c * (t.f2 + t.a2 * t.s_norm2) + norm(t.n);
+  return reversal_multiplier(parameters_) * t.c * (t.f2 + t.a2 * t.s_norm2) + norm(t.n);
 }
 
 double Hypoplastic::shear_modulus(const Stress& stress, const double* state) const {
-  Stress s = stress;
-  if (mean_pressure(s) < parameters_.minimum_pressure) {
-    const double p = parameters_.minimum_pressure;
-    s = Stress{-p, -p, -p, 0.0, 0.0, 0.0};
-  }
-  const Tangent t =
-      hypoplastic_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, s,
-                          state[VOID_RATIO] > 0.0 ? state[VOID_RATIO] : parameters_.void_ratio);
-  const double multiplier = parameters_.intergranular_strain != 0.0 ? parameters_.m_r : 1.0;
-  return multiplier * 0.5 * t.c * t.f2;
+  const Tangent t = floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state);
+  return reversal_multiplier(parameters_) * 0.5 * t.c * t.f2;
 }
 
 double Hypoplastic::elastic_energy_density(const Stress& stress, const double* state) const {
-  Stress s = stress;
-  if (mean_pressure(s) < parameters_.minimum_pressure) {
+  const double p = mean_pressure(stress);
+  if (p < parameters_.minimum_pressure) {
     return 0.0;
   }
-  const Tangent t =
-      hypoplastic_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, s,
-                          state[VOID_RATIO] > 0.0 ? state[VOID_RATIO] : parameters_.void_ratio);
-  const double multiplier = parameters_.intergranular_strain != 0.0 ? parameters_.m_r : 1.0;
+  const Tangent t = floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state);
+  const double multiplier = reversal_multiplier(parameters_);
   const double bulk = multiplier * t.c * (t.f2 + t.a2 / 3.0) / 3.0;
   const double shear = multiplier * 0.5 * t.c * t.f2;
-  const double p = mean_pressure(s);
-  Stress deviator = s;
+  Stress deviator = stress;
   for (std::size_t k = 0; k < 3; ++k) {
     deviator[k] += p;
   }

@@ -11,7 +11,6 @@
 // speed-up is a ratio measured in one run, not two absolute figures from two days.
 #include "cases/verification/verification_cases.hpp"
 #include "engine/materials/hardening_soil.hpp"
-#include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/case_builder.hpp"
@@ -54,23 +53,7 @@ std::unique_ptr<Material> soil_material(Soil soil) {
     return std::make_unique<LinearElastic>(50e6, 0.3, 1650.0);
   }
   if (soil == Soil::hypoplastic) {
-    // Karlsruhe fine sand at e0 = 0.8 with its intergranular strain (docs/hypoplasticity.md).
-    HypoplasticParameters p;
-    p.critical_friction_angle = 33.1;
-    p.granular_hardness = 4000e6;
-    p.exponent = 0.27;
-    p.e_d0 = 0.677;
-    p.e_c0 = 1.054;
-    p.e_i0 = 1.212;
-    p.alpha = 0.14;
-    p.beta = 2.5;
-    p.void_ratio = 0.8;
-    p.m_r = 2.2;
-    p.m_t = 1.1;
-    p.beta_r = 0.1;
-    p.chi = 5.5;
-    p.density = 1472.0;
-    return std::make_unique<Hypoplastic>(p);
+    return verification::karlsruhe_fine_sand(); // docs/hypoplasticity.md
   }
   return verification::seed_sand();
 }
