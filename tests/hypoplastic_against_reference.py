@@ -104,6 +104,27 @@ def main():
     if error > 2e-3:
         failures.append("cycles to liquefaction")
 
+    # The decay of the secant shear modulus with the shear strain amplitude: drained cyclic torsion
+    # (gamma_ytheta prescribed, normal stresses held) 0 -> +A -> -A -> +A, G = (tau(+A) - tau(-A)) /
+    # (2 A) on the reloading branch: the engine's sine passes the same turning points (rows 5 n / 4
+    # and 3 n / 4 of its 2 cycles of n increments), and the model is rate independent.
+    template = (SOURCE / "cases/element_tests/hypoplastic_shear_modulus.toml").read_text()
+    amplitudes = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
+    r = ref.shear_modulus_decay(kfs, ref.State.isotropic(100e3, 0.80), amplitudes, steps=200)
+    for amplitude, reference_g in zip(amplitudes, r["G_sec"]):
+        name = f"shear_modulus_{amplitude:g}"
+        (out / f"{name}.toml").write_text(template.replace(
+            "shear_strain_amplitude = 1e-4", f"shear_strain_amplitude = {amplitude:g}"))
+        csv_path = out / f"{name}.csv"
+        subprocess.run([mpile, "element-test", str(out / f"{name}.toml"), "--out", str(csv_path)],
+                       check=True, stdout=subprocess.DEVNULL)
+        with open(csv_path) as f:
+            table = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        n = 400
+        secant = (table[5 * n // 4]["tau_ytheta"] - table[3 * n // 4]["tau_ytheta"]) / (2.0 * amplitude)
+        compare(f"shear modulus G/G0 at gamma = {amplitude:g} (G0 = {r['G0'] / 1e6:.2f} MPa)",
+                secant / r["G0"], reference_g / r["G0"], failures)
+
     if failures:
         print(f"{len(failures)} comparison(s) outside {RELATIVE:g}: {', '.join(failures)}")
         return 1
