@@ -256,10 +256,14 @@ torque = { type = "harmonic", amplitude = 300.0, frequency = 60.0 })");
   return text;
 }
 
+// Dry, undrained and coupled (the water flowing through the sand's own pores).
 TEST(Hypoplastic, ATwistedDiscOnSandIsBitwiseIdenticalForOneTwoAndThreeThreads) {
-  for (const std::string drainage : {"", "drainage = \"undrained\"\n"}) {
+  for (const std::string drainage : {"", "drainage = \"undrained\"\n",
+                                     "drainage = \"coupled\"\nhydraulic_conductivity = 1e-4\n"}) {
     std::vector<Particles> runs;
     std::vector<std::vector<RigidBody>> bodies;
+    std::vector<std::unique_ptr<Material>> materials;
+    const Material* scene_material = nullptr;
     for (const int threads : {1, 2, 3}) {
       with_threads(threads, [&] {
         // As `mpile run` starts: the K0 stresses first, then the solver, whose first step
@@ -273,6 +277,8 @@ TEST(Hypoplastic, ATwistedDiscOnSandIsBitwiseIdenticalForOneTwoAndThreeThreads) 
         solver->advance_to(0.005);
         runs.push_back(scene->particles);
         bodies.push_back(scene->rigid_bodies);
+        materials.push_back(std::move(scene->materials[0]));
+        scene_material = materials.back().get();
       });
     }
     // The disc moved and the sand's intergranular strain turned in theta.
@@ -284,6 +290,28 @@ TEST(Hypoplastic, ATwistedDiscOnSandIsBitwiseIdenticalForOneTwoAndThreeThreads) 
                                                 Hypoplastic::H_FIRST + YT]));
     }
     EXPECT_GT(theta_h, 0.0) << drainage;
+    if (drainage.find("coupled") != std::string::npos) {
+      // The void ratio is the one state of the pores: the water's porosity is e / (1 + e) at every
+      // particle, after the sand has been compressed and sheared.
+      const Particles& p = runs[0];
+      const auto stride = static_cast<std::size_t>(p.state_stride);
+      const Material& sand = *scene_material;
+      const LiquidPhase* water = sand.liquid_phase();
+      ASSERT_NE(water, nullptr);
+      const int porosity = water->porosity_slot;
+      double worst = 0.0, moved = 0.0;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.material[i] != 0) {
+          continue;
+        }
+        const double e = p.state[i * stride + Hypoplastic::VOID_RATIO];
+        worst = std::max(worst, std::abs(p.state[i * stride + static_cast<std::size_t>(porosity)] -
+                                         e / (1.0 + e)));
+        moved = std::max(moved, std::abs(e - 0.8));
+      }
+      EXPECT_GT(moved, 1e-7);
+      EXPECT_EQ(worst, 0.0);
+    }
     for (std::size_t k = 1; k < runs.size(); ++k) {
       expect_particles_identical(runs[0], runs[k]);
       EXPECT_TRUE(bitwise_equal(runs[0].state, runs[k].state)) << drainage;
@@ -395,6 +423,29 @@ TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
     expect_particles_identical(runs[0], runs[k]);
     EXPECT_TRUE(bitwise_equal(runs[0].state, runs[k].state));
   }
+}
+
+TEST(Hypoplastic, SaturatedItsDensityMustHoldTheVoidRatiosPores) {
+  // One state for the pores: a dry density that gives another porosity than e0 / (1 + e0) is
+  // refused, with the density that would (2650 / 1.8 = 1472.2 kg/m^3 for e0 = 0.8).
+  MaterialParameters values;
+  const HypoplasticParameters p = karlsruhe_fine_sand(0.8, true);
+  for (const HypoplasticField& f : hypoplastic_fields()) {
+    values[f.name] = p.*f.member;
+  }
+  PoreWater water;
+  water.drainage = Drainage::undrained;
+  values["density"] = 1600.0;
+  try {
+    create_material("hypoplastic", values, water);
+    ADD_FAILURE() << "a density off the void ratio was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("give the dry density grain_density / (1 + e0) = 1472.2"),
+              std::string::npos)
+        << e.what();
+  }
+  values["density"] = 1472.0;
+  EXPECT_NO_THROW(create_material("hypoplastic", values, water));
 }
 
 TEST(Hypoplastic, ParametersOutsideTheModelsRangeAreRefusedByName) {

@@ -66,6 +66,7 @@ public:
   std::string_view type() const override { return "hypoplastic"; }
   double density() const override { return parameters_.density; }
   std::span<const std::string> state_names() const override { return names_; }
+  int void_ratio_index() const override { return VOID_RATIO; }
   void initialise_state(const Stress& stress, double* state) const override;
   void update_stress(const StressUpdateBatch& batch) const override;
   /// The largest normal stiffness of the tangent after a reversal, m_R (L_yyyy + |N|): the time

@@ -73,6 +73,9 @@ public:
   /// implicit_pore_pressure): where its pore pressure is kept and its water's compressibility;
   /// null for every other (then the material updates its own pore pressure, if it has one).
   virtual const PoreStorage* implicit_pore_storage() const { return nullptr; }
+  /// Where a model that carries the void ratio e keeps it in its state: saturated, its pores are
+  /// the water's (n = e / (1 + e)), one state for both. -1 for every other.
+  virtual int void_ratio_index() const { return -1; }
   /// Sets the state consistent with a given initial stress (for example after a K0 procedure).
   virtual void initialise_state(const Stress& /*stress*/, double* /*state*/) const {}
 

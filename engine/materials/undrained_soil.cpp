@@ -1,7 +1,9 @@
 #include "engine/materials/undrained_soil.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace mpile {
 
@@ -15,6 +17,23 @@ UndrainedSoil::UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater
     throw std::invalid_argument("grain_density must exceed the (dry) density for pores to hold "
                                 "water: the porosity 1 - density / grain_density is " +
                                 std::to_string(porosity_));
+  }
+  void_ratio_index_ = skeleton_->void_ratio_index();
+  if (void_ratio_index_ >= 0) {
+    // A skeleton that carries its void ratio holds the porosity: the density must say the same
+    // (to 1e-3, a density given to four digits), and the pores are those of e0.
+    std::vector<double> start(skeleton_->state_size(), 0.0);
+    skeleton_->initialise_state(Stress{}, start.data());
+    const double e0 = start[static_cast<std::size_t>(void_ratio_index_)];
+    const double from_void_ratio = e0 / (1.0 + e0);
+    if (std::abs(from_void_ratio - porosity_) > 1e-3) {
+      throw std::invalid_argument(
+          "density: the porosity 1 - density / grain_density = " + std::to_string(porosity_) +
+          " differs from the void ratio's e0 / (1 + e0) = " + std::to_string(from_void_ratio) +
+          ": give the dry density grain_density / (1 + e0) = " +
+          std::to_string(water.grain_density / (1.0 + e0)) + " kg/m^3");
+    }
+    porosity_ = from_void_ratio;
   }
   if (!(water.column_pressure >= 0.0) || !(water.cavitation_stress >= 0.0)) {
     throw std::invalid_argument("the water column's pressure and the cavitation stress must be "
@@ -73,7 +92,7 @@ void UndrainedSoil::initialise_state(const Stress& stress, double* state) const 
     state[liquid_.velocity_slot] = 0.0;
     state[liquid_.velocity_slot + 1] = 0.0;
     state[liquid_.velocity_slot + 2] = 0.0;
-    state[liquid_.porosity_slot] = porosity_;
+    state[liquid_.porosity_slot] = porosity_of(state);
   }
 }
 
@@ -107,7 +126,10 @@ void UndrainedSoil::update_stress(const StressUpdateBatch& batch) const {
       if (!implicit_) {
         dp = liquid_.bulk_modulus * (1.0 - n) / n * volumetric;
       }
-      n = 1.0 - (1.0 - n) / (1.0 + volumetric);
+      // The grains' volume kept, or the skeleton's own void ratio where it carries one (the same
+      // law, e' = (1 + e)(1 + d eps_vol) - 1 to first order: one state, not two copies).
+      n = void_ratio_index_ >= 0 ? porosity_of(batch.state + i * stride)
+                                 : 1.0 - (1.0 - n) / (1.0 + volumetric);
       // The step follows the undrained P-wave, the faster of the two phases' (Biot's fast wave
       // lies between the drained skeleton's and it).
       stiffness = implicit_ ? 0.0 : liquid_.bulk_modulus / n;

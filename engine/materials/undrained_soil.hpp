@@ -68,6 +68,15 @@ private:
 
   std::unique_ptr<Material> skeleton_;
   double porosity_ = 0.0;
+  /// The skeleton's void ratio slot, or -1: with one, the coupled water's porosity is e / (1 + e).
+  int void_ratio_index_ = -1;
+  double porosity_of(const double* state) const {
+    if (void_ratio_index_ < 0) {
+      return porosity_;
+    }
+    const double e = state[void_ratio_index_];
+    return e > 0.0 ? e / (1.0 + e) : porosity_;
+  }
   double water_stiffness_ = 0.0;
   double density_ = 0.0;
   double water_density_ = 0.0;
