@@ -6,62 +6,54 @@
 #include "engine/materials/mohr_coulomb.hpp"
 #include "engine/materials/undrained_soil.hpp"
 
+#include <span>
 #include <stdexcept>
 
 namespace mpile {
 
 namespace {
 
-/// Hardening Soil as a material type, from its parameters' declaration (hardening_soil.cpp).
-MaterialType hardening_soil_type() {
-  MaterialType type{"hardening_soil",
-                    "Hardening Soil (Schanz et al. 1999, PLAXIS form): stress-dependent "
-                    "stiffness, shear hardening with Mohr-Coulomb failure, cap from k0_nc and "
-                    "eoed_ref",
-                    {},
-                    {}};
-  const HardeningSoilParameters defaults;
-  std::vector<std::pair<std::string, double HardeningSoilParameters::*>> members;
-  for (const HardeningSoilField& f : hardening_soil_fields()) {
+/// A model whose parameters are declared once as fields (key, member, optional, unit, range,
+/// meaning) as a material type: its keys from the declaration, and its constructor fed from them.
+template <class Model, class Parameters, class Field>
+MaterialType declared_type(std::string name, std::string description,
+                           std::span<const Field> fields) {
+  MaterialType type{std::move(name), std::move(description), {}, {}};
+  const Parameters defaults;
+  std::vector<std::pair<std::string, double Parameters::*>> members;
+  for (const Field& f : fields) {
     type.parameters.push_back(
         {f.name, f.unit, f.meaning,
          f.optional ? std::optional<double>(defaults.*f.member) : std::nullopt, f.range});
     members.emplace_back(f.name, f.member);
   }
   type.create = [members](const MaterialParameters& p) -> std::unique_ptr<Material> {
-    HardeningSoilParameters h;
-    for (const auto& [name, member] : members) {
-      h.*member = p.at(name);
+    Parameters h;
+    for (const auto& [key, member] : members) {
+      h.*member = p.at(key);
     }
-    return std::make_unique<HardeningSoil>(h);
+    return std::make_unique<Model>(h);
   };
   return type;
 }
 
+/// Hardening Soil as a material type, from its parameters' declaration (hardening_soil.cpp).
+MaterialType hardening_soil_type() {
+  return declared_type<HardeningSoil, HardeningSoilParameters>(
+      "hardening_soil",
+      "Hardening Soil (Schanz et al. 1999, PLAXIS form): stress-dependent stiffness, shear "
+      "hardening with Mohr-Coulomb failure, cap from k0_nc and eoed_ref",
+      hardening_soil_fields());
+}
+
 /// Hypoplasticity with intergranular strain, from its parameters' declaration (hypoplastic.cpp).
 MaterialType hypoplastic_type() {
-  MaterialType type{"hypoplastic",
-                    "hypoplasticity (von Wolffersdorff 1996) with Bauer's limit void ratios and "
-                    "the intergranular strain of Niemunis and Herle (1997): the void ratio as "
-                    "state, cyclic accumulation of strain and pore pressure",
-                    {},
-                    {}};
-  const HypoplasticParameters defaults;
-  std::vector<std::pair<std::string, double HypoplasticParameters::*>> members;
-  for (const HypoplasticField& f : hypoplastic_fields()) {
-    type.parameters.push_back(
-        {f.name, f.unit, f.meaning,
-         f.optional ? std::optional<double>(defaults.*f.member) : std::nullopt, f.range});
-    members.emplace_back(f.name, f.member);
-  }
-  type.create = [members](const MaterialParameters& p) -> std::unique_ptr<Material> {
-    HypoplasticParameters h;
-    for (const auto& [name, member] : members) {
-      h.*member = p.at(name);
-    }
-    return std::make_unique<Hypoplastic>(h);
-  };
-  return type;
+  return declared_type<Hypoplastic, HypoplasticParameters>(
+      "hypoplastic",
+      "hypoplasticity (von Wolffersdorff 1996) with Bauer's limit void ratios and the "
+      "intergranular strain of Niemunis and Herle (1997): the void ratio as state, cyclic "
+      "accumulation of strain and pore pressure",
+      hypoplastic_fields());
 }
 
 } // namespace
