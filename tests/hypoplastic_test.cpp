@@ -6,6 +6,7 @@
 #include "app/element_test_command.hpp"
 #include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/material_registry.hpp"
+#include "io/case_error.hpp"
 #include "io/case_phases.hpp"
 #include "io/element_test_file.hpp"
 #include "tests/bitwise.hpp"
@@ -422,6 +423,35 @@ TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
   for (std::size_t k = 1; k < runs.size(); ++k) {
     expect_particles_identical(runs[0], runs[k]);
     EXPECT_TRUE(bitwise_equal(runs[0].state, runs[k].state));
+  }
+}
+
+TEST(Hypoplastic, ACaseIsRefusedAtTheLineOfTheKeyToBlame) {
+  // Checks between parameters name the key they blame first, so that the case reader points at its
+  // line rather than at the material's type.
+  const std::string ring = read_text(source / "cases/verification/hypoplastic_torsion_ring.toml");
+  struct Bad {
+    const char* from;
+    const char* to;
+    const char* key;
+  };
+  for (const Bad& b :
+       {Bad{"e_d0 = 0.677", "e_d0 = 1.1", "e_d0"}, Bad{"e_i0 = 1.212", "e_i0 = 1.0", "e_i0"},
+        Bad{"e_c0 = 1.054\ne_i0 = 1.212\nalpha = 0.14", "e_c0 = 0.7\ne_i0 = 1.212\nalpha = 0.99",
+            "alpha"},
+        Bad{"density = 1432.0", "density = 1600.0", "density"}}) {
+    const std::string text = replaced(ring, b.from, b.to);
+    const auto at = static_cast<long>(text.find("\n" + std::string(b.key) + " = "));
+    const auto line = 2 + std::count(text.begin(), text.begin() + at, '\n');
+    try {
+      read_case_text(text, "ring.toml");
+      ADD_FAILURE() << b.to << " accepted";
+    } catch (const CaseError& e) {
+      EXPECT_NE(std::string(e.what()).find("ring.toml:" + std::to_string(line) +
+                                           ": materials.sand." + b.key + ": "),
+                std::string::npos)
+          << e.what();
+    }
   }
 }
 

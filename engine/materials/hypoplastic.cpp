@@ -115,7 +115,10 @@ Hypoplastic::Hypoplastic(const HypoplasticParameters& p) : parameters_(p) {
       throw std::invalid_argument(message);
     }
   };
-  require(p.e_d0 < p.e_c0 && p.e_c0 < p.e_i0, "the limit void ratios need e_d0 < e_c0 < e_i0");
+  // Each message begins with the key to blame, so that the case reader points at its line.
+  require(p.e_d0 < p.e_c0,
+          "e_d0 must be below e_c0: the limit void ratios need e_d0 < e_c0 < e_i0");
+  require(p.e_c0 < p.e_i0, "e_i0 must exceed e_c0: the limit void ratios need e_d0 < e_c0 < e_i0");
   require(p.void_ratio <= p.e_i0, "void_ratio must be at most e_i0 (no looser state exists)");
   require(p.m_r >= p.m_t, "m_r must be at least m_t");
   require(p.intergranular_strain == 0.0 || p.intergranular_strain == 1.0,
@@ -127,8 +130,9 @@ Hypoplastic::Hypoplastic(const HypoplasticParameters& p) : parameters_(p) {
                  a_ * std::sqrt(3.0) * std::pow((p.e_i0 - p.e_d0) / (p.e_c0 - p.e_d0), p.alpha);
   // Below zero the isotropic compression's stiffness f_b would change sign (Herle and Gudehus
   // 1999): such parameters describe no granular material.
-  require(f_b_divisor_ > 0.0, "the parameters give 3 + a^2 - a sqrt(3) ((e_i0 - e_d0) / (e_c0 - "
-                              "e_d0))^alpha <= 0: lower alpha or widen e_c0 - e_d0");
+  require(f_b_divisor_ > 0.0,
+          "alpha makes 3 + a^2 - a sqrt(3) ((e_i0 - e_d0) / (e_c0 - e_d0))^alpha "
+          "<= 0: lower alpha or widen e_c0 - e_d0");
 }
 
 double Hypoplastic::limit_void_ratio(double e_x0, double p) const {

@@ -28,7 +28,7 @@ UndrainedSoil::UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater
     const double from_void_ratio = e0 / (1.0 + e0);
     if (std::abs(from_void_ratio - porosity_) > 1e-3) {
       throw std::invalid_argument(
-          "density: the porosity 1 - density / grain_density = " + std::to_string(porosity_) +
+          "density gives the porosity 1 - density / grain_density = " + std::to_string(porosity_) +
           " differs from the void ratio's e0 / (1 + e0) = " + std::to_string(from_void_ratio) +
           ": give the dry density grain_density / (1 + e0) = " +
           std::to_string(water.grain_density / (1.0 + e0)) + " kg/m^3");
