@@ -329,6 +329,14 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     }
     point = next;
     floor_pressure(point.stress);
+    // No state is looser than e_i(p): sand stretched past it at the floor pressure (beside a
+    // cone's shoulder) opens gaps, not pores. Unbounded, its void ratio reached 15 in the CPT
+    // chamber and f_e = (e_c / e)^beta took its stiffness away (docs/hypoplasticity.md).
+    // Only there: elsewhere the equations keep e below e_i themselves (the loosest state's
+    // compression test checks it).
+    if (mean_pressure(point.stress) <= p_min) {
+      point.e = std::min(point.e, limit_void_ratio(q.e_i0, p_min));
+    }
     // h stays within its sphere |h| <= R (its rate keeps it there; rounding may not).
     const double h_norm = norm(point.h);
     if (q.intergranular_strain != 0.0 && h_norm > q.r_max) {
