@@ -401,13 +401,8 @@ double Hypoplastic::elastic_energy_density(const Stress& stress, const double* s
   }
   const Tangent t = floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state);
   const double multiplier = reversal_multiplier(parameters_);
-  const double bulk = multiplier * t.c * (t.f2 + t.a2 / 3.0) / 3.0;
-  const double shear = multiplier * 0.5 * t.c * t.f2;
-  Stress deviator = stress;
-  for (std::size_t k = 0; k < 3; ++k) {
-    deviator[k] += p;
-  }
-  return p * p / (2.0 * bulk) + contract(deviator, deviator) / (4.0 * shear);
+  return isotropic_elastic_energy_density(stress, multiplier * t.c * (t.f2 + t.a2 / 3.0) / 3.0,
+                                          multiplier * 0.5 * t.c * t.f2);
 }
 
 } // namespace mpile
