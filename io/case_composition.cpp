@@ -41,8 +41,27 @@ std::string read_case_text_file(const std::string& path) {
   return text.str();
 }
 
+namespace {
+
+/// A table's `type` (a material's model, a drive's time function), empty if it names none.
+std::string type_of(const TomlValue& table) {
+  const auto found = table.as_table().find("type");
+  if (found == table.as_table().end() || !found->second.is_string()) {
+    return {};
+  }
+  return found->second.as_string().str;
+}
+
+} // namespace
+
 TomlValue merge_over(const TomlValue& base, const TomlValue& top) {
   if (!base.is_table() || !top.is_table()) {
+    return top;
+  }
+  // A table of another type shares no keys with the base's: a hypoplastic sand over a Hardening
+  // Soil one would otherwise inherit e50_ref and be refused for it.
+  const std::string top_type = type_of(top);
+  if (!top_type.empty() && top_type != type_of(base)) {
     return top;
   }
   // The top table keeps its own location (its file and line name errors about it).
@@ -86,29 +105,23 @@ bool is_bare_key(const std::string& part) {
   });
 }
 
-/// Reads one case file and the chain of bases under it, merged.
-TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::string>& chain,
-                          std::string* own_text) {
-  std::string text = read_case_text_file(path);
-  TomlValue root = parse_toml(text, path);
-  if (own_text != nullptr) {
-    *own_text = std::move(text);
+TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::string>& ancestors,
+                          std::vector<std::string>& read, std::string* own_text);
+
+/// Reads the base file `entry` names (relative to `path`, the file that names it) with its own
+/// bases. `ancestors` are the files above it in this branch (a cycle is a file among them).
+TomlValue read_base(const TomlValue& entry, const std::string& path, int depth,
+                    std::vector<std::string>& ancestors, std::vector<std::string>& read) {
+  const auto where = path + ":" + std::to_string(entry.location().line()) + ": base: ";
+  if (!entry.is_string()) {
+    throw CaseError(where + "expected the path of a base case file (a string) or a list of them");
   }
-  auto& table = root.as_table();
-  const auto base_key = table.find("base");
-  if (base_key == table.end()) {
-    return root;
-  }
-  const auto where = path + ":" + std::to_string(base_key->second.location().line()) + ": base: ";
-  if (!base_key->second.is_string()) {
-    throw CaseError(where + "expected the path of a base case file (a string)");
-  }
-  if (base_key->second.as_string().str.find('\0') != std::string::npos) {
+  if (entry.as_string().str.find('\0') != std::string::npos) {
     // The system reads a path only up to a NUL: "x.toml\u0000junk" read x.toml.
     throw CaseError(where + "a path cannot hold a NUL character (\\u0000)");
   }
   // Relative to the file that names it, so a case and its base move together.
-  std::filesystem::path base_path = static_cast<std::string>(base_key->second.as_string());
+  std::filesystem::path base_path = static_cast<std::string>(entry.as_string());
   if (base_path.is_relative()) {
     base_path = std::filesystem::path(path).parent_path() / base_path;
   }
@@ -121,19 +134,50 @@ TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::s
     std::error_code error;
     return std::filesystem::equivalent(base_file, other, error);
   };
-  if (same_file(path) || std::any_of(chain.begin(), chain.end(), same_file)) {
+  if (same_file(path) || std::any_of(ancestors.begin(), ancestors.end(), same_file)) {
     throw CaseError(where + base_file + " is already in this chain of bases (a cycle)");
   }
-  chain.push_back(base_file);
-  TomlValue base;
+  read.push_back(base_file);
+  ancestors.push_back(base_file);
   try {
-    base = read_with_bases(base_file, depth + 1, chain, nullptr);
+    TomlValue base = read_with_bases(base_file, depth + 1, ancestors, read, nullptr);
+    ancestors.pop_back();
+    return base;
   } catch (const CaseError& e) {
     // The line that names the base leads, so the message starts in the file the user ran.
     throw CaseError(where + e.what());
   }
+}
+
+/// Reads one case file and the bases under it, merged: `base` names one file or a list of them,
+/// each merged over the ones before it (a mesh, then a sand), and the file over them all.
+TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::string>& ancestors,
+                          std::vector<std::string>& read, std::string* own_text) {
+  std::string text = read_case_text_file(path);
+  TomlValue root = parse_toml(text, path);
+  if (own_text != nullptr) {
+    *own_text = std::move(text);
+  }
+  auto& table = root.as_table();
+  const auto base_key = table.find("base");
+  if (base_key == table.end()) {
+    return root;
+  }
+  TomlValue bases;
+  if (base_key->second.is_array()) {
+    const auto& entries = base_key->second.as_array();
+    if (entries.empty()) {
+      throw CaseError(path + ":" + std::to_string(base_key->second.location().line()) +
+                      ": base: the list of base files is empty");
+    }
+    for (const TomlValue& entry : entries) {
+      bases = merge_over(bases, read_base(entry, path, depth, ancestors, read));
+    }
+  } else {
+    bases = read_base(base_key->second, path, depth, ancestors, read);
+  }
   table.erase(base_key);
-  return merge_over(base, root);
+  return merge_over(bases, root);
 }
 
 } // namespace
@@ -215,7 +259,8 @@ void apply_override(TomlValue& root, const std::string& assignment) {
 
 ComposedCase compose_case(const std::string& path, const std::vector<std::string>& overrides) {
   ComposedCase composed;
-  composed.root = read_with_bases(path, 0, composed.bases, &composed.text);
+  std::vector<std::string> ancestors;
+  composed.root = read_with_bases(path, 0, ancestors, composed.bases, &composed.text);
   for (const std::string& assignment : overrides) {
     apply_override(composed.root, assignment);
   }

@@ -1,7 +1,7 @@
 #pragma once
 
-// A case as it runs: its file, the file its `base` key names underneath it (and that file's base,
-// and so on), and the command line's --set values on top. Values keep the file and line they came
+// A case as it runs: its file, the files its `base` key names underneath it (and their bases, and
+// so on), and the command line's --set values on top. Values keep the file and line they came
 // from, so the reader's errors point into whichever file (or --set) gave the value.
 
 #include "io/case_spec.hpp"
@@ -16,7 +16,7 @@ struct ComposedCase {
   TomlValue root;                 // the merged tree, without `base` keys
   std::string text;               // the case file's own text
   std::string resolved;           // the merged tree as TOML text: the case that ran
-  std::vector<std::string> bases; // the base files read, nearest first
+  std::vector<std::string> bases; // the base files read, in the order they were opened
 };
 
 /// The deepest chain of bases followed; a longer one is almost surely a mistake.
@@ -26,8 +26,9 @@ constexpr int max_base_depth = 8;
 /// the operating system's reason otherwise.
 std::string read_case_text_file(const std::string& path);
 
-/// Merges `top` over `base`: a table merges key by key (recursively); any other value of `top`,
-/// arrays and arrays of tables included, replaces the base's.
+/// Merges `top` over `base`: a table merges key by key (recursively), unless `top` names a `type`
+/// other than the base's (a material of another model), which replaces the base's table; any
+/// other value of `top`, arrays and arrays of tables included, replaces the base's.
 TomlValue merge_over(const TomlValue& base, const TomlValue& top);
 
 /// Sets one value from `key.path=value` (value in TOML syntax: numbers, "strings", booleans,

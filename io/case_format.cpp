@@ -273,8 +273,9 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"",
        "The top level of a case file.",
-       {string("base", "a case file this one is read over (relative to this file): tables merge "
-                       "key by key, other values replace the base's")
+       {string("base", "a case file this one is read over (relative to this file), or a list of "
+                       "them merged in order: tables merge key by key (a table of another type "
+                       "replaces the base's), other values replace the base's")
             .or_computed("none"),
         string("title", "shown in the log and stored in history.h5").or_computed("the file name"),
         string("geometry", "\"axisymmetric\" (with the theta DOF; outputs per radian) or "

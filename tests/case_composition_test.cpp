@@ -154,12 +154,60 @@ TEST(CaseComposition, BadBasesAreRefusedWithTheLineThatNamesThem) {
 
   f = write_files("base_type", base_text, replaced(case_text, "\"shared/base.toml\"", "3"));
   EXPECT_EQ(error_of(f.case_file.string()),
-            f.case_file.string() + ":1: base: expected the path of a base case file (a string)");
+            f.case_file.string() +
+                ":1: base: expected the path of a base case file (a string) or a list of them");
+  f = write_files("base_empty_list", base_text, replaced(case_text, "\"shared/base.toml\"", "[]"));
+  EXPECT_EQ(error_of(f.case_file.string()),
+            f.case_file.string() + ":1: base: the list of base files is empty");
   // The system reads a path up to a NUL: "shared/base.toml\u0000junk" read shared/base.toml.
   f = write_files("base_nul", base_text,
                   replaced(case_text, "\"shared/base.toml\"", "\"shared/base.toml\\u0000junk\""));
   EXPECT_EQ(error_of(f.case_file.string()),
             f.case_file.string() + ":1: base: a path cannot hold a NUL character (\\u0000)");
+}
+
+// A second base, a sand of another model: a case takes a mesh from one base and a material from
+// another, as the monopile cases take the seed's sand in hypoplasticity.
+const char* sand_text = R"([materials.soil]
+type = "mohr_coulomb"
+young_modulus = 3e6
+poisson_ratio = 0.25
+friction_angle = 30.0
+cohesion = 0.0
+dilatancy_angle = 0.0
+density = 1700.0
+)";
+
+TEST(CaseComposition, AListOfBasesMergesInOrderAndATableOfAnotherTypeReplacesTheBases) {
+  Files f = write_files("base_list", base_text,
+                        replaced(case_text, "base = \"shared/base.toml\"",
+                                 "base = [\"shared/base.toml\", \"shared/sand.toml\"]"));
+  std::ofstream(f.directory / "shared" / "sand.toml") << sand_text;
+  const CaseSpec spec = read_case_file(f.case_file.string());
+  // The sand's base replaces the soil's table whole (another type): none of the linear elastic
+  // keys survive, so the strict reader accepts it; the case's young_modulus then merges over the
+  // sand's (same type, key by key).
+  const auto& soil = spec.materials.at(0);
+  EXPECT_EQ(soil.type, "mohr_coulomb");
+  EXPECT_EQ(soil.parameters.at("young_modulus"), 4e6);
+  EXPECT_EQ(soil.parameters.at("density"), 1700.0);
+  EXPECT_EQ(soil.parameters.at("friction_angle"), 30.0);
+  EXPECT_EQ(spec.title, "column");
+  ASSERT_EQ(spec.bases.size(), 2u);
+  EXPECT_TRUE(std::filesystem::equivalent(spec.bases[1], f.directory / "shared" / "sand.toml"));
+  // In the other order the mesh's linear elastic soil lies over the sand and replaces it.
+  f = write_files("base_list_reversed", base_text,
+                  replaced(case_text, "base = \"shared/base.toml\"",
+                           "base = [\"shared/sand.toml\", \"shared/base.toml\"]"));
+  std::ofstream(f.directory / "shared" / "sand.toml") << sand_text;
+  EXPECT_EQ(read_case_file(f.case_file.string()).materials.at(0).type, "linear_elastic");
+  // A file may appear in two branches (not a cycle), but not under itself.
+  f = write_files("base_list_cycle",
+                  std::string("base = [\"sand.toml\", \"../case.toml\"]\n") + base_text);
+  std::ofstream(f.directory / "shared" / "sand.toml") << sand_text;
+  EXPECT_NE(error_of(f.case_file.string()).find("is already in this chain of bases (a cycle)"),
+            std::string::npos)
+      << error_of(f.case_file.string());
 }
 
 TEST(CaseComposition, SetReplacesOneValueAnywhereAndIsRecorded) {

@@ -108,9 +108,9 @@ BenchScene contact_path_idle(std::size_t count) {
 
 /// The quick GDP monopile case in its installation phase (K0 stresses, drives started): the
 /// monopile step with contact, the rigid pile and the moving mesh.
-BenchScene gdp_quick() {
+BenchScene gdp_quick(const std::string& case_file = "gdp_quick.toml") {
   const CaseSpec spec =
-      read_case_file(std::string(MPILE_SOURCE_DIR) + "/cases/monopile/gdp_quick.toml");
+      read_case_file(std::string(MPILE_SOURCE_DIR) + "/cases/monopile/" + case_file);
   BenchScene b{build_scene(spec), phase_settings(spec, spec.phases.back())};
   apply_k0(*b.scene, spec, spec.phases.front());
   activate_phase_boundaries(*b.scene, spec, spec.phases.size() - 1, 0.0);
@@ -145,7 +145,10 @@ std::map<std::string, SceneSpec> scenes() {
   }
   all["elastic-contact-idle-1e5"] = {"elastic-contact-idle-1e5",
                                      [] { return contact_path_idle(100000); }};
-  all["gdp-quick"] = {"gdp-quick", gdp_quick};
+  all["gdp-quick"] = {"gdp-quick", [] { return gdp_quick(); }};
+  // The same with the seed's sand in hypoplasticity (cases/materials/seed_sand_hypoplastic.toml).
+  all["gdp-quick-hypoplastic"] = {"gdp-quick-hypoplastic",
+                                  [] { return gdp_quick("gdp_quick_hypoplastic.toml"); }};
   // The same two scenes with GIMP shape functions (docs/design.md, "Shape functions").
   all["elastic-gimp-1e5"] = {"elastic-gimp-1e5", [] {
                                BenchScene b = quasi_static(
