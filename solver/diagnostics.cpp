@@ -48,7 +48,8 @@ double kinetic_energy(const Scene& scene) {
       return 0.5 * p.mass[i] * speed_squared(p, i, theta);
     }
     // Coupled soil: the grains' mass moves at v, the water's at w.
-    return 0.5 * (1.0 - phase->mass_fraction) * p.mass[i] * speed_squared(p, i, theta) +
+    const double grains = 1.0 - phase->water_fraction(passes::water_porosity(p, i, *phase));
+    return 0.5 * grains * p.mass[i] * speed_squared(p, i, theta) +
            passes::water_kinetic_energy(p, i, *phase);
   });
   for (const RigidBody& body : scene.rigid_bodies) {

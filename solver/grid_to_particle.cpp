@@ -33,12 +33,12 @@ double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSett
   const std::vector<char> rigid_material = scene.rigid_materials();
   // The share of a particle's mass that moves at its velocity v: a coupled soil's water moves at
   // its own w (solver/pore_water_passes.cpp books its share).
-  std::vector<double> moving_fraction(scene.materials.size(), 1.0);
-  for (std::size_t m = 0; m < moving_fraction.size(); ++m) {
-    if (const LiquidPhase* phase = scene.materials[m]->liquid_phase()) {
-      moving_fraction[m] = 1.0 - phase->mass_fraction;
-    }
-  }
+  const std::vector<const LiquidPhase*> water = passes::liquid_phases(scene);
+  const auto moving_fraction = [&](std::size_t i) {
+    const LiquidPhase* phase = water[p.material[i]];
+    return phase == nullptr ? 1.0
+                            : 1.0 - phase->water_fraction(passes::water_porosity(p, i, *phase));
+  };
   // One sum per block, added in block order afterwards: the same for any thread count.
   std::vector<double> block_loss(dissipative ? static_cast<std::size_t>(bins.block_count()) : 0);
   bins.for_each_block([&](int block, std::span<const std::int32_t> particles) {
@@ -95,7 +95,7 @@ double grid_to_particle(Scene& scene, const ParticleBins& bins, const SolverSett
         for (int d = 0; d < dofs; ++d) {
           drop += v_flip[d] * v_flip[d] - v_new[d] * v_new[d];
         }
-        loss += 0.5 * p.mass[i] * drop * moving_fraction[p.material[i]];
+        loss += 0.5 * p.mass[i] * drop * moving_fraction(i);
       }
       p.v_r[i] = v_new[0];
       p.v_y[i] = v_new[1];

@@ -99,6 +99,8 @@ double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
                                      const std::vector<const LiquidPhase*>& phases,
                                      const std::vector<PendingPorePressure>& pending,
                                      bool some_made_stress_free);
+/// Particle i's porosity now, as its coupled material keeps it.
+double water_porosity(const Particles& p, std::size_t i, const LiquidPhase& phase);
 /// The kinetic energy of particle i's water, 1/2 m_w |w|^2.
 double water_kinetic_energy(const Particles& p, std::size_t i, const LiquidPhase& phase);
 

@@ -92,7 +92,7 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
         particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, const double* state) {
           const double n = state[phase.porosity_slot];
           const double* w = state + phase.velocity_slot;
-          const double water_mass = phase.mass_fraction * p.mass[i];
+          const double water_mass = phase.water_fraction(n) * p.mass[i];
           const double inertia = water_mass / n; // rho_w V
           const double drag = water_mass * phase.drag_per_mass;
           // The pore pressure's share of the water's internal force, as the particle-to-grid pass
@@ -339,7 +339,7 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
           const double v_off[3] = {p.v_r[i] - skeleton[0], p.v_y[i] - skeleton[1],
                                    has_theta(mode) ? p.v_theta[i] - r * skeleton[2] : 0.0};
           const double decay = 1.0 / (1.0 + step.dt * phase.drag_per_mass / settings.mass_scaling);
-          const double water_mass = phase.mass_fraction * p.mass[i];
+          const double water_mass = phase.water_fraction(state[phase.porosity_slot]) * p.mass[i];
           const double inertia = settings.mass_scaling * water_mass; // what the kinetic energy sees
           double blend_drop = 0.0, drag_drop = 0.0;
           for (int d = 0; d < dofs; ++d) {
@@ -399,20 +399,21 @@ void remap_water(Scene& scene, const ParticleBins& bins,
     }
   });
   bins.for_each_block_colored([&](int, std::span<const std::int32_t> particles) {
-    for_each_coupled(
-        particles, p, phases, [&](std::size_t i, const LiquidPhase& phase, const double* state) {
-          const double* w = state + phase.velocity_slot;
-          const double inertia = phase.mass_fraction * p.mass[i] / state[phase.porosity_slot];
-          const double momentum[3] = {inertia * w[0], inertia * w[1],
-                                      has_theta(mode) ? inertia * p.r[i] * w[2] : 0.0};
-          const auto weights = particle_weights<shape>(grid, p, i);
-          for (int a = 0; a < weights.size; ++a) {
-            LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[a])];
-            for (int d = 0; d < dofs; ++d) {
-              node.momentum[d] += weights.N[a] * momentum[d];
-            }
-          }
-        });
+    for_each_coupled(particles, p, phases,
+                     [&](std::size_t i, const LiquidPhase& phase, const double* state) {
+                       const double* w = state + phase.velocity_slot;
+                       const double n = state[phase.porosity_slot];
+                       const double inertia = phase.water_fraction(n) * p.mass[i] / n;
+                       const double momentum[3] = {inertia * w[0], inertia * w[1],
+                                                   has_theta(mode) ? inertia * p.r[i] * w[2] : 0.0};
+                       const auto weights = particle_weights<shape>(grid, p, i);
+                       for (int a = 0; a < weights.size; ++a) {
+                         LiquidNode& node = grid.liquid[static_cast<std::size_t>(weights.node[a])];
+                         for (int d = 0; d < dofs; ++d) {
+                           node.momentum[d] += weights.N[a] * momentum[d];
+                         }
+                       }
+                     });
   });
   const bool structures = !grid.structure_fields.empty();
   parallel_for(grid.liquid.size(), [&](std::size_t i) {
@@ -558,11 +559,16 @@ double apply_pore_pressure_from_flow(Scene& scene, const ParticleBins& bins,
   return total;
 }
 
+double water_porosity(const Particles& p, std::size_t i, const LiquidPhase& phase) {
+  return p.state[i * static_cast<std::size_t>(p.state_stride) +
+                 static_cast<std::size_t>(phase.porosity_slot)];
+}
+
 double water_kinetic_energy(const Particles& p, std::size_t i, const LiquidPhase& phase) {
   const double* w =
       p.state.data() + i * static_cast<std::size_t>(p.state_stride) + phase.velocity_slot;
   const double w2 = w[0] * w[0] + w[1] * w[1] + (has_theta(p.mode) ? w[2] * w[2] : 0.0);
-  return 0.5 * phase.mass_fraction * p.mass[i] * w2;
+  return 0.5 * phase.water_fraction(water_porosity(p, i, phase)) * p.mass[i] * w2;
 }
 
 #define MPILE_WATER_PASSES(MODE, SHAPE)                                                            \

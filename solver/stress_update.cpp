@@ -2,6 +2,7 @@
 // Reads node velocities (MUSL-remapped) and particle position, cell, du, volume, stress, state;
 // writes particle stress, state, volume, position and cell. Runs per block without coloring: it
 // writes only to its own particles and to the B-bar sums of its own cells.
+#include "engine/materials/pore_water.hpp"
 #include "engine/shape_functions.hpp"
 #include "engine/theta_gradient.hpp"
 #include "solver/cell_slots.hpp"
@@ -26,6 +27,7 @@ struct BlockScratch {
   std::vector<double> spin;
   std::vector<double> modulus;
   std::vector<double> work_before; // sigma^n : d eps, for the internal work
+  std::vector<double> grain_mass;  // coupled soil: the grains' mass, kept through the step
   // B-bar sums per cell and velocity field: (volume-weighted volumetric increment, volume).
   std::vector<double> cell_volumetric;
   std::vector<double> cell_weight;
@@ -180,7 +182,8 @@ template <GeometryMode mode, bool contact>
 void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, int block,
                     std::span<const std::int32_t> particles, bool mixed,
                     const std::vector<char>& rigid_material,
-                    const std::vector<int>& pore_pressure_slot, const RigidInteriors* interiors,
+                    const std::vector<int>& pore_pressure_slot,
+                    const std::vector<const LiquidPhase*>& liquid, const RigidInteriors* interiors,
                     const SolverSettings& settings, const BlockScratch& scratch,
                     std::span<double> signal_speed, BlockResult& out) {
   const double inverse_beta = 1.0 / settings.mass_scaling;
@@ -191,6 +194,14 @@ void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, in
     const StrainIncrement& de = scratch.strain[k];
     const double volume_before = p.volume[i];
     p.volume[i] *= 1.0 + de[RR] + de[YY] + de[TT];
+    if (!liquid.empty()) {
+      // A coupled soil's particle holds the water that fills its pores now: the grains' mass is
+      // kept, the water's follows the porosity its material has just updated.
+      if (const LiquidPhase* phase = liquid[p.material[i]]) {
+        p.mass[i] = scratch.grain_mass[k] /
+                    (1.0 - phase->water_fraction(passes::water_porosity(p, i, *phase)));
+      }
+    }
     bool stress_free = false;
     if constexpr (contact) {
       if (interiors != nullptr && interiors->holds_soil(p, i)) {
@@ -305,6 +316,12 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
   const std::vector<char> rigid_material = contact ? scene.rigid_materials() : std::vector<char>{};
   const std::vector<int> pore_pressure_slot =
       contact ? pore_pressure_slots(scene) : std::vector<int>{};
+  // Empty unless some material is coupled soil, so a dry scene's loop asks nothing per particle.
+  std::vector<const LiquidPhase*> liquid = passes::liquid_phases(scene);
+  if (std::none_of(liquid.begin(), liquid.end(),
+                   [](const LiquidPhase* l) { return l != nullptr; })) {
+    liquid.clear();
+  }
   const std::optional<RigidInteriors> interiors =
       contact ? kept_rigid_interiors(scene, settings) : std::nullopt;
   const RigidInteriors* inside_rigid = interiors ? &*interiors : nullptr;
@@ -327,10 +344,21 @@ update_stress_and_positions(Scene& scene, const ParticleBins& bins, const Solver
       apply_bbar(particles, slot, scratch);
     }
     corotate(p, particles, settings.jaumann_rate, scratch);
+    if (!liquid.empty()) {
+      scratch.grain_mass.resize(particles.size());
+      for (std::size_t k = 0; k < particles.size(); ++k) {
+        const auto i = static_cast<std::size_t>(particles[k]);
+        const LiquidPhase* phase = liquid[p.material[i]];
+        scratch.grain_mass[k] =
+            phase == nullptr
+                ? 0.0
+                : p.mass[i] * (1.0 - phase->water_fraction(passes::water_porosity(p, i, *phase)));
+      }
+    }
     update_materials(scene, particles, scratch);
     move_particles<mode, contact>(grid, p, bins, block, particles, mixed, rigid_material,
-                                  pore_pressure_slot, inside_rigid, settings, scratch, signal_speed,
-                                  block_results[static_cast<std::size_t>(block)]);
+                                  pore_pressure_slot, liquid, inside_rigid, settings, scratch,
+                                  signal_speed, block_results[static_cast<std::size_t>(block)]);
   });
   return reduce(bins, block_results);
 }

@@ -176,6 +176,73 @@ TEST(CoupledSoil, ADrainedBaseHalvesTheDrainagePath) {
   EXPECT_LT(worst, 0.02 * q);
 }
 
+// A soft saturated column (E_oed = 305 kPa, n0 = 0.396, k = 0.1 m/s, drained at its free top)
+// consolidates under its own weight from rest: at first the water carries the buoyant weight, at
+// the end the skeleton does, with a mean volumetric strain of 1.6 %, and the pore water is
+// hydrostatic, p = -rho_w g depth. The water that drained takes its weight with it: a particle that
+// kept its initial water mass weighed its water n0 V0 / (n V) times too heavily (5 to 9 % at the
+// base). Read at the base as the share of the total vertical stress the water carries, p /
+// sigma_yy, against the water's share of the column's weight, rho_w g H / (W / A): both stresses
+// carry the same discretisation offset near the free surface (each about 2.5 % above the weight
+// above them at 40 cells), which the ratio cancels. Run to T_v = c_v t / H^2 = 3, where Terzaghi's
+// series leaves 0.1 % of the initial excess; 0.5 % bounds that and the bottom row's height above
+// the base (0.6 % of H, in both numerator and denominator). XPIC(2) and one excess pore pressure
+// per cell: under pure FLIP or per-particle pressures a checkerboard grows in the pressure over
+// the 80 000 steps (docs/saturated.md).
+TEST(CoupledSoil, AColumnConsolidatingUnderItsOwnWeightEndsWithHydrostaticWater) {
+  const std::string text = R"(title = "self-weight consolidation"
+geometry = "axisymmetric"
+[grid]
+r = [{ start = 0.0, end = 0.05, cells = 2 }]
+y = [{ start = 0.0, end = 1.05, cells = 42 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 226590.0       # E_oed = 305 kPa with nu = 0.3
+poisson_ratio = 0.3
+density = 1600.0               # dry; n0 = 1 - 1600 / 2650 = 0.396
+drainage = "coupled"
+hydraulic_conductivity = 0.1
+[[bodies]]
+name = "column"
+material = "soil"
+region = { r = [0.0, 0.05], y = [0.0, 1.0] }
+[boundaries]
+r_max = "roller"
+y_min = "fixed"
+[solver]
+gravity = [0.0, -9.81]
+xpic_order = 2
+cell_mean_pore_pressure = true
+[[phases]]
+name = "consolidation"
+duration = 0.96
+)";
+  CaseRun run(text);
+  run.solver->advance_to(0.96); // c_v = k / (gamma_w (1 / E_oed + n / K_w)) = 3.11 m^2/s: T_v = 3
+  const Particles& p = run.scene->particles;
+  const Material& soil = *run.scene->materials.at(0);
+  const auto pore = static_cast<std::size_t>(soil.pore_pressure_index());
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const double area = 0.5 * 0.05 * 0.05; // per radian
+  double volume = 0.0, mass = 0.0, lowest = 1.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    volume += p.volume[i];
+    mass += p.mass[i];
+    lowest = std::min(lowest, p.y[i]);
+  }
+  const double height = volume / area;
+  EXPECT_NEAR(1.0 - height, 0.016, 0.002); // gamma' H / (2 E_oed): the strain meant
+  double water = 0.0, total = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.y[i] < lowest + 1e-3) { // the bottom row
+      water += p.state[i * stride + pore];
+      total += p.stress[i][YY];
+    }
+  }
+  const double share = 1000.0 * 9.81 * height / (mass * 9.81 / area);
+  EXPECT_NEAR(water / total / share, 1.0, 0.005) << "the water's share of the stress at the base";
+}
+
 // A body given an initial velocity moves whole, its pore water with its grains: a saturated block
 // thrown through empty space (no gravity, no support) keeps its momentum and kinetic energy, and
 // Darcy's drag takes nothing (its water used to start at rest, and the drag then took part of the

@@ -50,19 +50,27 @@ struct PoreWater {
 inline constexpr double standard_gravity = 9.80665;
 
 /// What the solver's water passes need of a coupled material: where its particles keep the water's
-/// state, and the constants of its two phases. Each material point keeps its water's mass m_w =
-/// mass_fraction m (m the mixture's mass; the grains' is the rest), as Anura3D's single-point
-/// formulation keeps each phase's mass on its point.
+/// state, and the constants of its two phases. Each material point carries both phases' mass, as
+/// Anura3D's single-point formulation does: its grains', (1 - n) rho_s V, kept, and its water's,
+/// n rho_w V, the water that fills its pores now (the stress pass sets the mixture's mass from the
+/// volume and porosity each step), so that a soil consolidating under its own weight drains its
+/// water's weight with its water.
 struct LiquidPhase {
   int pore_slot = 0;     // state[pore_slot]: the pore pressure p (tension positive)
   int velocity_slot = 0; // state[velocity_slot + 0, 1, 2]: the water's velocity w (r, y, theta)
   int porosity_slot = 0; // state[porosity_slot]: the porosity n now
-  double mass_fraction = 0.0; // n0 rho_w / rho_sat
+  double water_density = 0.0; // rho_w (kg/m^3)
+  double grain_density = 0.0; // rho_s (kg/m^3): the dry density over 1 - n0
   double drag_per_mass = 0.0; // g / k (1/s): Darcy's drag n rho_w g / k per unit water mass
   double bulk_modulus = 0.0;  // K_w (Pa)
   /// The highest p the water may reach before it cavitates (column_pressure +
   /// cavitation_stress; infinite without a cut-off).
   double pore_limit = std::numeric_limits<double>::infinity();
+
+  /// The mixture's density at porosity n, (1 - n) rho_s + n rho_w.
+  double mixture_density(double n) const { return (1.0 - n) * grain_density + n * water_density; }
+  /// The water's share of the mixture's mass at porosity n, n rho_w / ((1 - n) rho_s + n rho_w).
+  double water_fraction(double n) const { return n * water_density / mixture_density(n); }
 };
 
 /// What the solver's implicit pore pressure needs of a saturated material (undrained or

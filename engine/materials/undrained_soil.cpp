@@ -62,7 +62,11 @@ UndrainedSoil::UndrainedSoil(std::unique_ptr<Material> skeleton, const PoreWater
     state_names_.push_back("water_velocity_theta");
     liquid_.porosity_slot = static_cast<int>(state_names_.size());
     state_names_.push_back("porosity");
-    liquid_.mass_fraction = porosity_ * water.density / density_;
+    liquid_.water_density = water.density;
+    // The grains' density the dry density implies at the porosity the material starts with (for
+    // a skeleton with its own void ratio, that void ratio's): the first step's mass is the
+    // density's, whatever rounding the density was given to.
+    liquid_.grain_density = skeleton_->density() / (1.0 - porosity_);
     liquid_.drag_per_mass = standard_gravity / water.hydraulic_conductivity;
     liquid_.bulk_modulus = water.bulk_modulus;
     liquid_.pore_limit = pore_limit_;
