@@ -6,6 +6,7 @@
 #include "app/element_test_command.hpp"
 #include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/material_registry.hpp"
+#include "engine/materials/principal_stress.hpp"
 #include "io/case_error.hpp"
 #include "io/case_phases.hpp"
 #include "io/element_test_file.hpp"
@@ -424,6 +425,54 @@ TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
     expect_particles_identical(runs[0], runs[k]);
     EXPECT_TRUE(bitwise_equal(runs[0].state, runs[k].state));
   }
+}
+
+// A stress with a tensile principal stress lies outside the octant where von Wolffersdorff's F is
+// defined. The state below, taken from the quick jacked case in the seed's sand beside the tip
+// (sigma_thth +255 Pa in tension, the r-y block's smaller principal stress -0.2 kPa, a strain
+// increment of 1e-6), made F's denominator cross zero and the update returned NaN, stopping the
+// run. The tension is cut (sand carries none) and the update goes on: the result is finite and
+// compressive in every direction, with the compressive principal stress of 288 kPa kept to within
+// the increment's own change (1 %: 1e-6 of strain on a modulus of order 100 MPa is 0.1 kPa, and
+// the cut moves the zero principal stress only).
+TEST(Hypoplastic, AStressWithATensilePrincipalStressIsCutNotTurnedToNaN) {
+  HypoplasticParameters q = karlsruhe_fine_sand(0.60, true);
+  // The seed's sand (cases/materials/seed_sand_hypoplastic.toml).
+  q.critical_friction_angle = 30.0;
+  q.granular_hardness = 2250e6;
+  q.exponent = 0.285;
+  q.e_d0 = 0.53;
+  q.e_c0 = 0.88;
+  q.e_i0 = 1.01;
+  q.alpha = 0.15;
+  q.beta = 1.0;
+  q.density = 1656.25;
+  const Hypoplastic model(q);
+  Stress stress{
+      -154890.93902854281, -133354.99789359732, 255.37618107582324, 143459.34013508991, 0.0, 0.0};
+  double state[8] = {0.60676282489379174,
+                     2.8343589159973865e-05,
+                     1.1606371757188886e-05,
+                     4.3056705996477895e-06,
+                     3.1030335901924364e-05,
+                     0.0,
+                     0.0,
+                     0.39605279003120297};
+  const StrainIncrement strain{8.6336192071377783e-07,
+                               5.9261603841146658e-07,
+                               3.5715210317346313e-07,
+                               1.6410145356010587e-06,
+                               0.0,
+                               0.0};
+  const double modulus = model.update_point(stress, state, strain);
+  for (const double component : stress) {
+    ASSERT_TRUE(std::isfinite(component));
+  }
+  ASSERT_TRUE(std::isfinite(modulus) && modulus > 0.0);
+  const PrincipalStress principal = principal_compression(stress);
+  EXPECT_GE(principal.values[2], 0.0); // no tension left (compression positive)
+  EXPECT_NEAR(principal.values[0], 288.3e3, 0.01 * 288.3e3);
+  EXPECT_TRUE(std::isfinite(state[Hypoplastic::VOID_RATIO]));
 }
 
 TEST(Hypoplastic, ACaseIsRefusedAtTheLineOfTheKeyToBlame) {

@@ -3,6 +3,8 @@
 // integration over a strain increment by Heun's method in error-controlled substeps.
 #include "engine/materials/hypoplastic.hpp"
 
+#include "engine/materials/principal_stress.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -195,6 +197,33 @@ Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b
   return t;
 }
 
+/// True when no principal stress is tensile: -sigma is positive semidefinite (Sylvester's test on
+/// all its principal minors). Von Wolffersdorff's F is defined only there: with a tensile principal
+/// stress and p > 0, tan psi may pass sqrt(2) in extension, where F's denominator
+/// 2 + sqrt(2) tan psi cos 3 theta crosses zero.
+bool compressive(const Stress& s) {
+  const double a = -s[RR], b = -s[YY], c = -s[TT];
+  const double ab = -s[RY], bc = -s[YT], ac = -s[RT];
+  const double minor_ab = a * b - ab * ab, minor_ac = a * c - ac * ac, minor_bc = b * c - bc * bc;
+  const double determinant = a * minor_bc - ab * (ab * c - bc * ac) + ac * (ab * bc - b * ac);
+  return a >= 0.0 && b >= 0.0 && c >= 0.0 && minor_ab >= 0.0 && minor_ac >= 0.0 &&
+         minor_bc >= 0.0 && determinant >= 0.0;
+}
+
+/// Sand carries no tension in any direction: a tensile principal stress is cut to zero (its
+/// direction kept, the others untouched), and what is left below the floor pressure is set
+/// isotropic at it, as a tensile mean stress is.
+void cut_tension(Stress& s, double p_min) {
+  PrincipalStress principal = principal_compression(s);
+  for (double& value : principal.values) {
+    value = std::max(value, 0.0); // compression positive
+  }
+  s = compose_from_principal(principal.values, principal.directions);
+  if (mean_pressure(s) < p_min) {
+    s = Stress{-p_min, -p_min, -p_min, 0.0, 0.0, 0.0};
+  }
+}
+
 } // namespace
 
 HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d) const {
@@ -283,6 +312,8 @@ double Hypoplastic::update_point(Stress& stress, double* state,
   auto floor_pressure = [p_min](Stress& s) {
     if (mean_pressure(s) < p_min) {
       s = Stress{-p_min, -p_min, -p_min, 0.0, 0.0, 0.0};
+    } else if (!compressive(s)) {
+      cut_tension(s, p_min);
     }
   };
   floor_pressure(point.stress);
@@ -307,7 +338,7 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     // rejected substeps per update at a free surface, whose particles sit at the floor.
     HypoplasticPoint next = euler;
     double error = 0.0;
-    if (mean_pressure(euler.stress) >= p_min) {
+    if (mean_pressure(euler.stress) >= p_min && compressive(euler.stress)) {
       const HypoplasticPoint k2 = rate(euler, d);
       Stress stress_error{}, h_error{};
       next = point;
@@ -323,7 +354,8 @@ double Hypoplastic::update_point(Stress& stress, double* state,
         error = std::max(error, norm(h_error) / q.r_max);
       }
     }
-    if (dt > smallest && error > q.tolerance) {
+    // !(error <= tolerance): a rate that is not finite is refused as a large error is.
+    if (dt > smallest && !(error <= q.tolerance)) {
       dt *= std::max(0.2, 0.9 * std::sqrt(q.tolerance / error));
       continue;
     }
