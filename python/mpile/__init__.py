@@ -10,6 +10,7 @@
     run = mpile.installation("out/jacked_quick")          # the seed's figures 3 to 7
     mpile.radiation("out/gdp_quick")                      # radiated energy, peak particle velocity
     mpile.load_test("out/gdp_quick_capacity")             # load-settlement curve, capacity
+    mpile.friction_fatigue("out/gdp_cycles_quick", 60.0)  # sigma'_r / sigma'_r0 against cycles
 
 The names are imported on first use, so that `import mpile` is quick and the snapshot and display
 modules work where only numpy and VTK are (ParaView's Python). The reference is docs/python.md.
@@ -36,6 +37,7 @@ _EXPORTS = {
     "shaft_ratios": "monopile",
     "radiation": "vibration",
     "load_test": "capacity",
+    "friction_fatigue": "fatigue",
     "LoadTest": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",
