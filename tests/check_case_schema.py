@@ -17,7 +17,10 @@ jsonschema.Draft202012Validator.check_schema(schema)
 validator = jsonschema.Draft202012Validator(schema)
 
 def merged(base, over):
-    """The case as mpile reads it over its base: tables merge key by key, other values replace."""
+    """The case as mpile reads it over its base: tables merge key by key (a table naming another
+    type replaces the base's), other values replace."""
+    if "type" in over and over.get("type") != base.get("type"):
+        return over
     out = dict(base)
     for key, value in over.items():
         out[key] = merged(out[key], value) if isinstance(value, dict) and isinstance(
@@ -26,17 +29,22 @@ def merged(base, over):
 
 
 def composed(path):
-    """A case file with its `base` files read under it (the schema describes whole cases)."""
+    """A case file with its `base` files (one, or a list merged in order) read under it (the
+    schema describes whole cases)."""
     case = tomllib.loads(path.read_text())
     if "base" not in case:
         return case
-    base = composed(path.parent / case.pop("base"))
-    base.pop("base", None)
+    names = case.pop("base")
+    base = {}
+    for name in names if isinstance(names, list) else [names]:
+        part = composed(path.parent / name)
+        part.pop("base", None)
+        base = merged(base, part)
     return merged(base, case)
 
 
 files = [f for f in sorted(cases.rglob("*.toml"))
-         if f.parent.name not in ("element_tests", "sweeps")]
+         if f.parent.name not in ("element_tests", "sweeps") and f.parent != cases / "base"]
 for f in files:
     errors = list(validator.iter_errors(composed(f)))
     if errors:

@@ -437,9 +437,9 @@ TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
 // the cut moves the zero principal stress only).
 TEST(Hypoplastic, AStressWithATensilePrincipalStressIsCutNotTurnedToNaN) {
   HypoplasticParameters q = karlsruhe_fine_sand(0.60, true);
-  // The seed's sand (cases/materials/seed_sand_hypoplastic.toml).
+  // The seed's sand (cases/base/seed_sand_hypoplastic.toml).
   q.critical_friction_angle = 30.0;
-  q.granular_hardness = 2250e6;
+  q.granular_hardness = 2300e6;
   q.exponent = 0.285;
   q.e_d0 = 0.53;
   q.e_c0 = 0.88;

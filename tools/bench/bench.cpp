@@ -146,7 +146,7 @@ std::map<std::string, SceneSpec> scenes() {
   all["elastic-contact-idle-1e5"] = {"elastic-contact-idle-1e5",
                                      [] { return contact_path_idle(100000); }};
   all["gdp-quick"] = {"gdp-quick", [] { return gdp_quick(); }};
-  // The same with the seed's sand in hypoplasticity (cases/materials/seed_sand_hypoplastic.toml).
+  // The same with the seed's sand in hypoplasticity (cases/base/seed_sand_hypoplastic.toml).
   all["gdp-quick-hypoplastic"] = {"gdp-quick-hypoplastic",
                                   [] { return gdp_quick("gdp_quick_hypoplastic.toml"); }};
   // The same two scenes with GIMP shape functions (docs/design.md, "Shape functions").
