@@ -49,7 +49,8 @@ namespace mpile {
 
 namespace {
 
-std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key) {
+std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key,
+                                 std::vector<CaseWarning>& warnings) {
   std::vector<AxisZone> zones;
   for (TomlTable& zone : grid.tables(key)) {
     AxisZone z;
@@ -57,6 +58,7 @@ std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key) {
     if (!(z.end > z.start)) {
       zone.fail("end", "must be greater than start (" + format_number(z.start) + ")");
     }
+    warn_implausible_zone(zone, z.start, z.end, warnings);
     zone.finish();
     zones.push_back(z);
   }
@@ -634,7 +636,8 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   if (table->has("gravity")) {
     const auto g = table->numbers("gravity", 2);
     s.gravity = {g[0], g[1]};
-    warn_implausible_gravity(*table, {g[0], g[1]}, spec.warnings);
+    warn_implausible_gravity(*table, {g[0], g[1]}, spec.mode == GeometryMode::axisymmetric,
+                             spec.warnings);
   }
   if (table->has("shape_functions")) {
     const std::string shape = table->string("shape_functions");
@@ -1108,6 +1111,16 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
                     [&](const MaterialParameterSpec& p) { return p.name == first; }) ||
         std::any_of(pore_water_parameters().begin(), pore_water_parameters().end(),
                     [&](const PoreWaterParameter& p) { return p.name == first; });
+    // A value of the wrong unit often makes the model's checks between parameters fail (a
+    // friction angle in radians, E50 in kPa: no cap then fits): the key of the likely slip is
+    // blamed, with its hint.
+    std::vector<CaseWarning> hints;
+    warn_implausible_material(table, material, hints);
+    for (const CaseWarning& hint : hints) {
+      if (!named || hint.key == first) {
+        table.fail(hint.key, message + "; " + hint.message);
+      }
+    }
     table.fail(named ? first : "type", message);
   }
   return material;
@@ -1161,8 +1174,8 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     axes = axes_of(spec);
   } else {
     TomlTable grid = top.table("grid");
-    spec.r_zones = read_zones(grid, "r");
-    spec.y_zones = read_zones(grid, "y");
+    spec.r_zones = read_zones(grid, "r", spec.warnings);
+    spec.y_zones = read_zones(grid, "y", spec.warnings);
     grid.finish();
     if (spec.mode == GeometryMode::axisymmetric && spec.r_zones.front().start < 0.0) {
       grid.fail("r", "starts at r = " + format_number(spec.r_zones.front().start) +

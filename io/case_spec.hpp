@@ -176,7 +176,9 @@ struct CaseWarning {
     resolution // a mesh that resolves less than the results need: a note, never an error
   };
   Kind kind = Kind::units;
-  std::string text;
+  std::string text;    // "file:line: key.path: message", as printed
+  std::string key;     // the key the value was written under, in its table ("friction_angle")
+  std::string message; // what is implausible and the likely slip, without the location
 };
 
 /// [water]: the sea's free surface above a horizontal seabed (physics.md section 9c).

@@ -21,16 +21,28 @@ constexpr double stiffest = 1.2e12;      // Pa: diamond
 constexpr double largest_friction = 1.2; // mu: rough steel on dense sand stays below tan 45 deg
 constexpr double smallest_p_ref = 1e3;   // Pa: p_ref is 100 kPa by convention (Schanz et al. 1999)
 constexpr double smallest_torque = 1e3;  // N m/rad: GDP piles take hundreds of kN m/rad
-constexpr double largest_gravity = 6000.0; // m/s^2: 600 g, beyond geotechnical centrifuges
-constexpr double smallest_gravity = 1.0;   // m/s^2: below the Moon's 1.62
+constexpr double smallest_monopile_torque =
+    1e4;                                 // N m/rad: the seed's monopile takes 414.5 kN m/rad
+constexpr double longest_zone = 1e4;     // m: ten kilometres, beyond any soil block modelled
+constexpr double softest_metal = 1e9;    // Pa: aluminium is 7e10, steel 2.1e11
+constexpr double metal_density = 5000.0; // kg/m^3: no soil's grains reach it (iron ores aside)
+constexpr double water_lightest = 500.0; // kg/m^3: water is 1 000, brines up to 1 300
+constexpr double water_heaviest = 2000.0;
+constexpr double softest_water = 1e6; // Pa: water's K_w is 2.2e9; even gassy water keeps MPa
+constexpr double stiffest_water = 1e11;
+constexpr double largest_conductivity = 10.0; // m/s: clean gravel reaches 1 m/s
+constexpr double largest_gravity = 6000.0;    // m/s^2: 600 g, beyond geotechnical centrifuges
+constexpr double smallest_gravity = 1.0;      // m/s^2: below the Moon's 1.62
 
 /// The moduli among a material's parameters (Pa).
 constexpr const char* modulus_keys[] = {"young_modulus", "e50_ref", "eoed_ref", "eur_ref"};
 
 void add(std::vector<CaseWarning>& warnings, CaseWarning::Kind kind, const TomlTable& table,
          const std::string& key, const std::string& message) {
-  warnings.push_back({kind, table.file_of(key) + ":" + std::to_string(table.line_of(key)) + ": " +
-                                table.key_path(key) + ": " + message});
+  warnings.push_back({kind,
+                      table.file_of(key) + ":" + std::to_string(table.line_of(key)) + ": " +
+                          table.key_path(key) + ": " + message,
+                      key, message});
 }
 
 std::string fixed(double x, int digits) {
@@ -39,8 +51,9 @@ std::string fixed(double x, int digits) {
   return s.str();
 }
 
-void warn_density(const TomlTable& table, double density, std::vector<CaseWarning>& warnings) {
-  std::string message = "density = " + format_number(density) + " kg/m^3";
+void warn_density(const TomlTable& table, double density, std::vector<CaseWarning>& warnings,
+                  const std::string& key = "density") {
+  std::string message = key + " = " + format_number(density) + " kg/m^3";
   if (density < lightest) {
     message += " is lighter than any soil or steel (1 000 to 2 600 for soils, 7 850 for steel)";
     const bool grams = density * 1e3 >= 1e3 && density * 1e3 <= heaviest;
@@ -62,7 +75,7 @@ void warn_density(const TomlTable& table, double density, std::vector<CaseWarnin
   } else {
     return;
   }
-  add(warnings, CaseWarning::Kind::units, table, "density", message);
+  add(warnings, CaseWarning::Kind::units, table, key, message);
 }
 
 void warn_modulus(const TomlTable& table, const std::string& key, double modulus,
@@ -122,6 +135,45 @@ double largest_value(const TomlValue& value) {
   return largest;
 }
 
+/// The pore water's keys, where the table gives them: its density, bulk modulus, the grains'
+/// density and Darcy's conductivity.
+void warn_implausible_water(const TomlTable& table, const MaterialSpec& material,
+                            std::vector<CaseWarning>& warnings) {
+  const PoreWater& w = material.water;
+  if (table.has("water_density") && (w.density < water_lightest || w.density > water_heaviest)) {
+    std::string message = "water_density = " + format_number(w.density) +
+                          " kg/m^3 is not water's (1 000; sea water 1 025, brines up to 1 300)";
+    if (w.density * 1e3 >= water_lightest && w.density * 1e3 <= water_heaviest) {
+      message += ": did you mean " + format_number(w.density * 1e3) + " (g/cm^3 given)?";
+    }
+    add(warnings, CaseWarning::Kind::units, table, "water_density", message);
+  }
+  if (table.has("water_bulk_modulus") &&
+      (w.bulk_modulus < softest_water || w.bulk_modulus > stiffest_water)) {
+    std::string message = "water_bulk_modulus = " + format_number(w.bulk_modulus) +
+                          " Pa is not water's (K_w = 2.2e9 Pa)";
+    if (w.bulk_modulus < softest_water) {
+      const bool giga = w.bulk_modulus < 100.0;
+      message += ": did you mean " + format_number(w.bulk_modulus) +
+                 (giga ? " GPa = " : " MPa = ") +
+                 format_number(w.bulk_modulus * (giga ? 1e9 : 1e6)) + "?";
+    }
+    add(warnings, CaseWarning::Kind::units, table, "water_bulk_modulus", message);
+  }
+  if (table.has("grain_density")) {
+    warn_density(table, w.grain_density, warnings, "grain_density");
+  }
+  if (table.has("hydraulic_conductivity") && w.hydraulic_conductivity > largest_conductivity) {
+    add(warnings, CaseWarning::Kind::units, table, "hydraulic_conductivity",
+        "hydraulic_conductivity = " + format_number(w.hydraulic_conductivity) +
+            " m/s is above any soil's (clean gravel up to 1 m/s, sand 1e-5 to 1e-2): did you "
+            "mean " +
+            format_number(w.hydraulic_conductivity) +
+            " cm/s = " + format_number(w.hydraulic_conductivity * 1e-2) +
+            " or mm/s = " + format_number(w.hydraulic_conductivity * 1e-3) + " m/s?");
+  }
+}
+
 } // namespace
 
 void warn_implausible_material(const TomlTable& table, const MaterialSpec& material,
@@ -147,6 +199,17 @@ void warn_implausible_material(const TomlTable& table, const MaterialSpec& mater
             format_number(phi->second) +
             " rad = " + fixed(phi->second * 180.0 / std::numbers::pi, 1) + " degrees?");
   }
+  // A metal (the pile's steel) whose modulus reads as a soil's: MPa given.
+  if (const auto density = p.find("density"), young = p.find("young_modulus");
+      density != p.end() && young != p.end() && density->second >= metal_density &&
+      density->second <= heaviest && young->second >= softest && young->second < softest_metal) {
+    add(warnings, CaseWarning::Kind::units, table, "young_modulus",
+        "young_modulus = " + format_number(young->second) + " Pa for a material of density " +
+            format_number(density->second) +
+            " kg/m^3 (a metal) is below any metal's (aluminium 7e10, steel 2.1e11): did you mean " +
+            format_number(young->second) + " MPa = " + format_number(young->second * 1e6) + "?");
+  }
+  warn_implausible_water(table, material, warnings);
   if (const auto p_ref = p.find("p_ref"); p_ref != p.end() && p_ref->second < smallest_p_ref) {
     add(warnings, CaseWarning::Kind::units, table, "p_ref",
         "p_ref = " + format_number(p_ref->second) +
@@ -172,8 +235,20 @@ void warn_implausible_friction(const TomlTable& table, const std::string& key, d
 }
 
 void warn_implausible_gravity(const TomlTable& table, const std::array<double, 2>& gravity,
-                              std::vector<CaseWarning>& warnings) {
+                              bool axisymmetric, std::vector<CaseWarning>& warnings) {
   const double magnitude = std::hypot(gravity[0], gravity[1]);
+  // About the vertical axis of symmetry gravity has no radial part; in plane strain a slope tilts
+  // it, but not past the vertical.
+  if (gravity[0] != 0.0 && (axisymmetric || std::abs(gravity[0]) > std::abs(gravity[1]))) {
+    add(warnings, CaseWarning::Kind::units, table, "gravity",
+        "gravity has a component along r (g_r = " + format_number(gravity[0]) + ")" +
+            (axisymmetric ? ", which the axisymmetric geometry (r about a vertical axis) cannot "
+                            "have"
+                          : " larger than along y") +
+            ": did you mean [0, " + format_number(-std::abs(gravity[0]) + 0.0) +
+            "]? ([g_r, g_y], y "
+            "up)");
+  }
   if (gravity[1] > 0.0) {
     add(warnings, CaseWarning::Kind::units, table, "gravity",
         "gravity points up (g_y = " + format_number(gravity[1]) + " > 0; y is up): did you mean [" +
@@ -195,14 +270,30 @@ void warn_implausible_gravity(const TomlTable& table, const std::array<double, 2
 void warn_implausible_torque(TomlTable& table, const std::string& key, const std::string& unit,
                              std::vector<CaseWarning>& warnings) {
   const double torque = largest_value(table.raw(key));
-  if (torque <= 0.0 || torque >= smallest_torque) {
+  // The seed's monopile is a full-scale pile: 10 kN m/rad is below what turns it, so a torque of
+  // thousands typed in kN m is caught too; a rigid body of any size is judged at 1 kN m/rad.
+  const bool monopile = table.key_path(key).rfind("monopile.", 0) == 0;
+  const double smallest = monopile ? smallest_monopile_torque : smallest_torque;
+  if (torque <= 0.0 || torque >= smallest) {
     return;
   }
   add(warnings, CaseWarning::Kind::units, table, key,
-      "torque amplitude " + format_number(torque) + " " + unit + " is below 1 k" + unit +
-          ", less than turns any pile in soil (the seed's GDP drives 414.5 and 829 k" + unit +
-          "): did you mean " + format_number(torque) + " k" + unit + " = " +
-          format_number(torque * 1e3) + "?");
+      "torque amplitude " + format_number(torque) + " " + unit + " is below " +
+          (monopile ? "10 k" : "1 k") + unit + ", less than turns " +
+          (monopile ? "the monopile" : "any pile in soil") +
+          " (the seed's GDP drives 414.5 and 829 k" + unit + "): did you mean " +
+          format_number(torque) + " k" + unit + " = " + format_number(torque * 1e3) + "?");
+}
+
+void warn_implausible_zone(const TomlTable& zone, double start, double end,
+                           std::vector<CaseWarning>& warnings) {
+  if (std::abs(end - start) <= longest_zone && std::abs(end) <= longest_zone) {
+    return;
+  }
+  add(warnings, CaseWarning::Kind::units, zone, "end",
+      "a zone from " + format_number(start) + " to " + format_number(end) +
+          " m reaches beyond 10 km, more than any soil block modelled: did you mean mm (" +
+          format_number(start * 1e-3) + " to " + format_number(end * 1e-3) + " m)?");
 }
 
 void note_one_cell_wall(const TomlTable& table, int wall_cells,

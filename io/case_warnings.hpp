@@ -19,9 +19,10 @@
 
 namespace mpile {
 
-/// A material's density, moduli, friction angle and p_ref. A material whose moduli are all below
-/// 1 kPa and whose density is below 100 kg/m^3 is a scaled one (the verification cases' bar with
-/// E = 100, rho = 1): its units are its own and it is not judged.
+/// A material's density, moduli (a metal's modulus in MPa), friction angle, p_ref and its pore
+/// water's density, bulk modulus, grain density and conductivity. A material whose moduli are all
+/// below 1 kPa and whose density is below 100 kg/m^3 is a scaled one (the verification cases' bar
+/// with E = 100, rho = 1): its units are its own and it is not judged.
 void warn_implausible_material(const TomlTable& table, const MaterialSpec& material,
                                std::vector<CaseWarning>& warnings);
 
@@ -29,9 +30,13 @@ void warn_implausible_material(const TomlTable& table, const MaterialSpec& mater
 void warn_implausible_friction(const TomlTable& table, const std::string& key, double friction,
                                std::vector<CaseWarning>& warnings);
 
-/// [solver] gravity (g_r, g_y): y is up, so g_y > 0 points up.
+/// [solver] gravity (g_r, g_y): y is up, so g_y > 0 points up; about an axis of symmetry g_r = 0.
 void warn_implausible_gravity(const TomlTable& table, const std::array<double, 2>& gravity,
-                              std::vector<CaseWarning>& warnings);
+                              bool axisymmetric, std::vector<CaseWarning>& warnings);
+
+/// A grid zone reaching beyond 10 km: lengths typed in mm.
+void warn_implausible_zone(const TomlTable& zone, double start, double end,
+                           std::vector<CaseWarning>& warnings);
 
 /// A rigid body's torque drive under `key` (a number or a time function's table): its largest
 /// value given (a constant's value, a ramp's, a harmonic's or pulse train's amplitude, a table's

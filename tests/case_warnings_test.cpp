@@ -1,6 +1,7 @@
 // Values that read but are most likely in the wrong unit must be named before the run, with the
 // file, line and key and the likely mistake; --strict refuses them; no shipped case has one.
 #include "app/run_command.hpp"
+#include "io/case_error.hpp"
 #include "io/case_spec.hpp"
 #include "tests/case_run.hpp"
 #include "tests/saturated_column.hpp"
@@ -56,8 +57,99 @@ TEST(CaseWarnings, TheGdpCaseAsShippedHasNone) {
 TEST(CaseWarnings, ATorqueInKilonewtonMetres) {
   expect_one_warning(gdp_edited("amplitude = 414500.0", "amplitude = 414.5"),
                      "case.toml:49: monopile.drive.torque: ",
-                     {"torque amplitude 414.5 N m/rad is below 1 kN m/rad",
+                     {"torque amplitude 414.5 N m/rad is below 10 kN m/rad, less than turns the "
+                      "monopile",
                       "did you mean 414.5 kN m/rad = 414500?"});
+  // A torque of thousands written in kN m (1.2 MN m/rad as 1200) is caught on the monopile too.
+  expect_one_warning(
+      gdp_edited("amplitude = 414500.0", "amplitude = 1200.0"),
+      "case.toml:49: monopile.drive.torque: ", {"did you mean 1200 kN m/rad = 1.2e+06?"});
+}
+
+TEST(CaseWarnings, ASteelModulusInMegapascals) {
+  expect_one_warning(gdp_edited("young_modulus = 220e9", "young_modulus = 210000.0"),
+                     "case.toml:25: materials.steel.young_modulus: ",
+                     {"for a material of density 8000 kg/m^3 (a metal) is below any metal's",
+                      "did you mean 210000 MPa = 2.1e+11?"});
+}
+
+TEST(CaseWarnings, GravityAlongTheRadius) {
+  expect_one_warning(gdp_edited("gravity = [0.0, -9.81]", "gravity = [-9.81, 0.0]"),
+                     "case.toml:53: solver.gravity: ",
+                     {"gravity has a component along r (g_r = -9.81), which the axisymmetric "
+                      "geometry (r about a vertical axis) cannot have: did you mean [0, -9.81]?"});
+}
+
+TEST(CaseWarnings, AGridZoneInMillimetres) {
+  std::string text = read_text(source / "cases/verification/terzaghi_consolidation.toml");
+  const std::string from = "y = [{ start = 0.0, end = 1.05, cells = 42 }]";
+  ASSERT_NE(text.find(from), std::string::npos);
+  // A zone above the column typed in mm: 1.05 to 50 000 m for 1.05 to 50 m.
+  text.replace(text.find(from), from.size(),
+               "y = [{ start = 0.0, end = 1.05, cells = 42 }, { start = 1.05, end = 50000.0, "
+               "cells = 1 }]");
+  const std::string found = units_warnings(text);
+  EXPECT_NE(found.find("case.toml:15: grid.y[1].end: a zone from 1.05 to 50000 m reaches beyond "
+                       "10 km, more than any soil block modelled: did you mean mm (0.00105 to 50 "
+                       "m)?"),
+            std::string::npos)
+      << found;
+}
+
+TEST(CaseWarnings, ThePoreWatersKeysInTheWrongUnits) {
+  // The seed's sand saturated (grain density 2650: n = 0.375), each water key in a slipped unit.
+  const auto saturated = [](const std::string& keys) {
+    return gdp_edited("density = 1656.25",
+                      "density = 1656.25\ndrainage = \"coupled\"\nhydraulic_conductivity = "
+                      "1e-4\ngrain_density = 2650.0\n" +
+                          keys);
+  };
+  EXPECT_EQ(units_warnings(saturated("")), "");
+  expect_one_warning(
+      saturated("water_density = 1.0"), "case.toml:25: materials.sand.water_density: ",
+      {"water_density = 1 kg/m^3 is not water's", "did you mean 1000 (g/cm^3 given)?"});
+  expect_one_warning(saturated("water_bulk_modulus = 2.2"),
+                     "case.toml:25: materials.sand.water_bulk_modulus: ",
+                     {"is not water's (K_w = 2.2e9 Pa): did you mean 2.2 GPa = 2.2e+09?"});
+  expect_one_warning(saturated("water_bulk_modulus = 2200.0"),
+                     "case.toml:25: ", {"did you mean 2200 MPa = 2.2e+09?"});
+  // Grains lighter than the dry soil leave no pores: refused, with the hint.
+  std::string grams = saturated("");
+  grams.replace(grams.find("grain_density = 2650.0"), 22, "grain_density = 2.65");
+  try {
+    read_case_text(grams, "case.toml");
+    ADD_FAILURE() << "grain_density = 2.65 accepted";
+  } catch (const CaseError& e) {
+    const std::string error = e.what();
+    EXPECT_EQ(error.rfind("case.toml:24: materials.sand.grain_density: ", 0), 0u) << error;
+    EXPECT_NE(error.find("did you mean 2650 (g/cm^3 given)?"), std::string::npos) << error;
+  }
+  expect_one_warning(gdp_edited("density = 1656.25",
+                                "density = 1656.25\ndrainage = \"coupled\"\n"
+                                "hydraulic_conductivity = 100.0\ngrain_density = 2650.0"),
+                     "case.toml:23: materials.sand.hydraulic_conductivity: ",
+                     {"is above any soil's", "did you mean 100 cm/s = 1 or mm/s = 0.1 m/s?"});
+}
+
+TEST(CaseWarnings, AModelRefusingASlippedUnitBlamesItsKeyWithTheHint) {
+  // Hardening Soil fits its cap to k0_nc and eoed_ref; with phi in radians or E50 in kPa no cap
+  // fits and the model refuses the set as a whole. The key of the likely slip is named.
+  const auto error_of = [](const std::string& text) {
+    try {
+      read_case_text(text, "case.toml");
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  std::string error = error_of(gdp_edited("friction_angle = 37.5", "friction_angle = 0.6545"));
+  EXPECT_EQ(error.rfind("case.toml:19: materials.sand.friction_angle: hardening_soil: ", 0), 0u)
+      << error;
+  EXPECT_NE(error.find("did you mean 0.6545 rad = 37.5 degrees?"), std::string::npos) << error;
+  error = error_of(gdp_edited("e50_ref = 44e6", "e50_ref = 44e3"));
+  EXPECT_EQ(error.rfind("case.toml:", 0), 0u) << error;
+  EXPECT_NE(error.find("materials.sand.e50_ref: hardening_soil: "), std::string::npos) << error;
+  EXPECT_NE(error.find("did you mean 44000 kPa = 4.4e+07?"), std::string::npos) << error;
 }
 
 TEST(CaseWarnings, AFrictionCoefficientGivenAsAnAngle) {
