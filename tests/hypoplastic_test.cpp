@@ -428,13 +428,13 @@ TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
 }
 
 // A stress with a tensile principal stress lies outside the octant where von Wolffersdorff's F is
-// defined. The state below, taken from the quick jacked case in the seed's sand beside the tip
-// (sigma_thth +255 Pa in tension, the r-y block's smaller principal stress -0.2 kPa, a strain
-// increment of 1e-6), made F's denominator cross zero and the update returned NaN, stopping the
-// run. The tension is cut (sand carries none) and the update goes on: the result is finite and
-// compressive in every direction, with the compressive principal stress of 288 kPa kept to within
-// the increment's own change (1 %: 1e-6 of strain on a modulus of order 100 MPa is 0.1 kPa, and
-// the cut moves the zero principal stress only).
+// defined, and so does its uniaxial corner. The state below, taken from the quick jacked case in
+// the seed's sand beside the tip (sigma_thth +255 Pa in tension, the r-y block's smaller principal
+// stress -0.2 kPa, a strain increment of 1e-6), made F's denominator cross zero and the update
+// returned NaN, stopping the run. The tension is cut (sand carries none) and the update goes on:
+// the result is finite and compressive in every direction, with the compressive principal stress of
+// 288 kPa kept to within the increment's own change (1 %: 1e-6 of strain on a modulus of order 100
+// MPa is 0.1 kPa, and the cut moves the zero principal stress only).
 TEST(Hypoplastic, AStressWithATensilePrincipalStressIsCutNotTurnedToNaN) {
   HypoplasticParameters q = karlsruhe_fine_sand(0.60, true);
   // The seed's sand (cases/base/seed_sand_hypoplastic.toml).
@@ -473,6 +473,29 @@ TEST(Hypoplastic, AStressWithATensilePrincipalStressIsCutNotTurnedToNaN) {
   EXPECT_GE(principal.values[2], 0.0); // no tension left (compression positive)
   EXPECT_NEAR(principal.values[0], 288.3e3, 0.01 * 288.3e3);
   EXPECT_TRUE(std::isfinite(state[Hypoplastic::VOID_RATIO]));
+
+  // Further down the same run a state cut that way reached the uniaxial corner (sigma_thth = 0,
+  // the r-y block at -820 kPa and +0.03 kPa): cut to exactly zero, both zero principal stresses
+  // put F's denominator at zero with its numerator. The cut now leaves the floor pressure there.
+  Stress corner{-434568.7929474549, -385513.4004435151, -0.0, 409306.84467515221, -0.0, 0.0};
+  double corner_state[8] = {0.60943108628727094,
+                            3.5517114038045932e-05,
+                            3.8440605270921604e-05,
+                            4.5487239776183309e-06,
+                            2.1504562542700538e-05,
+                            0.0,
+                            0.0,
+                            1.0};
+  const StrainIncrement corner_strain{9.1704243712286251e-07,
+                                      2.3736067715443048e-06,
+                                      2.5769622880456119e-07,
+                                      2.9455834443800445e-06,
+                                      0.0,
+                                      0.0};
+  ASSERT_TRUE(std::isfinite(model.update_point(corner, corner_state, corner_strain)));
+  const PrincipalStress at_corner = principal_compression(corner);
+  EXPECT_NEAR(at_corner.values[0], 820.1e3, 0.01 * 820.1e3);
+  EXPECT_GT(at_corner.values[2], 0.0);
 }
 
 TEST(Hypoplastic, ACaseIsRefusedAtTheLineOfTheKeyToBlame) {

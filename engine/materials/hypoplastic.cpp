@@ -197,12 +197,14 @@ Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b
   return t;
 }
 
-/// True when no principal stress is tensile: -sigma is positive semidefinite (Sylvester's test on
-/// all its principal minors). Von Wolffersdorff's F is defined only there: with a tensile principal
-/// stress and p > 0, tan psi may pass sqrt(2) in extension, where F's denominator
-/// 2 + sqrt(2) tan psi cos 3 theta crosses zero.
-bool compressive(const Stress& s) {
-  const double a = -s[RR], b = -s[YY], c = -s[TT];
+/// True when every principal compression is at least `margin` (Pa): -sigma - margin 1 is positive
+/// semidefinite (Sylvester's test on all its principal minors). Von Wolffersdorff's F is defined
+/// strictly inside the compression octant: with a tensile principal stress tan psi may pass
+/// sqrt(2) in extension, and at its uniaxial corner (two principal stresses zero) F's denominator
+/// 2 + sqrt(2) tan psi cos 3 theta is zero with its numerator (F's limit there is 1, but 0 / 0 is
+/// what the formula gives).
+bool compressive(const Stress& s, double margin) {
+  const double a = -s[RR] - margin, b = -s[YY] - margin, c = -s[TT] - margin;
   const double ab = -s[RY], bc = -s[YT], ac = -s[RT];
   const double minor_ab = a * b - ab * ab, minor_ac = a * c - ac * ac, minor_bc = b * c - bc * bc;
   const double determinant = a * minor_bc - ab * (ab * c - bc * ac) + ac * (ab * bc - b * ac);
@@ -210,13 +212,16 @@ bool compressive(const Stress& s) {
          minor_bc >= 0.0 && determinant >= 0.0;
 }
 
-/// Sand carries no tension in any direction: a tensile principal stress is cut to zero (its
-/// direction kept, the others untouched), and what is left below the floor pressure is set
-/// isotropic at it, as a tensile mean stress is.
+/// Sand carries no tension in any direction: a principal compression below the margin is raised
+/// to the floor pressure along its direction (the others untouched; a change of p_min, negligible
+/// beside the stresses that give such states), and what is left below the floor on average is
+/// set isotropic at it, as a tensile mean stress is.
 void cut_tension(Stress& s, double p_min) {
   PrincipalStress principal = principal_compression(s);
   for (double& value : principal.values) {
-    value = std::max(value, 0.0); // compression positive
+    if (value < 1e-3 * p_min) { // compression positive
+      value = p_min;
+    }
   }
   s = compose_from_principal(principal.values, principal.directions);
   if (mean_pressure(s) < p_min) {
@@ -312,7 +317,7 @@ double Hypoplastic::update_point(Stress& stress, double* state,
   auto floor_pressure = [p_min](Stress& s) {
     if (mean_pressure(s) < p_min) {
       s = Stress{-p_min, -p_min, -p_min, 0.0, 0.0, 0.0};
-    } else if (!compressive(s)) {
+    } else if (!compressive(s, 1e-3 * p_min)) {
       cut_tension(s, p_min);
     }
   };
@@ -338,7 +343,7 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     // rejected substeps per update at a free surface, whose particles sit at the floor.
     HypoplasticPoint next = euler;
     double error = 0.0;
-    if (mean_pressure(euler.stress) >= p_min && compressive(euler.stress)) {
+    if (mean_pressure(euler.stress) >= p_min && compressive(euler.stress, 1e-3 * p_min)) {
       const HypoplasticPoint k2 = rate(euler, d);
       Stress stress_error{}, h_error{};
       next = point;
