@@ -303,6 +303,17 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
       }
     }
     if (std::optional<TomlTable> rigid = table.optional_table("rigid")) {
+      // A rigid body's particles carry no stress and no pore water: a saturated material there
+      // would be read and then silently ignored.
+      const auto material =
+          std::find_if(spec.materials.begin(), spec.materials.end(),
+                       [&](const MaterialSpec& m) { return m.name == body.material; });
+      if (material->water.drainage != Drainage::drained) {
+        table.fail("material",
+                   "'" + body.material + "' is saturated (drainage = \"" +
+                       drainage_names()[static_cast<std::size_t>(material->water.drainage)] +
+                       "\"), but a rigid body has no pores: give it a dry material");
+      }
       rigid_tables.emplace_back(spec.bodies.size(), std::move(*rigid));
     }
     table.finish();
@@ -692,6 +703,12 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
                   "would take the drained skeleton's impedance, not the undrained soil's): leave "
                   "it off with absorbing faces");
     }
+  }
+  if (s.cell_mean_pore_pressure &&
+      std::none_of(spec.materials.begin(), spec.materials.end(),
+                   [](const MaterialSpec& m) { return m.water.drainage != Drainage::drained; })) {
+    table->fail("cell_mean_pore_pressure", "no material is undrained or coupled: there is no "
+                                           "pore pressure to average; remove it");
   }
   s.validate(); // what the reader let through is valid; a failure here is the reader's fault
   table->finish();

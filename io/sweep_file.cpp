@@ -204,6 +204,36 @@ SweepSpec read_sweep_file(const std::string& path) {
     if (parameter.values.empty()) {
       throw CaseError(where + "the list of values is empty");
     }
+    for (std::size_t i = 0; i < parameter.values.size(); ++i) {
+      for (std::size_t j = 0; j < i; ++j) {
+        if (parameter.values[i] == parameter.values[j]) {
+          throw CaseError(where + "the value " + parameter.values[i] +
+                          " is listed twice: its variants would run twice");
+        }
+      }
+    }
+    // One key set by two entries (a parameter and a fixed `set`, or a table and a key inside
+    // it): which value a variant ran with would depend on the order they were applied in.
+    const auto overlaps = [&](const std::string& other) {
+      const auto inside = [](const std::string& a, const std::string& b) {
+        return a == b ||
+               (b.size() > a.size() && b.compare(0, a.size(), a) == 0 && b[a.size()] == '.');
+      };
+      return inside(key, other) || inside(other, key);
+    };
+    for (const SweepParameter& earlier : sweep.parameters) {
+      if (overlaps(earlier.key)) {
+        throw CaseError(where + "overlaps the parameter \"" + earlier.key +
+                        "\": a key is swept by one entry only");
+      }
+    }
+    for (const std::string& assignment : sweep.sets) {
+      const std::string set_key = assignment.substr(0, assignment.find('='));
+      if (overlaps(set_key)) {
+        throw CaseError(where + "overlaps set's \"" + assignment +
+                        "\": a swept key is not also set for every variant");
+      }
+    }
     sweep.parameters.push_back(parameter);
     table.raw(key);
   }

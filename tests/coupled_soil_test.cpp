@@ -243,6 +243,33 @@ duration = 0.96
   EXPECT_NEAR(water / total / share, 1.0, 0.005) << "the water's share of the stress at the base";
 }
 
+// Settings that would be read and then ignored are refused at their key: one excess pore pressure
+// per cell in a scene without pore water, and a saturated material on a rigid body (whose
+// particles carry neither stress nor water).
+TEST(CoupledSoil, SettingsWithoutPoreWaterToActOnAreRefusedAtTheirKey) {
+  const auto error_of = [](const std::string& text) {
+    try {
+      CaseRun run(text);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  std::string error =
+      error_of(saturated_wave_column("") + "[solver]\ncell_mean_pore_pressure = true\n");
+  EXPECT_NE(error.find(": solver.cell_mean_pore_pressure: no material is undrained or coupled"),
+            std::string::npos)
+      << error;
+  error = error_of(
+      replaced(saturated_wave_column("drainage = \"coupled\"\nhydraulic_conductivity = 1e-4"),
+               "region = { r = [0.0, 0.1], y = [0.0, 30.0] }",
+               "region = { r = [0.0, 0.1], y = [0.0, 30.0] }\n[bodies.rigid]\nvelocity_y = 0.0"));
+  EXPECT_NE(error.find(": bodies[0].material: 'sand' is saturated (drainage = \"coupled\"), but a "
+                       "rigid body has no pores"),
+            std::string::npos)
+      << error;
+}
+
 // A body given an initial velocity moves whole, its pore water with its grains: a saturated block
 // thrown through empty space (no gravity, no support) keeps its momentum and kinetic energy, and
 // Darcy's drag takes nothing (its water used to start at rest, and the drag then took part of the

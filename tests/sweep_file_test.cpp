@@ -119,6 +119,16 @@ TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
        ":11: gather[0].at_penetration: must be a penetration above zero, m"},
       {"threads zero", "title = \"point\"", "title = \"point\"\nthreads = 0",
        ":2: threads: threads per run must be from 1 to 1024"},
+      // A value listed twice ran its variants twice, and a key both swept and set took whichever
+      // was applied last.
+      {"a value twice", "\"solver.courant_number\" = [0.1]",
+       "\"solver.courant_number\" = [0.1, 0.2, 0.1]",
+       ":7: parameters.\"solver.courant_number\": the value 0.1 is listed twice: its variants "
+       "would run twice"},
+      {"a swept key also set", "\"solver.courant_number\" = [0.1]",
+       "\"phases.0\" = [{ name = \"a\", duration = 0.1 }]",
+       ":7: parameters.\"phases.0\": overlaps set's \"phases.0.duration=0.5\": a swept key is not "
+       "also set for every variant"},
   };
   for (const BadSweep& b : bad) {
     const std::string text = replaced(good, b.from, b.to);
@@ -129,6 +139,22 @@ TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
     } catch (const CaseError& e) {
       EXPECT_EQ(std::string(e.what()).rfind(path + b.message, 0), 0u) << b.what << ": " << e.what();
     }
+  }
+}
+
+TEST(SweepFile, TwoParametersSweepingOneKeyAreRefused) {
+  // bodies.0.velocity and one of its components: whichever the reader meets second is named.
+  const std::string path =
+      write_sweep("overlap", replaced(good, "\"solver.courant_number\" = [0.1]",
+                                      "\"bodies.0.velocity.1\" = [0.0, -0.1]"));
+  try {
+    read_sweep_file(path);
+    ADD_FAILURE() << "accepted";
+  } catch (const CaseError& e) {
+    const std::string error = e.what();
+    EXPECT_NE(error.find(": overlaps the parameter \"bodies.0.velocity"), std::string::npos)
+        << error;
+    EXPECT_NE(error.find("a key is swept by one entry only"), std::string::npos) << error;
   }
 }
 
