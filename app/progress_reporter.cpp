@@ -24,6 +24,10 @@ void ProgressReporter::update(const std::string& phase, long steps, const PhaseG
     phase_ = phase;
     phase_start_seconds_ = now;
     phase_start_steps_ = steps;
+    equilibrium_ = std::numeric_limits<double>::quiet_NaN();
+  }
+  if (!std::isnan(goal.equilibrium)) {
+    equilibrium_ = goal.equilibrium;
   }
   if (now - last_ < (terminal_ ? 0.25 : 5.0)) {
     return;
@@ -33,9 +37,16 @@ void ProgressReporter::update(const std::string& phase, long steps, const PhaseG
   const double rate =
       elapsed > 0.0 ? static_cast<double>(steps - phase_start_steps_) / elapsed : 0.0;
   std::ostringstream line;
-  line << goal.quantity << " = " << std::setprecision(5) << goal.value << " of " << goal.target
-       << " " << goal.unit << "  [" << phase << "]  " << std::fixed << std::setprecision(0) << rate
-       << " steps/s  " << format_eta(estimator_.estimate());
+  if (goal.ends_at_equilibrium && !std::isnan(equilibrium_)) {
+    // What ends the phase is the criterion, not its time limit: how far from it the state is.
+    line << "out of balance = " << std::setprecision(3) << equilibrium_
+         << " x tolerance (1 ends the phase)";
+  } else {
+    line << goal.quantity << " = " << std::setprecision(5) << goal.value << " of " << goal.target
+         << " " << goal.unit;
+  }
+  line << "  [" << phase << "]  " << std::fixed << std::setprecision(0) << rate << " steps/s  "
+       << format_eta(estimator_.estimate());
   if (terminal_) {
     stream_ << '\r' << line.str() << "\x1b[K" << std::flush;
     shown_ = true;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <functional>
 #include <iosfwd>
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -36,6 +37,7 @@ private:
   double phase_start_seconds_ = 0.0;
   long phase_start_steps_ = 0;
   bool shown_ = false;
+  double equilibrium_ = std::numeric_limits<double>::quiet_NaN(); // the last ratio checked
 };
 
 } // namespace mpile

@@ -75,7 +75,11 @@ TEST(ProgressReporter, AnEquilibriumPhaseFollowsItsCriterionsTrend) {
     }
     return goal;
   });
-  EXPECT_EQ(out.str(), "t = 0.01 of 2 s  [geostatic]  200 steps/s  ETA 4 s\n");
+  // The line shows how far the state is from the criterion (its last check, at step 1000:
+  // 100 exp(-2.5) = 8.21), not the time against the phase's limit.
+  EXPECT_EQ(out.str(),
+            "out of balance = 8.21 x tolerance (1 ends the phase)  [geostatic]  200 steps/s  ETA "
+            "4 s\n");
 }
 
 TEST(ProgressReporter, APhaseThatMayEndEarlyShowsItsEndOnlyAsABound) {
