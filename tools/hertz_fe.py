@@ -18,6 +18,8 @@ prints the contact time and the peak force against Hertz's and the energy's bala
 import argparse
 
 import numpy as np
+import scipy.sparse
+import scipy.sparse.linalg
 
 RADIUS, YOUNG, POISSON, DENSITY = 0.1, 1e6, 0.3, 1000.0
 
@@ -81,6 +83,100 @@ def stiffness_and_mass(x, elements):
         k += np.einsum("eia,ij,ejb,e->eab", b, d, b, weight)
         np.add.at(m, elements, (DENSITY * weight)[:, None] * n[None, :])
     return k, m
+
+
+def hertz(velocity):
+    """Hertz's maximum approach, contact time and F(delta) per radian for this sphere."""
+    e_star = YOUNG / (1 - POISSON**2)
+    sphere = 4 / 3 * np.pi * RADIUS**3 * DENSITY
+    delta = (15 * sphere * velocity**2 / (16 * e_star * np.sqrt(RADIUS))) ** 0.4
+    return delta, 2.9432751 * delta / velocity, lambda d: 4 / 3 * e_star * np.sqrt(RADIUS) * d**1.5 / (2 * np.pi)
+
+
+def contact_time(delta, force, mass, velocity):
+    """2 * integral of d delta / sqrt(v^2 - (2/M) W(delta)) to where the root vanishes, W = integral of
+    F, for F given at the ascending approaches delta (from 0) and linear between them; returns the
+    time and delta_max. delta = delta_max (1 - tau^2) takes the root's zero out of the integrand."""
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(delta))])
+    stop = 0.5 * mass * velocity**2
+    i = np.searchsorted(work, stop) - 1  # W reaches the kinetic energy in [delta_i, delta_i+1]
+    if i + 1 >= len(delta):
+        raise ValueError("the approaches end before the sphere stops")
+    slope = (force[i + 1] - force[i]) / (delta[i + 1] - delta[i])
+
+    def energy(d):  # W, quadratic in each interval
+        j = np.clip(np.searchsorted(delta, d) - 1, 0, len(delta) - 2)
+        s = d - delta[j]
+        return work[j] + force[j] * s + 0.5 * (force[j + 1] - force[j]) / (delta[j + 1] - delta[j]) * s * s
+
+    # 0.5 slope s^2 + F_i s = stop - W_i
+    rest = stop - work[i]
+    s = 2 * rest / (force[i] + np.sqrt(force[i] ** 2 + 2 * slope * rest))
+    delta_max = delta[i] + s
+    tau = (np.arange(20000) + 0.5) / 20000
+    speed = np.sqrt(np.maximum(velocity**2 - 2 * energy(delta_max * (1 - tau * tau)) / mass, 0.0))
+    return 2 * np.mean(2 * delta_max * tau / speed), delta_max
+
+
+def quasi_static(x, elements, k, m, velocity, steps):
+    """F(delta) of the sphere under the plane's frictionless unilateral contact and the uniform
+    d'Alembert body force -F/M per unit mass that balances it, delta the approach of its centre of
+    mass, from the global stiffness; then the contact time of its rigid-body deceleration."""
+    dofs = np.stack([2 * elements, 2 * elements + 1], axis=2).reshape(len(elements), 8)
+    n = 2 * len(x)
+    stiffness = scipy.sparse.coo_matrix((k.ravel(), (np.repeat(dofs, 8, axis=1).ravel(),
+                                                      np.tile(dofs, (1, 8)).ravel())), shape=(n, n)).tocsr()
+    free = np.setdiff1d(np.arange(n), 2 * np.nonzero(x[:, 0] == 0.0)[0])  # u_r = 0 on the axis
+    weight = np.zeros(n)
+    weight[1::2] = m
+    # [K m_y; m_y^T 0] [w; mu] = [p; 0]: w the deformation under p and the body force -mu m_y that
+    # balances it (mu = sum(p) / M), with the centre of mass fixed.
+    bordered = scipy.sparse.bmat([[stiffness[free][:, free], weight[free][:, None]],
+                                  [weight[free][None, :], None]], format="csc")
+    solve = scipy.sparse.linalg.splu(bordered).solve
+    height = x[:, 1] - x[:, 1].min()
+    count = np.bincount(elements.ravel(), minlength=len(x))
+    outer = np.where(x[:, 0] == 0.0, count < 2, count < 4)
+    delta_hertz, _, _ = hertz(velocity)
+    # Only the outer layer's nodes can touch first (the others lie inside the circle).
+    candidates = np.nonzero(outer & (height < 3 * delta_hertz))[0]
+    where = np.searchsorted(free, 2 * candidates + 1)
+    load = np.zeros((len(free) + 1, len(candidates)))
+    load[where, np.arange(len(candidates))] = 1.0
+    flexibility = solve(load)[where]  # G: y displacement at candidate i from a unit force up at j
+    flexibility = 0.5 * (flexibility + flexibility.T)
+    h = height[candidates]
+    approaches = delta_hertz * np.arange(steps + 1) / (0.7 * steps)  # to 1.43 delta_Hertz
+    forces = np.zeros_like(approaches)
+    active = np.array([np.argmin(h)])
+    widest = 0
+    tolerance = 1e-12 * RADIUS
+    for s, delta in enumerate(approaches[1:], 1):
+        for _ in range(200):
+            reaction = np.linalg.solve(flexibility[np.ix_(active, active)], delta - h[active])
+            if (reaction < 0.0).any():  # released: pulls
+                active = active[reaction >= 0.0]
+                continue
+            gap = h + flexibility[:, active] @ reaction - delta
+            gap[active] = 0.0
+            if (gap < -tolerance).any():  # would pass the plane: held on it
+                active = np.union1d(active, np.nonzero(gap < -tolerance)[0])
+                continue
+            break
+        else:
+            raise RuntimeError("the active set did not settle")
+        forces[s] = reaction.sum()
+        widest = max(widest, x[candidates[active], 0].max())
+        last = (active, reaction)
+    time, delta_max = contact_time(approaches, forces, m.sum(), velocity)
+    # Check at the deepest approach that no node at all (not only the candidates) passes the plane.
+    active, reaction = last
+    load = np.zeros(len(free) + 1)
+    load[where[active]] = reaction
+    deformation = np.zeros(n)
+    deformation[free] = solve(load)[:-1]
+    least_gap = (height + deformation[1::2] - approaches[-1]).min()
+    return approaches, forces, time, delta_max, widest, least_gap, candidates
 
 
 def main():
