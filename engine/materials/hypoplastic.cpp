@@ -229,11 +229,27 @@ void cut_tension(Stress& s, double p_min) {
   }
 }
 
+/// The small-strain stiffness's multiple of L: m_R after a reversal, with the intergranular strain.
+double reversal_multiplier(const HypoplasticParameters& q) {
+  return q.intergranular_strain != 0.0 ? q.m_r : 1.0;
+}
+
+/// An upper bound on the constrained modulus of a tangent: the largest eigenvalue of F^2 I + a^2 s
+/// (x) s is F^2 + a^2 s:s; N adds at most |N| per unit |D|; after a reversal the stiffness is m_R
+/// times L.
+double modulus_bound(const HypoplasticParameters& q, const Tangent& t) {
+  return reversal_multiplier(q) * t.c * (t.f2 + t.a2 * t.s_norm2) + norm(t.n);
+}
+
 } // namespace
 
-HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d) const {
+HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d,
+                                   double* modulus) const {
   const HypoplasticParameters& q = parameters_;
   const Tangent t = hypoplastic_tangent(q, a_, f_b_ratio_, f_b_divisor_, at.stress, at.e);
+  if (modulus != nullptr) {
+    *modulus = modulus_bound(q, t);
+  }
   HypoplasticPoint out;
   out.e = (1.0 + at.e) * (d[RR] + d[YY] + d[TT]);
   const Stress ld = t.apply(d);
@@ -314,12 +330,17 @@ double Hypoplastic::update_point(Stress& stress, double* state,
   }
   // Sand carries no tension: below p_min the stress is set isotropic at p_min, so that s = sigma /
   // tr(sigma) stays defined (docs/hypoplasticity.md, "Low pressure").
+  // True where it changed the stress.
   auto floor_pressure = [p_min](Stress& s) {
     if (mean_pressure(s) < p_min) {
       s = Stress{-p_min, -p_min, -p_min, 0.0, 0.0, 0.0};
-    } else if (!compressive(s, 1e-3 * p_min)) {
-      cut_tension(s, p_min);
+      return true;
     }
+    if (!compressive(s, 1e-3 * p_min)) {
+      cut_tension(s, p_min);
+      return true;
+    }
+    return false;
   };
   floor_pressure(point.stress);
   // Substeps as fractions of the increment, Heun's method with Euler's embedded error; the last
@@ -329,6 +350,10 @@ double Hypoplastic::update_point(Stress& stress, double* state,
   constexpr double smallest = 1e-3;
   double t = 0.0;
   double dt = std::clamp(state[SUBSTEP], smallest, 1.0);
+  // The time step's modulus from the last accepted substep's second tangent (at its Euler state,
+  // within the substep of the end): a third tangent at the final state cost a third of the update.
+  // NaN where that substep ended at the floor or was cut: the tangent is then taken at the end.
+  double modulus = std::numeric_limits<double>::quiet_NaN();
   while (t < 1.0) {
     dt = std::min(dt, 1.0 - t);
     const HypoplasticPoint k1 = rate(point, d);
@@ -343,8 +368,9 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     // rejected substeps per update at a free surface, whose particles sit at the floor.
     HypoplasticPoint next = euler;
     double error = 0.0;
+    double attempt_modulus = std::numeric_limits<double>::quiet_NaN();
     if (mean_pressure(euler.stress) >= p_min && compressive(euler.stress, 1e-3 * p_min)) {
-      const HypoplasticPoint k2 = rate(euler, d);
+      const HypoplasticPoint k2 = rate(euler, d, &attempt_modulus);
       Stress stress_error{}, h_error{};
       next = point;
       for (std::size_t k = 0; k < 6; ++k) {
@@ -365,7 +391,8 @@ double Hypoplastic::update_point(Stress& stress, double* state,
       continue;
     }
     point = next;
-    floor_pressure(point.stress);
+    modulus =
+        floor_pressure(point.stress) ? std::numeric_limits<double>::quiet_NaN() : attempt_modulus;
     // No state is looser than e_i(p): sand stretched past it at the floor pressure (beside a
     // cone's shoulder) opens gaps, not pores. Unbounded, its void ratio reached 15 in the CPT
     // chamber and f_e = (e_c / e)^beta took its stiffness away (docs/hypoplasticity.md).
@@ -394,7 +421,7 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     state[H_FIRST + k] = point.h[static_cast<std::size_t>(k)];
   }
   state[SUBSTEP] = std::min(dt, 1.0);
-  return constrained_modulus(stress, state);
+  return std::isnan(modulus) ? constrained_modulus(stress, state) : modulus;
 }
 
 namespace {
@@ -412,18 +439,11 @@ Tangent floored_tangent(const HypoplasticParameters& q, double a, double f_b_rat
   return hypoplastic_tangent(q, a, f_b_ratio, f_b_divisor, s, e > 0.0 ? e : q.void_ratio);
 }
 
-/// The small-strain stiffness's multiple of L: m_R after a reversal, with the intergranular strain.
-double reversal_multiplier(const HypoplasticParameters& q) {
-  return q.intergranular_strain != 0.0 ? q.m_r : 1.0;
-}
-
 } // namespace
 
 double Hypoplastic::constrained_modulus(const Stress& stress, const double* state) const {
-  const Tangent t = floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state);
-  // The largest eigenvalue of F^2 I + a^2 s (x) s is F^2 + a^2 s:s; N adds at most |N| per unit
-  // |D|; after a reversal the stiffness is m_R times L.
-  return reversal_multiplier(parameters_) * t.c * (t.f2 + t.a2 * t.s_norm2) + norm(t.n);
+  return modulus_bound(parameters_,
+                       floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state));
 }
 
 double Hypoplastic::shear_modulus(const Stress& stress, const double* state) const {

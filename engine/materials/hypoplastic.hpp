@@ -82,8 +82,10 @@ public:
   double update_point(Stress& stress, double* state, const StrainIncrement& strain) const;
 
   /// The rate (per unit of the strain-rate tensor D, tension positive, tensor shear) of stress,
-  /// void ratio and intergranular strain at a state: the model's equations, for tests.
-  HypoplasticPoint rate(const HypoplasticPoint& at, const Stress& d) const;
+  /// void ratio and intergranular strain at a state: the model's equations. With `modulus`, also
+  /// the bound on the constrained modulus constrained_modulus gives, from the same tangent.
+  HypoplasticPoint rate(const HypoplasticPoint& at, const Stress& d,
+                        double* modulus = nullptr) const;
 
   /// Bauer's limit void ratio e_x0 exp(-(3 p / h_s)^n) at mean pressure p (compression positive).
   double limit_void_ratio(double e_x0, double p) const;
