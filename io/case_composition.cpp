@@ -182,6 +182,47 @@ TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::s
 
 } // namespace
 
+namespace {
+
+/// The element of an array of tables a --set path names: by its index (phases.1) or by its
+/// `name` (phases.installation), with the names it has and the nearest one when none matches.
+TomlValue& element(TomlValue::array_type& array, const std::string& part, const std::string& origin,
+                   const std::string& path) {
+  if (is_index(part)) {
+    if (std::stoul(part) >= array.size()) {
+      throw CaseError(origin + ": " + path + ": the array has " + std::to_string(array.size()) +
+                      " elements, numbered from 0");
+    }
+    return array[std::stoul(part)];
+  }
+  std::string names, nearest;
+  std::size_t nearest_edits = 3; // a suggestion within two edits, as for keys
+  for (TomlValue& item : array) {
+    if (!item.is_table()) {
+      continue;
+    }
+    const auto name = item.as_table().find("name");
+    if (name == item.as_table().end() || !name->second.is_string()) {
+      continue;
+    }
+    const std::string text = name->second.as_string().str;
+    if (text == part) {
+      return item;
+    }
+    names += (names.empty() ? "" : ", ") + text;
+    if (const std::size_t edits = edit_distance(part, text); edits < nearest_edits) {
+      nearest_edits = edits;
+      nearest = text;
+    }
+  }
+  throw CaseError(origin + ": " + path + ": no element is named '" + part + "'" +
+                  (names.empty() ? " (its elements have no names; give an index from 0)"
+                                 : " (names: " + names + ")") +
+                  (nearest.empty() ? "" : "; did you mean '" + nearest + "'?"));
+}
+
+} // namespace
+
 void apply_override(TomlValue& root, const std::string& assignment) {
   const std::string origin = "--set " + assignment;
   const std::size_t equals = assignment.find('=');
@@ -224,12 +265,7 @@ void apply_override(TomlValue& root, const std::string& assignment) {
     const std::string& part = parts[i];
     path += (path.empty() ? "" : ".") + part;
     if (node->is_array()) {
-      auto& array = node->as_array();
-      if (!is_index(part) || std::stoul(part) >= array.size()) {
-        throw CaseError(origin + ": " + path + ": the array has " + std::to_string(array.size()) +
-                        " elements, numbered from 0");
-      }
-      node = &array[std::stoul(part)];
+      node = &element(node->as_array(), part, origin, path);
       continue;
     }
     if (!node->is_table()) {
@@ -244,12 +280,7 @@ void apply_override(TomlValue& root, const std::string& assignment) {
   }
   const TomlValue& value = parsed.as_table().at("value");
   if (node->is_array()) {
-    auto& array = node->as_array();
-    if (!is_index(parts.back()) || std::stoul(parts.back()) >= array.size()) {
-      throw CaseError(origin + ": " + key + ": the array has " + std::to_string(array.size()) +
-                      " elements, numbered from 0");
-    }
-    array[std::stoul(parts.back())] = value;
+    element(node->as_array(), parts.back(), origin, key) = value;
   } else if (node->is_table()) {
     node->as_table()[parts.back()] = value;
   } else {

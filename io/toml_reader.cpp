@@ -40,6 +40,16 @@ std::string type_name(const TomlValue& v) {
   }
 }
 
+bool is_number(const TomlValue& v) {
+  return v.is_floating() || v.is_integer();
+}
+
+double as_number(const TomlValue& v) {
+  return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
+}
+
+} // namespace
+
 /// Levenshtein distance (insertions, deletions, substitutions).
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -57,16 +67,6 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   }
   return row[b.size()];
 }
-
-bool is_number(const TomlValue& v) {
-  return v.is_floating() || v.is_integer();
-}
-
-double as_number(const TomlValue& v) {
-  return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
-}
-
-} // namespace
 
 namespace {
 

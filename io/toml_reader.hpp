@@ -125,4 +125,7 @@ std::string key_excerpt(const std::string& key);
 /// the bounds above (or with lines over 16 384 characters) is refused before the parser sees it.
 TomlValue parse_toml(const std::string& text, const std::string& file);
 
+/// Levenshtein distance (insertions, deletions, substitutions): how near a misspelt name is.
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
 } // namespace mpile

@@ -229,6 +229,21 @@ TEST(CaseComposition, SetReplacesOneValueAnywhereAndIsRecorded) {
             0.01);
 }
 
+// An element of an array of tables by its name as well as by its index: phases.rest is phases.1;
+// a name it does not have lists those it has and the nearest.
+TEST(CaseComposition, SetTakesAnArrayElementByItsName) {
+  const Files f = write_files("set_by_name");
+  const CaseSpec spec = read_case_file(f.case_file.string(), {"phases.rest.duration=0.07"});
+  EXPECT_EQ(spec.phases.at(1).duration, 0.07);
+  EXPECT_EQ(spec.phases.at(0).duration, 0.2);
+  EXPECT_EQ(error_of(f.case_file.string(), {"phases.rst.duration=1"}),
+            "--set phases.rst.duration=1: phases.rst: no element is named 'rst' (names: settle, "
+            "rest); did you mean 'rest'?");
+  EXPECT_EQ(error_of(f.case_file.string(), {"phases.consolidation.duration=1"}),
+            "--set phases.consolidation.duration=1: phases.consolidation: no element is named "
+            "'consolidation' (names: settle, rest)");
+}
+
 TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
   const Files f = write_files("set_errors");
   const std::string path = f.case_file.string();
