@@ -16,7 +16,9 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 
@@ -436,18 +438,14 @@ TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
 // 288 kPa kept to within the increment's own change (1 %: 1e-6 of strain on a modulus of order 100
 // MPa is 0.1 kPa, and the cut moves the zero principal stress only).
 TEST(Hypoplastic, AStressWithATensilePrincipalStressIsCutNotTurnedToNaN) {
-  HypoplasticParameters q = karlsruhe_fine_sand(0.60, true);
-  // The seed's sand (cases/base/seed_sand_hypoplastic.toml).
-  q.critical_friction_angle = 30.0;
-  q.granular_hardness = 2300e6;
-  q.exponent = 0.285;
-  q.e_d0 = 0.53;
-  q.e_c0 = 0.88;
-  q.e_i0 = 1.01;
-  q.alpha = 0.15;
-  q.beta = 1.0;
-  q.density = 1656.25;
-  const Hypoplastic model(q);
+  // The seed's sand as shipped (cases/base/seed_sand_hypoplastic.toml, through the quick GDP case).
+  const CaseSpec spec =
+      read_case_file((source / "cases/monopile/gdp_quick_hypoplastic.toml").string());
+  const auto sand = std::find_if(spec.materials.begin(), spec.materials.end(),
+                                 [](const MaterialSpec& m) { return m.name == "sand"; });
+  ASSERT_NE(sand, spec.materials.end());
+  const std::unique_ptr<Material> material = create_material(sand->type, sand->parameters);
+  const auto& model = dynamic_cast<const Hypoplastic&>(*material);
   Stress stress{
       -154890.93902854281, -133354.99789359732, 255.37618107582324, 143459.34013508991, 0.0, 0.0};
   double state[8] = {0.60676282489379174,
