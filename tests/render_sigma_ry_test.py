@@ -15,12 +15,21 @@ wall (body 1, 0.01 m particles) on 0.30 < r < 0.32 m from y = 1.2 m up, with sig
   four times further apart);
 - r and y axes labelled in metres, a colour bar in kPa, symmetric about zero;
 - the pile drawn in grey and its tip's depth (y = 1.2 m) found;
-- red, blue, near-white and grey where the field and the pile put them, white above the soil.
+- red, blue, near-white and grey where the field and the pile put them, white above the soil;
+- the default colour range (the 99th percentile, 37 kPa) clips the field's -39.5 to 38.5 kPa: the
+  colour bar's label says so.
+
+A second snapshot, 20 x 20 particles (0.05 m) on 0 < r, y < 1 m with sigma_ry = 30 kPa/m * (r - y)
+but -119 kPa at the bottom-left particle and 222 kPa at the top-right one, is drawn on four colour
+ranges: -44.7..44.7, -10..300, -200..100 and -200..300 kPa. The colour bar must end in arrows on the
+clipped sides only ("both", "min", "max", "neither": the corner of the bar's box beside an arrow's
+tip stays white, beside a plain end it takes the bar's colour), its label must give the clipping and
+the field's range ("clipped at +-44.7 kPa; field -119 to 222 kPa") or only the array where nothing
+is clipped, and the two outliers must take the end colours.
 
 Prints "all ok" at the end.
 """
 import importlib.util
-import os
 import sys
 from pathlib import Path
 
@@ -55,6 +64,59 @@ def write_snapshot(path):
                          "render_sigma_ry_test")
 
 
+def write_clipped_snapshot(path):
+    """A field of -28.5 to 28.5 kPa with one outlier at each end (-119 and 222 kPa)."""
+    centres = 0.025 + 0.05 * np.arange(20)
+    r, y = (a.ravel() for a in np.meshgrid(centres, centres))
+    sigma_ry = 3e4 * (r - y)
+    sigma_ry[np.argmin(r + y)] = -119e3
+    sigma_ry[np.argmax(r + y)] = 222e3
+    write_point_snapshot(path, r, y, {"sigma_ry": sigma_ry, "volume": 0.05**2 * r}, "render_sigma_ry_test")
+
+
+# Colour range (kPa), the colour bar's extend and label, and whether an arrow ends it at the bottom
+# and at the top.
+CLIPPED_CASES = (
+    ((-44.7, 44.7), "both", "sigma_ry [kPa], clipped at \u00b144.7 kPa;\nfield -119 to 222 kPa", True, True),
+    ((-10.0, 300.0), "min", "sigma_ry [kPa], clipped at -10 kPa;\nfield -119 to 222 kPa", True, False),
+    ((-200.0, 100.0), "max", "sigma_ry [kPa], clipped at 100 kPa;\nfield -119 to 222 kPa", False, True),
+    ((-200.0, 300.0), "neither", "sigma_ry [kPa]", False, False),
+)
+
+
+def check_clipping(tool, out, check):
+    snapshot = out / "clipped_000000.vtu"
+    write_clipped_snapshot(snapshot)
+    for (low, high), extend, label, arrow_below, arrow_above in CLIPPED_CASES:
+        png = out / f"clipped_{low:g}_{high:g}.png"
+        args = tool.parse_arguments([str(snapshot), "--out", str(png), "--window", "0", "1", "0", "1",
+                                     "--range", f"{low:g}", f"{high:g}"])
+        picture = tool.render(args)
+        picture.figure.savefig(png, dpi=tool.DPI)
+        image = np.round(tool.plt.imread(png) * 255).astype(np.uint8)
+        where = f"range {low:g} to {high:g} kPa:"
+        bar = picture.colour_bar
+        check(bar.extend == extend, f"{where} colour bar extend {bar.extend!r}, expected {extend!r}")
+        text = bar.ax.get_ylabel()
+        check(text == label,
+              f"{where} colour bar labelled {text!r}" + ("" if text == label else f", expected {label!r}"))
+        # The bar's box (25 pixels right of the field, 22 wide, as tall as the field): its left
+        # corners, 2 pixels in, are white beside an arrow's tip and coloured beside a plain end.
+        column = picture.left + picture.columns + 25 + 2
+        top, bottom = picture.height - picture.bottom - picture.rows + 2, picture.height - picture.bottom - 3
+        for row, arrow, end in ((bottom, arrow_below, "bottom"), (top, arrow_above, "top")):
+            name = tool.colour_name(image[row, column])
+            expected = "white" if arrow else ("blue" if end == "bottom" else "red")
+            check(name == expected, f"{where} the bar's {end} corner is {name}, expected {expected} "
+                  f"({'an arrow' if arrow else 'a plain end'})")
+        if extend == "both":
+            for (r, y), expected in (((0.025, 0.025), "blue"), ((0.975, 0.975), "red")):
+                row, column = picture.pixel(r, y)
+                name = tool.colour_name(image[row, column])
+                check(name == expected, f"{where} outlier at ({r}, {y}) is {name}, expected {expected}")
+        tool.plt.close(picture.figure)
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -87,7 +149,10 @@ def main():
     check(picture.axes.get_ylabel() == "y [m]", f"y axis labelled {picture.axes.get_ylabel()!r}")
     check(len(picture.axes.get_xticklabels()) > 1 and len(picture.axes.get_yticklabels()) > 1, "both axes have ticks")
     label = picture.colour_bar.ax.get_ylabel()
-    check(label == "sigma_ry [kPa]", f"colour bar labelled {label!r}")
+    expected = "sigma_ry [kPa], clipped at \u00b137 kPa;\nfield -39.5 to 38.5 kPa"
+    check(label == expected,
+          f"colour bar labelled {label!r}" + ("" if label == expected else f", expected {expected!r}"))
+    check(picture.colour_bar.extend == "both", f"colour bar extend {picture.colour_bar.extend!r}, expected 'both'")
     norm = picture.colour_bar.mappable.norm
     check(norm.vmin < 0 < norm.vmax and abs(norm.vmin + norm.vmax) < 1e-9 * norm.vmax,
           f"colour range {norm.vmin:.4g} to {norm.vmax:.4g} kPa symmetric about zero (the pile's 1e6 kPa kept off)")
@@ -98,6 +163,8 @@ def main():
         row, column = picture.pixel(r, y)
         name = tool.colour_name(image[row, column])
         check(name == expected, f"pixel at ({r}, {y}) is {name}, expected {expected}")
+    tool.plt.close(picture.figure)
+    check_clipping(tool, out, check)
     if failures:
         print(f"{len(failures)} failed")
         return 1

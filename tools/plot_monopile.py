@@ -14,7 +14,9 @@
 Only the rows of the last phase (the installation) are used; penetration is the pile's total
 downward displacement (it is held still before), time counts from the start of the installation. Forces are those of the soil on the pile per radian of circumference (r outward, y up,
 theta along the spin). Ratios are left out where |F_r| is below 1e-3 of its maximum over the
-installation. --table prints, at the first row at or beyond each penetration, the forces (Fr, Fy,
+installation; the friction coefficient (--friction) is a wide light-grey dashed line beneath their
+curves, which carry markers (a shape per run, at staggered penetrations), so that a curve lying on
+it stays in view. --table prints, at the first row at or beyond each penetration, the forces (Fr, Fy,
 Ft = F_theta) on the tip, external and internal shaft in kN/rad and the ratios Fy/Fr = |F_y| / |F_r|
 and Fyt/Fr = sqrt(F_y^2 + F_theta^2) / |F_r| on both shafts, one line per run and penetration.
 
@@ -70,21 +72,52 @@ def force_figure(runs, component, symbol, surfaces, path):
     save(figure, path)
 
 
-def ratio_figure(runs, which, ylabel, shafts, friction, smooth, path):
+# The ratio figures' line at the contact friction coefficient lies beneath the curves, wide and light,
+# so that a curve lying exactly on it (a shaft sliding all along, F_y / F_r = mu) stays in view on
+# top of it; each curve also carries its own marker, at staggered penetrations.
+FRICTION_LINE = dict(color="0.6", linestyle="--", linewidth=2.2, zorder=1.5)
+CURVE_ZORDER = 3.0
+MARKERS = ("o", "s", "^", "v", "D", "P", "X", "<", ">")
+MARKS_PER_CURVE = 10
+
+
+def mark_rows(penetration, index, count, marks=MARKS_PER_CURVE):
+    """Rows at which to mark run `index` of `count`: the first at or beyond each of `marks` penetrations
+    evenly spaced over its range, shifted by index / count of a spacing so that runs whose curves
+    coincide still show each its own markers."""
+    finite = np.isfinite(penetration)
+    if not finite.any():
+        return []
+    low, high = np.min(penetration[finite]), np.max(penetration[finite])
+    if high <= low:
+        return [int(np.flatnonzero(finite)[0])]
+    spacing = (high - low) / marks
+    rows = []
+    for target in low + spacing * (np.arange(marks) + (index + 0.5) / count):
+        reached = np.flatnonzero(finite & (penetration >= target))
+        if reached.size and (not rows or reached[0] != rows[-1]):
+            rows.append(int(reached[0]))
+    return rows
+
+
+def draw_ratio_figure(runs, which, ylabel, shafts, friction, smooth):
+    """The figure of one friction ratio against penetration on each shaft, not yet saved."""
     figure, axes = plt.subplots(1, len(shafts), figsize=(5.2 * len(shafts), 4.4), sharex=True, sharey=True)
     shown = []
     for ax, surface in zip(axes, shafts):
         for index, run in enumerate(runs):
             raw = shaft_ratios(run.forces[surface])[which]
             shown.append(raw)
-            ax.plot(run.penetration, raw, color=f"C{index}", linewidth=0.6, alpha=0.5 if smooth else 1.0,
-                    label=run.label)
+            marks = dict(marker=MARKERS[index % len(MARKERS)], markersize=4.5,
+                         markevery=mark_rows(run.penetration, index, len(runs)))
+            ax.plot(run.penetration, raw, color=f"C{index}", linewidth=0.8 if smooth <= 0 else 0.6,
+                    alpha=0.5 if smooth else 1.0, zorder=CURVE_ZORDER, label=run.label,
+                    **(marks if smooth <= 0 else {}))
             if smooth > 0:
                 ax.plot(run.penetration, smoothed_ratios(run.forces[surface], run.time, smooth)[which],
-                        color=f"C{index}", linewidth=1.8,
-                        label=f"{run.label}, running mean over {smooth:g} s")
-        ax.axhline(friction, color="black", linestyle="--", linewidth=1.0,
-                   label=f"contact friction coefficient {friction:g}")
+                        color=f"C{index}", linewidth=1.8, zorder=CURVE_ZORDER + 0.5,
+                        label=f"{run.label}, running mean over {smooth:g} s", **marks)
+        ax.axhline(friction, label=f"contact friction coefficient {friction:g}", **FRICTION_LINE)
         ax.set_title(surface.replace("_", " "))
         ax.set_xlabel("penetration [m]")
         ax.grid(True, alpha=0.3)
@@ -95,7 +128,12 @@ def ratio_figure(runs, which, ylabel, shafts, friction, smooth, path):
     axes[0].set_ylim(0.0, top if top > 0.0 else 1.0)
     axes[0].set_ylabel(f"{ylabel} [-]\n({CONVENTION})", fontsize=9)
     axes[0].legend(fontsize=8)
-    save(figure, path)
+    figure.tight_layout()
+    return figure
+
+
+def ratio_figure(runs, which, ylabel, shafts, friction, smooth, path):
+    save(draw_ratio_figure(runs, which, ylabel, shafts, friction, smooth), path)
 
 
 def penetration_figure(runs, path):

@@ -14,9 +14,11 @@ the snapshot, else told by --geometry, else guessed from the particles' spacing;
 volumes gives every particle the median spacing of its neighbours. Larger particles are painted
 first, so that the fine band's detail stays on top.
 
-The colour range defaults to +/- the 99th percentile of |value| inside the window; the rigid pile's
-particles can be left out (--exclude-body) or drawn in grey over their domains with their outline
-and the tip's depth marked (--pile-body) so they stay off the scale.
+The colour range defaults to +/- the 99th percentile of |value| inside the window; values beyond it
+take the end colours, and the colour bar then ends in arrows on the clipped side(s) and its label
+gives the clipping and the field's own range in the window ("clipped at +-44.7 kPa; field -119 to
+222 kPa"). The rigid pile's particles can be left out (--exclude-body) or drawn in grey over their
+domains with their outline and the tip's depth marked (--pile-body) so they stay off the scale.
 --check-pixel R Y prints the colour of the image at the physical point (r, y): red, light red,
 white, light blue, blue, grey (pile) or other. --coverage prints the fraction of the image's pixels
 inside the soil's bounding box (its particles' domains, within the window) that carry a colour.
@@ -182,6 +184,31 @@ def diverging_map(low, high):
     return colours, norm
 
 
+def clipped_ends(field, low, high):
+    """Matplotlib's colour bar `extend` for a field of range `field` (kPa) drawn on low..high: the
+    ends beyond which some values were drawn in the end colours ("neither", "min", "max", "both")."""
+    below, above = field[0] < low, field[1] > high
+    return "both" if below and above else "min" if below else "max" if above else "neither"
+
+
+def kpa(value):
+    """A value in kPa to three significant digits, without an exponent: 44.7, -119, 222, 0.0123."""
+    return f"{value:.0f}" if abs(value) >= 100.0 else f"{value:.3g}"
+
+
+def bar_label(array, field, low, high):
+    """The colour bar's label: the array and its unit and, where the colour range is narrower than
+    the field, the clipped end(s) and the field's own range, so that the picture says it is clipped."""
+    ends = clipped_ends(field, low, high)
+    if ends == "neither":
+        return f"{array} [kPa]"
+    if ends == "both":
+        at = f"\u00b1{kpa(high)}" if np.isclose(low, -high) else f"{kpa(low)} and {kpa(high)}"
+    else:
+        at = kpa(low if ends == "min" else high)
+    return f"{array} [kPa], clipped at {at} kPa;\nfield {kpa(field[0])} to {kpa(field[1])} kPa"
+
+
 def colour_name(rgb):
     """Red and blue are the outer ~30 % of each half of the map; light red and light blue are nearer
     the middle, so a value drawn at the wrong place or with the wrong scale reads differently."""
@@ -275,6 +302,8 @@ def render(args):
         sys.exit(f"render_sigma_ry: no particles of {path} to colour inside r {r0:g}..{r1:g} m, y {y0:g}..{y1:g} m")
     print(f"{args.array} in window: {values[inside].min():.6g} to {values[inside].max():.6g} kPa "
           f"({np.count_nonzero(inside)} particles)")
+    finite = values[inside][np.isfinite(values[inside])]
+    field = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 0.0)  # kPa
     if args.range:
         low, high = args.range
     else:
@@ -351,8 +380,9 @@ def render(args):
         print(f"pile tip at y = {tip:.6g} m")
     mappable = plt.cm.ScalarMappable(norm=norm, cmap=cmap)
     bar_axes = figure.add_axes(((left + columns + 25) / width, bottom / height, 22 / width, rows / height))
-    colour_bar = figure.colorbar(mappable, cax=bar_axes)
-    colour_bar.set_label(f"{args.array} [kPa]")
+    extend = clipped_ends(field, low, high)
+    colour_bar = figure.colorbar(mappable, cax=bar_axes, extend=extend)
+    colour_bar.set_label(bar_label(args.array, field, low, high))
     when_text = f" at t = {time:g} s" if time is not None else f" in {os.path.basename(path)}"
     figure.suptitle(args.title or f"{args.array}{when_text}, r {r0:.3g} to {r1:.3g} m, y {y0:.3g} to {y1:.3g} m",
                     y=1.0 - 0.5 * TITLE_PIXELS / height, va="center", fontsize=13)
