@@ -106,6 +106,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   sweep->add_option("--profile", sweep_options.profile,
                     "a Snakemake profile directory (a cluster's submission settings)");
+  sweep->add_flag("--strict", sweep_options.strict,
+                  "refuse the sweep (exit status 2) on any variant's plausibility warning of units "
+                  "instead of printing it");
   sweep->add_flag("--prepare", sweep_options.prepare,
                   "write the workflow and print the Snakemake command, run nothing");
 

@@ -2,6 +2,7 @@
 
 #include "app/run_command.hpp"
 #include "io/case_error.hpp"
+#include "io/case_warnings.hpp"
 #include "io/replace_file.hpp"
 #include "io/sweep_file.hpp"
 
@@ -239,11 +240,17 @@ std::string executable_path() {
 
 int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& err) {
   SweepSpec sweep;
+  std::vector<CaseWarning> warnings;
   try {
     sweep = read_sweep_file(options.file);
-    validate_sweep(sweep);
+    warnings = validate_sweep(sweep);
   } catch (const CaseError& e) {
     err << "mpile: " << e.what() << '\n';
+    return exit_bad_input;
+  }
+  // The variants' warnings before anything runs, as `mpile run` gives a case's.
+  print_case_warnings(err, warnings, options.strict);
+  if (options.strict && refused_when_strict(warnings)) {
     return exit_bad_input;
   }
   const fs::path directory = options.output_directory.empty()

@@ -11,6 +11,7 @@ struct SweepOptions {
   int cores = 0;                // cores Snakemake may fill with runs; 0: all
   bool prepare = false;         // write the workflow and say how to run it, run nothing
   std::string profile;          // a Snakemake profile (a cluster's submission settings)
+  bool strict = false;          // refuse the sweep on any variant's plausibility warning of units
 };
 
 /// `mpile sweep`: reads and validates a sweep file, writes its workflow (sweep.toml, Snakefile)

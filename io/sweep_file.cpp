@@ -275,10 +275,12 @@ SweepSpec read_sweep_file(const std::string& path) {
   return sweep;
 }
 
-void validate_sweep(const SweepSpec& sweep) {
+std::vector<CaseWarning> validate_sweep(const SweepSpec& sweep) {
   const std::string case_path = (std::filesystem::path(sweep.file).parent_path() / sweep.case_path)
                                     .lexically_normal()
                                     .string();
+  // Each warning's text once, in the order first met, with the variants that have it.
+  std::vector<std::pair<CaseWarning, std::vector<std::string>>> seen;
   for (const SweepVariant& variant : sweep.variants) {
     CaseSpec spec;
     try {
@@ -298,6 +300,15 @@ void validate_sweep(const SweepSpec& sweep) {
       throw CaseError(sweep.file + ":" + std::to_string(culprit->line) + ": parameters.\"" +
                       culprit->key + "\": variant " + variant.id + " (" + values +
                       ") cannot run: " + e.what());
+    }
+    for (const CaseWarning& w : spec.warnings) {
+      const auto same = std::find_if(seen.begin(), seen.end(),
+                                     [&](const auto& f) { return f.first.text == w.text; });
+      if (same == seen.end()) {
+        seen.push_back({w, {variant.id}});
+      } else {
+        same->second.push_back(variant.id);
+      }
     }
     for (std::size_t i = 0; i < sweep.gather.size(); ++i) {
       const GatherSpec& g = sweep.gather[i];
@@ -321,6 +332,18 @@ void validate_sweep(const SweepSpec& sweep) {
       }
     }
   }
+  std::vector<CaseWarning> warnings;
+  for (auto& [warning, ids] : seen) {
+    std::string which;
+    for (const std::string& id : ids) {
+      which += (which.empty() ? "" : ", ") + id;
+    }
+    warning.text += ids.size() == sweep.variants.size()
+                        ? " [every variant]"
+                        : " [variant" + std::string(ids.size() > 1 ? "s " : " ") + which + "]";
+    warnings.push_back(warning);
+  }
+  return warnings;
 }
 
 } // namespace mpile

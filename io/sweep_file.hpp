@@ -5,6 +5,7 @@
 // strictly as a case file, and every variant is composed (base, --set) and read before anything
 // runs, so a wrong key path or value is refused naming the sweep file's line.
 
+#include "io/case_spec.hpp"
 #include "io/toml_reader.hpp"
 
 #include <optional>
@@ -60,7 +61,9 @@ std::string toml_text(const TomlValue& value);
 SweepSpec read_sweep_file(const std::string& path);
 
 /// Composes and reads the case of every variant (CaseError naming the parameter's line and the
-/// values of the variant that cannot run), and checks that the gathered bodies exist.
-void validate_sweep(const SweepSpec& sweep);
+/// values of the variant that cannot run), and checks that the gathered bodies exist. Returns the
+/// variants' plausibility warnings, each once, with the variants that have it ("[variants v02,
+/// v05]", "[every variant]").
+std::vector<CaseWarning> validate_sweep(const SweepSpec& sweep);
 
 } // namespace mpile

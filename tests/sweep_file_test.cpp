@@ -1,12 +1,15 @@
 // Sweep files: the variants they expand to, the values --set receives, and bad inputs refused
 // with the file, line and key before anything runs.
+#include "app/sweep_command.hpp"
 #include "io/case_error.hpp"
 #include "io/sweep_file.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 namespace mpile {
@@ -156,6 +159,38 @@ TEST(SweepFile, TwoParametersSweepingOneKeyAreRefused) {
         << error;
     EXPECT_NE(error.find("a key is swept by one entry only"), std::string::npos) << error;
   }
+}
+
+// A variant's implausible value is warned of before anything runs, naming the variants that have
+// it; a warning of the case itself is every variant's; `mpile sweep --strict` refuses the sweep.
+TEST(SweepFile, TheVariantsWarningsAreShownOnceWithTheVariantsAndStrictRefusesThem) {
+  const auto directory = fresh_directory("sweep_file_warnings");
+  const auto path = directory / "sweep.toml";
+  std::ofstream(path) << "case = \"" << (source / "cases/monopile/gdp_quick.toml").string()
+                      << "\"\n[parameters]\n\"monopile.friction\" = [0.4, 21.8, 0.3]\n";
+  const std::vector<CaseWarning> warnings = validate_sweep(read_sweep_file(path.string()));
+  std::string units, notes;
+  for (const CaseWarning& w : warnings) {
+    (w.kind == CaseWarning::Kind::units ? units : notes) += w.text + "\n";
+  }
+  EXPECT_NE(units.find("monopile.friction: friction = 21.8 is a coefficient mu = tan(delta)"),
+            std::string::npos)
+      << units;
+  EXPECT_NE(units.find("did you mean tan(21.8 deg) = 0.40? [variant v02]\n"), std::string::npos)
+      << units;
+  EXPECT_EQ(std::count(units.begin(), units.end(), '\n'), 1) << units;
+  // The quick case's one-cell wall is noted for all three.
+  EXPECT_NE(notes.find("the wall is one cell wide"), std::string::npos) << notes;
+  EXPECT_NE(notes.find("[every variant]\n"), std::string::npos) << notes;
+
+  SweepOptions options;
+  options.file = path.string();
+  options.output_directory = (directory / "out").string();
+  options.strict = true;
+  std::ostringstream out, err;
+  EXPECT_EQ(sweep_command(options, out, err), 2) << err.str();
+  EXPECT_NE(err.str().find("mpile: error (--strict): "), std::string::npos) << err.str();
+  EXPECT_FALSE(std::filesystem::exists(directory / "out")); // refused before anything is written
 }
 
 TEST(SweepFile, AVariantTheCaseRefusesNamesTheParameterLineAndItsValues) {
