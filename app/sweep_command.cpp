@@ -258,6 +258,21 @@ int sweep_command(const SweepOptions& options, std::ostream& out, std::ostream& 
                                  : fs::path(options.output_directory);
   const std::string case_path =
       fs::absolute(fs::path(options.file).parent_path() / sweep.case_path).lexically_normal();
+  // Snakemake holds a lock in .snakemake/locks while it runs a workflow in the directory, and
+  // leaves it behind when killed. Seen before the workflow files are written, so that a running
+  // sweep's Snakefile is not replaced under it and the user reads what to do, not Snakemake's
+  // raw lock error after the workflow was rewritten.
+  std::error_code lock_error;
+  const fs::path locks = directory / ".snakemake" / "locks";
+  if (fs::is_directory(locks, lock_error) && !fs::is_empty(locks, lock_error)) {
+    err << "mpile: " << directory.string()
+        << ": another sweep is running in this directory (Snakemake's lock in .snakemake/locks); "
+           "wait for it to end, or, if none is running (a sweep that was killed), remove the lock "
+           "with: snakemake --snakefile "
+        << (directory / "Snakefile").string() << " --directory " << directory.string()
+        << " --unlock\n";
+    return exit_failure;
+  }
   try {
     fs::create_directories(directory / "variants");
     write_file(directory / "sweep.toml", sweep_record(sweep, case_path, executable_path()));

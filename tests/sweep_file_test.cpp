@@ -193,6 +193,27 @@ TEST(SweepFile, TheVariantsWarningsAreShownOnceWithTheVariantsAndStrictRefusesTh
   EXPECT_FALSE(std::filesystem::exists(directory / "out")); // refused before anything is written
 }
 
+// A directory another sweep is running in (Snakemake's lock present) is named with what to do, and
+// nothing of the running workflow is rewritten.
+TEST(SweepFile, ASweepIntoABusyDirectoryIsRefusedBeforeItRewritesTheWorkflow) {
+  const std::string path = write_sweep("busy", good);
+  const auto directory = std::filesystem::path(path).parent_path() / "out";
+  std::filesystem::create_directories(directory / ".snakemake" / "locks");
+  std::ofstream(directory / ".snakemake" / "locks" / "0.input.lock") << "variants/v01/finished\n";
+  std::ofstream(directory / "Snakefile") << "# the running sweep's\n";
+  SweepOptions options;
+  options.file = path;
+  options.output_directory = directory.string();
+  std::ostringstream out, err;
+  EXPECT_EQ(sweep_command(options, out, err), 1);
+  EXPECT_NE(err.str().find(": another sweep is running in this directory (Snakemake's lock in "
+                           ".snakemake/locks); wait for it to end, or"),
+            std::string::npos)
+      << err.str();
+  EXPECT_NE(err.str().find(" --unlock\n"), std::string::npos) << err.str();
+  EXPECT_EQ(read_text(directory / "Snakefile"), "# the running sweep's\n");
+}
+
 TEST(SweepFile, AVariantTheCaseRefusesNamesTheParameterLineAndItsValues) {
   // The case file is read with each variant's --set values before anything runs: a key the case
   // does not have, or a value it refuses, names the sweep file's line and the variant.
