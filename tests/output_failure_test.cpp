@@ -1,5 +1,5 @@
 // A run whose outputs cannot be written: `mpile run` in a child process under a file-size limit
-// (ulimit -f, with SIGXFSZ ignored, so a write past it fails with EFBIG as on a full disk).
+// (ulimit -f; mpile ignores SIGXFSZ, so a write past it fails with EFBIG as on a full disk).
 #include "io/hdf5_file.hpp"
 #include "tests/case_run.hpp"
 #include "tests/run_program.hpp"
@@ -18,7 +18,8 @@ namespace {
 TEST(RunCommand, AFullDiskStopsTheRunNamingTheFileAndLeavesWhatItWroteReadable) {
   // The single point for 100 s with a row every step (6 300 rows): the history's series take a
   // new chunk of 4 096 rows each once it passes them, which a 1.2 MB limit has no room for. The
-  // run crashed in HDF5 (SIGSEGV) and left a history that could not be read.
+  // run crashed in HDF5 (SIGSEGV) and left a history that could not be read; under `ulimit -f`
+  // without SIGXFSZ ignored (the child here keeps its default) it was killed by the signal.
   const auto directory = fresh_directory("full_disk");
   const auto path = directory / "point.toml";
   std::ofstream(path) << replaced(read_text(source / "cases/verification/single_point.toml"),

@@ -38,7 +38,8 @@ inline Finished run_mpile(const std::vector<std::string>& arguments, rlim_t file
     if (file_bytes > 0) {
       const rlimit limit{file_bytes, file_bytes};
       setrlimit(RLIMIT_FSIZE, &limit);
-      std::signal(SIGXFSZ, SIG_IGN); // kept across exec: writes past the limit fail instead
+      // SIGXFSZ at its default (it kills): mpile must ignore it itself, as under a user's ulimit.
+      std::signal(SIGXFSZ, SIG_DFL);
     }
     const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int null = open("/dev/null", O_WRONLY);
