@@ -295,10 +295,10 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       }
       line << ")";
       try {
-        history.close(seconds_since(wall_start), std::string("failed: ") + e.what(),
-                      residual_summary());
+        history.close_after_failure(seconds_since(wall_start), std::string("failed: ") + e.what(),
+                                    residual_summary());
       } catch (const std::runtime_error&) {
-        // The history itself could not be written: it keeps its rows so far.
+        // Not even the status could be written: the history keeps its whole rows so far.
       }
       err << line.str() << '\n';
       to_log_file(line.str());

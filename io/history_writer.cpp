@@ -420,6 +420,24 @@ void HistoryWriter::flush() {
   last_flush_ = std::chrono::steady_clock::now();
 }
 
+void HistoryWriter::close_after_failure(double wall_seconds, const std::string& status,
+                                        const ResidualSummary& residual) {
+  try {
+    close(wall_seconds, status, residual);
+    return;
+  } catch (const NoRoomForOutput&) {
+    // The rows since the last flush have no room: the file keeps the whole rows it has.
+  }
+  reserve_space(path_, status.size() + 4096); // the attributes' few hundred bytes, and their heap
+  Hdf5File file(path_, Hdf5File::Mode::append);
+  file.set_attribute("/", "wall_time", wall_offset_ + wall_seconds);
+  file.set_attribute("/", "status", status);
+  file.set_attribute("/", "energy_residual_final", residual.final);
+  file.set_attribute("/", "energy_residual_peak", residual.peak);
+  file.set_attribute("/", "energy_residual_peak_time", residual.peak_time);
+  file.close();
+}
+
 void HistoryWriter::close(double wall_seconds, const std::string& status,
                           const ResidualSummary& residual) {
   Hdf5File file = open(growth_bound() + status.size());

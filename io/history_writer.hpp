@@ -43,6 +43,11 @@ public:
     double peak_time = 0.0;
   };
   void close(double wall_seconds, const std::string& status, const ResidualSummary& residual);
+  /// close() after an output failed: where the buffered rows find no room either, they are given
+  /// up and the status alone is written into the little room it takes, so that a run stopped by a
+  /// full disk does not read as still running. Throws only if even that cannot be written.
+  void close_after_failure(double wall_seconds, const std::string& status,
+                           const ResidualSummary& residual);
 
 private:
   /// Every outlined surface's plan and side areas as attributes and its vertical force over its

@@ -56,6 +56,11 @@ TEST(RunCommand, AFullDiskStopsTheRunNamingTheFileAndLeavesWhatItWroteReadable) 
                                "/boundaries/r_min/F_r", "/boundaries/y_max/F_y"}) {
       EXPECT_EQ(history.read_doubles(series).size(), rows) << series;
     }
+    // Closed as failed, with the reason: the buffered rows had no room, the status had.
+    EXPECT_EQ(history.string_attribute("/", "status")
+                  .rfind("failed: cannot write " + history_path + ": File too large", 0),
+              0u)
+        << history.string_attribute("/", "status");
     Hdf5File checkpoint((out / "checkpoint.h5").string(), Hdf5File::Mode::read);
     EXPECT_LE(checkpoint.read_doubles("/run/counters").at(1), static_cast<double>(rows));
   }
