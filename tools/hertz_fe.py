@@ -1,19 +1,31 @@
 #!/usr/bin/python3
 """An independent reference for the Hertz impact (cases/verification/hertz_sphere.toml): the same
-elastic sphere dropped on a rigid plane, by small-strain axisymmetric finite elements with explicit
-dynamics, in a hundred lines that share nothing with the engine (docs/verification.md, "Contact
-timing").
+elastic sphere dropped on a rigid plane, by small-strain axisymmetric finite elements, in a few
+hundred lines that share nothing with the engine (docs/verification.md, "Contact timing").
 
   tools/hertz_fe.py --velocity 0.1 --cell 1e-3        # R = 0.1 m, E = 1 MPa, nu = 0.3, 1000 kg/m^3
+  tools/hertz_fe.py --cell 1e-3 --quasi-static        # no inertia in the sphere's deformation
 
-Hertz's contact time is quasi-static and assumes the contact patch small against the sphere; the
-sphere here rings with a period a quarter of the contact's and its patch reaches 0.13 R. This
-solves the elastodynamics of the whole sphere instead: 4-node axisymmetric elements (2 x 2 Gauss
-points) on a square grid of cell size h clipped to the sphere, the nodes of its outer layer moved
-radially onto the circle; lumped masses; central differences at 0.9 of the stable step (the
-largest eigenvalue of M^-1 K by power iteration); the plane a kinematic constraint on each node
-(a node that would pass it is put on it, frictionless, and leaves it when its velocity does). It
-prints the contact time and the peak force against Hertz's and the energy's balance.
+Hertz's contact time treats the sphere near the contact as a half-space, its deformation
+quasi-static; the sphere here is finite (its patch reaches 0.13 R) and rings with a period a
+quarter of the contact's. By default this solves the elastodynamics of the whole sphere: 4-node
+axisymmetric elements (2 x 2 Gauss points) on a square grid of cell size h clipped to the sphere,
+the nodes of its outer layer moved radially onto the circle; lumped masses; central differences at
+0.9 of the stable step (the largest eigenvalue of M^-1 K by power iteration); the plane a kinematic
+constraint on each node (a node that would pass it is put on it, frictionless, and leaves it when
+its velocity does). It prints the contact time and the peak force against Hertz's and the
+energy's balance.
+
+--quasi-static keeps the same finite sphere and elements but takes the inertia out of the
+deformation: the sphere decelerates as a rigid body, deformed statically by the plane's pressure
+and the uniform d'Alembert body force F/M per unit mass that balances it. The global stiffness
+(u_r = 0 on the axis), condensed onto the outer layer's lowest nodes, gives at a sequence of
+approaches delta of the centre of mass the frictionless unilateral contact by an active set (a
+node that would pass the plane held on it, one whose reaction pulls released) and so F(delta);
+then t_c = 2 int_0^delta_max d delta / sqrt(v^2 - (2/M) int_0^delta F), delta_max where the root
+vanishes. It prints F against Hertz's 4/3 E* R^(1/2) delta^(3/2) (per 2 pi: per radian), the
+contact time, delta_max and the peak force against Hertz's. Against Hertz's time this mode
+measures the finite sphere; the default, against this mode, measures the dynamics.
 """
 import argparse
 
@@ -90,29 +102,30 @@ def hertz(velocity):
     e_star = YOUNG / (1 - POISSON**2)
     sphere = 4 / 3 * np.pi * RADIUS**3 * DENSITY
     delta = (15 * sphere * velocity**2 / (16 * e_star * np.sqrt(RADIUS))) ** 0.4
-    return delta, 2.9432751 * delta / velocity, lambda d: 4 / 3 * e_star * np.sqrt(RADIUS) * d**1.5 / (2 * np.pi)
+    return (delta, 2.9432751 * delta / velocity,
+            lambda d: 4 / 3 * e_star * np.sqrt(RADIUS) * d**1.5 / (2 * np.pi))
 
 
 def contact_time(delta, force, mass, velocity):
-    """2 * integral of d delta / sqrt(v^2 - (2/M) W(delta)) to where the root vanishes, W = integral of
-    F, for F given at the ascending approaches delta (from 0) and linear between them; returns the
-    time and delta_max. delta = delta_max (1 - tau^2) takes the root's zero out of the integrand."""
+    """2 * integral of d delta / sqrt(v^2 - (2/M) W(delta)) to where the root vanishes, W the
+    integral of F, for F given at ascending approaches delta from 0 and linear between them; returns
+    the time and delta_max. delta = delta_max (1 - tau^2) takes the root's zero out of the
+    integrand."""
     work = np.concatenate([[0.0], np.cumsum(0.5 * (force[1:] + force[:-1]) * np.diff(delta))])
     stop = 0.5 * mass * velocity**2
     i = np.searchsorted(work, stop) - 1  # W reaches the kinetic energy in [delta_i, delta_i+1]
     if i + 1 >= len(delta):
         raise ValueError("the approaches end before the sphere stops")
-    slope = (force[i + 1] - force[i]) / (delta[i + 1] - delta[i])
 
     def energy(d):  # W, quadratic in each interval
         j = np.clip(np.searchsorted(delta, d) - 1, 0, len(delta) - 2)
         s = d - delta[j]
-        return work[j] + force[j] * s + 0.5 * (force[j + 1] - force[j]) / (delta[j + 1] - delta[j]) * s * s
+        slope = (force[j + 1] - force[j]) / (delta[j + 1] - delta[j])
+        return work[j] + force[j] * s + 0.5 * slope * s * s
 
-    # 0.5 slope s^2 + F_i s = stop - W_i
-    rest = stop - work[i]
-    s = 2 * rest / (force[i] + np.sqrt(force[i] ** 2 + 2 * slope * rest))
-    delta_max = delta[i] + s
+    slope = (force[i + 1] - force[i]) / (delta[i + 1] - delta[i])
+    rest = stop - work[i]  # = F_i s + slope s^2 / 2
+    delta_max = delta[i] + 2 * rest / (force[i] + np.sqrt(force[i] ** 2 + 2 * slope * rest))
     tau = (np.arange(20000) + 0.5) / 20000
     speed = np.sqrt(np.maximum(velocity**2 - 2 * energy(delta_max * (1 - tau * tau)) / mass, 0.0))
     return 2 * np.mean(2 * delta_max * tau / speed), delta_max
@@ -124,8 +137,8 @@ def quasi_static(x, elements, k, m, velocity, steps):
     mass, from the global stiffness; then the contact time of its rigid-body deceleration."""
     dofs = np.stack([2 * elements, 2 * elements + 1], axis=2).reshape(len(elements), 8)
     n = 2 * len(x)
-    stiffness = scipy.sparse.coo_matrix((k.ravel(), (np.repeat(dofs, 8, axis=1).ravel(),
-                                                      np.tile(dofs, (1, 8)).ravel())), shape=(n, n)).tocsr()
+    rows, columns = np.repeat(dofs, 8, axis=1).ravel(), np.tile(dofs, (1, 8)).ravel()
+    stiffness = scipy.sparse.coo_matrix((k.ravel(), (rows, columns)), shape=(n, n)).tocsr()
     free = np.setdiff1d(np.arange(n), 2 * np.nonzero(x[:, 0] == 0.0)[0])  # u_r = 0 on the axis
     weight = np.zeros(n)
     weight[1::2] = m
@@ -148,11 +161,11 @@ def quasi_static(x, elements, k, m, velocity, steps):
     h = height[candidates]
     approaches = delta_hertz * np.arange(steps + 1) / (0.7 * steps)  # to 1.43 delta_Hertz
     forces = np.zeros_like(approaches)
+    patch = np.zeros_like(approaches)  # the radius of the outermost node on the plane
     active = np.array([np.argmin(h)])
-    widest = 0
     tolerance = 1e-12 * RADIUS
     for s, delta in enumerate(approaches[1:], 1):
-        for _ in range(200):
+        for _ in range(200):  # from the last approach's set
             reaction = np.linalg.solve(flexibility[np.ix_(active, active)], delta - h[active])
             if (reaction < 0.0).any():  # released: pulls
                 active = active[reaction >= 0.0]
@@ -166,26 +179,58 @@ def quasi_static(x, elements, k, m, velocity, steps):
         else:
             raise RuntimeError("the active set did not settle")
         forces[s] = reaction.sum()
-        widest = max(widest, x[candidates[active], 0].max())
-        last = (active, reaction)
+        patch[s] = x[candidates[active], 0].max()
     time, delta_max = contact_time(approaches, forces, m.sum(), velocity)
-    # Check at the deepest approach that no node at all (not only the candidates) passes the plane.
-    active, reaction = last
+    # At the deepest approach no node at all, not only the candidates, may pass the plane.
     load = np.zeros(len(free) + 1)
     load[where[active]] = reaction
     deformation = np.zeros(n)
     deformation[free] = solve(load)[:-1]
-    least_gap = (height + deformation[1::2] - approaches[-1]).min()
-    return approaches, forces, time, delta_max, widest, least_gap, candidates
+    least_gap = (height + deformation[1::2] - approaches[-1]).min()  # 0 on the nodes held
+    return approaches, forces, patch, time, delta_max, least_gap, candidates
+
+
+def report_quasi_static(x, elements, k, m, args):
+    delta_hertz, hertz_time, hertz_force = hertz(args.velocity)
+    approaches, forces, patch, time, delta_max, least_gap, candidates = quasi_static(
+        x, elements, k, m, args.velocity, args.steps)
+    # The same integral on Hertz's F(delta) and the sphere's mass checks it (2.9433 delta_max / v).
+    sphere = 4 / 3 * np.pi * RADIUS**3 * DENSITY / (2 * np.pi)
+    check, _ = contact_time(approaches, hertz_force(approaches), sphere, args.velocity)
+    passes = ("no node passes the plane" if least_gap > -1e-9 * RADIUS
+              else f"a node passes the plane by {-least_gap:.3e} m")
+    print(f"h = {args.cell:g} m, {len(elements)} elements, quasi-static, mass {m.sum():.5f} "
+          f"kg/rad; {len(candidates)} nodes may touch; {passes} at "
+          f"{approaches[-1] / delta_hertz:.2f} Hertz's delta_max")
+    shallow = np.array([0.05, 0.1, 0.2, 0.5, 1.0]) * delta_hertz
+    ratios = np.interp(shallow, approaches, forces) / hertz_force(shallow)
+    ratios = [f"{d / delta_hertz:g} {ratio:.4f}" for d, ratio in zip(shallow, ratios)]
+    print("F / Hertz's at delta / Hertz's delta_max = " + ", ".join(ratios))
+    print(f"the integral on Hertz's F(delta): {1e3 * check:.4f} ms against {1e3 * hertz_time:.4f}")
+    peak, hertz_peak = np.interp(delta_max, approaches, forces), hertz_force(delta_hertz)
+    widest = patch[np.searchsorted(approaches, delta_max) - 1]
+    print(f"contact time {1e3 * time:.3f} ms against Hertz's {1e3 * hertz_time:.3f} "
+          f"({100 * (time / hertz_time - 1):+.2f} %); delta_max {1e3 * delta_max:.4f} mm against "
+          f"{1e3 * delta_hertz:.4f} ({100 * (delta_max / delta_hertz - 1):+.2f} %); peak force "
+          f"{peak:.4f} N/rad against {hertz_peak:.4f} ({100 * (peak / hertz_peak - 1):+.2f} %); "
+          f"patch to r = {1e3 * widest:.1f} mm (sqrt(R delta_max) "
+          f"{1e3 * np.sqrt(RADIUS * delta_max):.1f})")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--velocity", type=float, default=0.1, help="impact velocity (m/s)")
     parser.add_argument("--cell", type=float, default=1e-3, help="element size h (m)")
+    parser.add_argument("--quasi-static", action="store_true",
+                        help="the same sphere without inertia in its deformation (above)")
+    parser.add_argument("--steps", type=int, default=2000,
+                        help="quasi-static: approaches, 0.7 of them to Hertz's delta_max (2000)")
     args = parser.parse_args()
     x, elements = mesh(args.cell)
     k, m = stiffness_and_mass(x, elements)
+    if args.quasi_static:
+        report_quasi_static(x, elements, k, m, args)
+        return
     dofs = np.stack([2 * elements, 2 * elements + 1], axis=2).reshape(len(elements), 8)
     mass = np.repeat(m, 2)
     axis = 2 * np.nonzero(x[:, 0] == 0.0)[0]
