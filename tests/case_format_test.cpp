@@ -157,8 +157,8 @@ TEST(CaseFormat, EachSolverSettingIsDeclaredOnceAndBoundToItsMember) {
                                       ? p.range.upper->value
                                       : (p.range.lower ? p.range.lower->value : 0.0) + 1.0);
           std::string text = block + "[solver]\n" + p.name + " = " + written + "\n";
-          if (p.name == "implicit_pore_pressure") {
-            // It needs pore water to solve for.
+          if (p.name == "implicit_pore_pressure" || p.name == "cell_mean_pore_pressure") {
+            // Each needs pore water to act on.
             const std::string wood = "[materials.wood]\n";
             text.insert(text.find(wood) + wood.size(), "drainage = \"undrained\"\n");
           }
