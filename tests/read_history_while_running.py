@@ -20,7 +20,11 @@ import numpy as np
 
 def main():
     mpile, case, out = sys.argv[1:4]
-    run = subprocess.Popen([mpile, "run", case, "--out", out, "--threads", "1"],
+    # The history is flushed every 2 s of wall time: the run must last several of those for the
+    # reader to see it grow three times. V9's one second of spin took 5 to 6 s on a quiet 2-core
+    # machine and the reader then saw two lengths; four seconds of it take about 20 s.
+    run = subprocess.Popen([mpile, "run", case, "--out", out, "--threads", "1",
+                            "--set", "phases.spin.duration=4.0"],
                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     seen = []  # the /time arrays read while the run went on
     failures = []
