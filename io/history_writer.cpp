@@ -430,11 +430,7 @@ void HistoryWriter::close_after_failure(double wall_seconds, const std::string& 
   }
   reserve_space(path_, status.size() + 4096); // the attributes' few hundred bytes, and their heap
   Hdf5File file(path_, Hdf5File::Mode::append);
-  file.set_attribute("/", "wall_time", wall_offset_ + wall_seconds);
-  file.set_attribute("/", "status", status);
-  file.set_attribute("/", "energy_residual_final", residual.final);
-  file.set_attribute("/", "energy_residual_peak", residual.peak);
-  file.set_attribute("/", "energy_residual_peak_time", residual.peak_time);
+  write_closing_attributes(file, wall_seconds, status, residual);
   file.close();
 }
 
@@ -444,6 +440,13 @@ void HistoryWriter::close(double wall_seconds, const std::string& status,
   for (const std::string& name : order_) {
     series_.at(name).flush(file);
   }
+  write_closing_attributes(file, wall_seconds, status, residual);
+  file.close();
+}
+
+void HistoryWriter::write_closing_attributes(Hdf5File& file, double wall_seconds,
+                                             const std::string& status,
+                                             const ResidualSummary& residual) const {
   // The whole run's, as /wall_time carries it across restarts (this process's alone would make a
   // restarted run look cheap in an error-against-run-time study).
   file.set_attribute("/", "wall_time", wall_offset_ + wall_seconds);
@@ -451,7 +454,6 @@ void HistoryWriter::close(double wall_seconds, const std::string& status,
   file.set_attribute("/", "energy_residual_final", residual.final);
   file.set_attribute("/", "energy_residual_peak", residual.peak);
   file.set_attribute("/", "energy_residual_peak_time", residual.peak_time);
-  file.close();
 }
 
 } // namespace mpile

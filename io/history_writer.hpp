@@ -50,6 +50,8 @@ public:
                            const ResidualSummary& residual);
 
 private:
+  void write_closing_attributes(Hdf5File& file, double wall_seconds, const std::string& status,
+                                const ResidualSummary& residual) const;
   /// Every outlined surface's plan and side areas as attributes and its vertical force over its
   /// plan area (where it has one) as unit_end_resistance; the CPT's series when asked.
   void add_unit_resistances(Hdf5File& file, const CaseSpec& spec, const Scene& scene);
