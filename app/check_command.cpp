@@ -173,23 +173,37 @@ int run_pilot(const RunOptions& options, const CaseSpec& spec, double start_up, 
     PhaseEstimate overhead;
     overhead.name = "start-up and final output";
     overhead.wall = start_up + std::max(elapsed - record.wall.back(), 0.0);
+    overhead.low = overhead.wall;
     overhead.basis = "measured in the pilot";
     phases.push_back(overhead);
     double total = 0.0;
+    double low = 0.0;
     bool bound = false;
     for (const PhaseEstimate& e : phases) {
       total += e.wall;
+      low += e.low;
       bound = bound || e.bound;
     }
+    // "120 to 180 s": from the pile gathering speed as over the pilot's later half, to its
+    // present speed (the progress line's range); one number where they are within a tenth.
+    const auto figure = [](double l, double h) {
+      std::ostringstream s;
+      s << std::defaultfloat << std::setprecision(3);
+      if (l < 0.9 * h) {
+        s << l << " to ";
+      }
+      s << h;
+      return s.str();
+    };
     out << std::defaultfloat << std::setprecision(3) << "pilot: " << record.wall.back()
         << " s of wall time, to t = " << record.time.back() << " s in phase "
         << spec.phases[static_cast<std::size_t>(record.phase.back())].name
         << (record.complete ? " (the whole run)" : "") << "\n";
-    out << "estimated run time: " << (bound ? "at most " : "") << total << " s on "
+    out << "estimated run time: " << (bound ? "at most " : "") << figure(low, total) << " s on "
         << options.threads << " threads\n";
     for (const PhaseEstimate& e : phases) {
-      out << "  " << e.name << ": " << (e.bound ? "at most " : "") << e.wall << " s, " << e.basis
-          << "\n";
+      out << "  " << e.name << ": " << (e.bound ? "at most " : "") << figure(e.low, e.wall)
+          << " s, " << e.basis << "\n";
     }
   }
   std::filesystem::remove_all(directory, error);

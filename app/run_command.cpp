@@ -363,7 +363,10 @@ int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
       return cannot_write(e);
     }
   } catch (const std::runtime_error& e) {
-    err << "mpile: " << e.what() << '\n';
+    // The outputs could not even be started (the history's header, the snapshot index).
+    const std::string line = std::string("mpile: ") + e.what();
+    err << line << '\n';
+    to_log_file(line);
     return exit_failure;
   }
   return exit_success;

@@ -159,10 +159,9 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
   replace_file(temporary, path);
 }
 
-Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene& scene) {
-  if (!std::filesystem::exists(path)) {
-    throw CaseError(path + ": no such checkpoint");
-  }
+namespace {
+
+Checkpoint read_checkpoint_file(const std::string& path, const CaseSpec& spec, Scene& scene) {
   Hdf5File file(path, Hdf5File::Mode::read);
   auto refuse = [&](const std::string& why) { throw CaseError(path + ": cannot restart: " + why); };
   if (!file.exists("/particles/r")) {
@@ -321,6 +320,25 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
     position = end + 1;
   }
   return checkpoint;
+}
+
+} // namespace
+
+Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene& scene) {
+  if (!std::filesystem::exists(path)) {
+    throw CaseError(path + ": no such checkpoint");
+  }
+  try {
+    return read_checkpoint_file(path, spec, scene);
+  } catch (const CaseError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // HDF5 could not read it (cut short, overwritten, a checksum that does not match): say so and
+    // what the user can do, not only HDF5's words.
+    throw CaseError(path + ": cannot restart: the checkpoint cannot be read (" + e.what() +
+                    "); it was cut short or damaged. Restart from another checkpoint, or run the "
+                    "case afresh without --restart or --continue");
+  }
 }
 
 } // namespace mpile

@@ -143,12 +143,18 @@ void Hdf5File::write_raw(const std::string& dataset, hid_t type, const void* dat
   }
   Hdf5Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   Hdf5Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
-  if (count >= 1024) {
-    // Chunked and compressed: particle arrays compress well and keep checkpoints small.
+  if (count > 0) {
+    // Chunked, so that every chunk carries a Fletcher32 checksum: a checkpoint or history damaged
+    // on disk is refused when read instead of read back as other numbers. Large arrays are also
+    // compressed (particle arrays compress well and keep checkpoints small); the checksum goes
+    // last, over the bytes as stored.
     std::vector<hsize_t> chunk = dims;
     chunk[0] = std::min<hsize_t>(dims[0], 65536);
     H5Pset_chunk(properties.get(), static_cast<int>(chunk.size()), chunk.data());
-    H5Pset_deflate(properties.get(), 1);
+    if (count >= 1024) {
+      H5Pset_deflate(properties.get(), 1);
+    }
+    H5Pset_fletcher32(properties.get());
   }
   Hdf5Handle set(check(H5Dcreate2(file_.get(), dataset.c_str(), type, space.get(), H5P_DEFAULT,
                                   properties.get(), H5P_DEFAULT),
@@ -297,6 +303,9 @@ Hdf5Series::Hdf5Series(Hdf5File& file, const std::string& dataset, const std::st
   Hdf5Handle space(H5Screate_simple(1, &initial, &unlimited), H5Sclose);
   Hdf5Handle properties(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
   H5Pset_chunk(properties.get(), 1, &chunk);
+  // A checksum per chunk: history data damaged on disk is refused when read (here, by h5py and by
+  // any HDF5 reader) instead of read back as other numbers.
+  H5Pset_fletcher32(properties.get());
   const hid_t type = stored == Stored::integer ? H5T_STD_I64LE : H5T_NATIVE_DOUBLE;
   Hdf5Handle set(check(H5Dcreate2(file.id(), dataset.c_str(), type, space.get(), H5P_DEFAULT,
                                   properties.get(), H5P_DEFAULT),

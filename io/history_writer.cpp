@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -36,9 +37,25 @@ HistoryWriter::HistoryWriter(const std::string& path, const CaseSpec& spec, cons
                              int threads, std::size_t rows)
     : path_(path), rows_(rows), reopened_(rows > 0), last_flush_(std::chrono::steady_clock::now()),
       wall_start_(last_flush_) {
-  if (!reopened_) {
-    Hdf5File(path, Hdf5File::Mode::create).close();
+  if (reopened_) {
+    write_header(spec, scene, threads, rows);
+    return;
   }
+  try {
+    Hdf5File(path, Hdf5File::Mode::create).close();
+    write_header(spec, scene, threads, rows);
+  } catch (const std::exception&) {
+    // A file without its series (no /time) is not a history: leave none rather than one that a
+    // reader takes for a run that wrote nothing.
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+    throw;
+  }
+}
+
+void HistoryWriter::write_header(const CaseSpec& spec, const Scene& scene, int threads,
+                                 std::size_t rows) {
+  const std::string& path = path_;
   // The series' headers and the case's text (twice: as written and resolved), with room to spare.
   Hdf5File file = open(16 * metadata_margin + 2 * (spec.text.size() + spec.resolved.size()));
   if (!reopened_) {

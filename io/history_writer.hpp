@@ -65,6 +65,8 @@ private:
   /// Opens the file with room for `growth` more bytes reserved on the disk (io/reserve_space.hpp),
   /// so that a full disk stops the run before the file is touched, not half way through a row.
   Hdf5File open(std::size_t growth) const;
+  /// The root attributes and every series (created, or reopened after a restart).
+  void write_header(const CaseSpec& spec, const Scene& scene, int threads, std::size_t rows);
 
   /// A surface's vertical force over one of its areas (Pa): a unit resistance.
   struct UnitResistance {

@@ -19,17 +19,25 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def estimate(mpile, case, pilot, threads):
-    """(estimate in s or None, the pilot's note when it could not see a whole drive period)."""
+    """((low, high) estimate in s, or None; the pilot's note when it could not see a whole drive
+    period). low == high where the pilot gives one number."""
     done = subprocess.run([mpile, "check", case, "--pilot", str(pilot), "--threads", str(threads)],
                           capture_output=True, text=True)
-    found = re.search(r"^estimated run time: (at most )?([0-9.e+]+) s", done.stdout, re.MULTILINE)
+    found = re.search(r"^estimated run time: (at most )?(?:([0-9.e+]+) to )?([0-9.e+]+) s", done.stdout,
+                      re.MULTILINE)
     if done.returncode != 0 or not found:
         last = (done.stderr.strip().splitlines() or ["no estimate"])[-1]
         return None, f"no estimate: {last[:120]}"
     note = "flagged: within the drive's first period" if "covers one period" in done.stdout else ""
     if found.group(1):
         note = (note + "; " if note else "") + "a bound (at most)"
-    return float(found.group(2)), note
+    high = float(found.group(3))
+    return (float(found.group(2)) if found.group(2) else high, high), note
+
+
+def shown(value):
+    low, high = value
+    return f"{high:.3g}" if low == high else f"{low:.3g} to {high:.3g}"
 
 
 def run(mpile, case, out, threads):
@@ -53,16 +61,18 @@ def main():
     for case in args.cases:
         name = os.path.relpath(os.path.abspath(case), os.path.join(ROOT, "cases"))
         value, note = estimate(args.mpile, case, args.pilot, args.threads)
-        shown = f"{value:.3g}" if value is not None else ""
+        text = shown(value) if value is not None else ""
         if note:
-            shown = f"{shown}, {note}" if shown else note
+            text = f"{text}, {note}" if text else note
         if args.no_run:
-            print(f"| `{name[:-5]}` | {args.pilot:g} | {shown} | | |", flush=True)
+            print(f"| `{name[:-5]}` | {args.pilot:g} | {text} | | |", flush=True)
             continue
         wall, status = run(args.mpile, case, os.path.join(args.out, os.path.basename(case)[:-5]), args.threads)
         ran = f"{wall:.3g}" + ("" if status == 0 else f" (exit {status})")
-        ratio = f"{value / wall:.2f}" if value is not None and wall > 0 else ""
-        print(f"| `{name[:-5]}` | {args.pilot:g} | {shown} | {ran} | {ratio} |", flush=True)
+        ratio = ""
+        if value is not None and wall > 0:
+            ratio = shown((value[0] / wall, value[1] / wall))
+        print(f"| `{name[:-5]}` | {args.pilot:g} | {text} | {ran} | {ratio} |", flush=True)
     return 0
 
 
