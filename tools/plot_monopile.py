@@ -164,7 +164,7 @@ def print_table(runs, targets, surfaces):
         # Quoted when it has spaces, so that the table still splits on whitespace.
         label = f'"{run.label}"' if any(c.isspace() for c in run.label) else run.label
         for target in targets:
-            row = run.row_at(target)
+            row = run.index_at(target)
             if row is None:
                 lines.append([label, f"{target:.4f}", "not reached"])
                 continue

@@ -145,7 +145,7 @@ def summary(directory, label):
     run = installation(directory, label=label)
     rows = {}
     for depth in DEPTHS:
-        row = run.row_at(depth)
+        row = run.index_at(depth)
         if row is None:
             rows[depth] = None
             continue

@@ -1,4 +1,5 @@
-"""Read the outputs of mpile runs (the Material Point Method engine of monopile installation).
+"""Read the outputs of mpile runs (the Material Point Method engine of monopile installation), and
+build, run and sweep cases.
 
     import mpile
     ds = mpile.open_history("out/jacked_quick")          # xarray Dataset on time
@@ -11,6 +12,14 @@
     mpile.radiation("out/gdp_quick")                      # radiated energy, peak particle velocity
     mpile.load_test("out/gdp_quick_capacity")             # load-settlement curve, capacity
     mpile.friction_fatigue("out/gdp_cycles_quick", 60.0)  # sigma'_r / sigma'_r0 against cycles
+
+Cases are built and run from Python with the command line's checks (the mpile program does them):
+
+    case = mpile.Case.read("cases/monopile/jacked_quick.toml")
+    case["monopile.friction"] = 0.3                       # --set monopile.friction=0.3, checked now
+    run = case.run("out/friction_03", threads=2)          # mpile run; run.history(), run.installation()
+    case.write("friction_03.toml")                         # a case file of this case
+    study = mpile.run_sweep([...cases...], "out/sweeps/friction", gather=[...])  # mpile sweep
 
 The names are imported on first use, so that `import mpile` is quick and the snapshot and display
 modules work where only numpy and VTK are (ParaView's Python). The reference is docs/python.md.
@@ -34,6 +43,7 @@ _EXPORTS = {
     "open_sweep": "sweep",
     "installation": "monopile",
     "Installation": "monopile",
+    "InstallationRow": "monopile",
     "shaft_ratios": "monopile",
     "radiation": "vibration",
     "load_test": "capacity",
@@ -41,6 +51,15 @@ _EXPORTS = {
     "LoadTest": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",
+    "Case": "cases",
+    "CaseError": "cases",
+    "CaseWarning": "cases",
+    "RunError": "cases",
+    "Run": "cases",
+    "run_sweep": "cases",
+    "SweepRun": "cases",
+    "find_mpile": "cases",
+    "MpileNotFoundError": "cases",
 }
 
 __all__ = sorted(_EXPORTS)

@@ -34,10 +34,31 @@ class Installation:
     penetration: np.ndarray  # m
     forces: dict = field(default_factory=dict)  # surface -> component -> kN/rad
 
-    def row_at(self, penetration):
-        """Index of the first row at or beyond `penetration` (m), or None if it was not reached."""
+    def index_at(self, penetration):
+        """Index of the first row at or beyond `penetration` (m), or None if it was not reached:
+        `run.time[i]`, `run.forces["tip"]["F_y"][i]` are that row's values."""
         reached = np.flatnonzero(self.penetration >= penetration - REACHED_TOLERANCE)
         return int(reached[0]) if reached.size else None
+
+    def row_at(self, penetration):
+        """The first row at or beyond `penetration` (m) as an `InstallationRow` (its index, time,
+        penetration and forces, surface -> component -> kN/rad), or None if it was not reached."""
+        index = self.index_at(penetration)
+        if index is None:
+            return None
+        forces = {surface: {component: float(values[index]) for component, values in components.items()}
+                  for surface, components in self.forces.items()}
+        return InstallationRow(index, float(self.time[index]), float(self.penetration[index]), forces)
+
+
+@dataclass(frozen=True)
+class InstallationRow:
+    """One row of an `Installation`: the values its arrays hold at `index`."""
+
+    index: int
+    time: float  # s since the start of the installation
+    penetration: float  # m
+    forces: dict  # surface -> component -> kN/rad
 
 
 def blow_interval(case):

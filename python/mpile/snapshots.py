@@ -13,6 +13,7 @@ only for the tables.
 import os
 import re
 import xml.etree.ElementTree as ElementTree
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -48,13 +49,18 @@ def read_xml(path, reader_class, kind):
     if not reader.CanReadFile(str(path)):
         raise RunFileError(f"{path} is not a VTK XML {kind}")
     errors = collect_errors(reader)
-    reader.SetFileName(str(path))
-    reader.Update()
+    with vtk_warnings() as warnings:
+        reader.SetFileName(str(path))
+        reader.Update()
     if errors:
         raise RunFileError(f"{path} is not a readable VTK XML {kind}, cut short or damaged: "
                            + "; ".join(errors))
     grid = reader.GetOutput()
     data = grid.GetPointData()
+    problem = missing_points(reader, grid)
+    if problem:
+        raise RunFileError(f"{path} is not a readable VTK XML {kind}, cut short or damaged: {problem}"
+                           + (" (VTK: " + "; ".join(warnings) + ")" if warnings else ""))
     arrays = {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
     fields = {}
     field_data = grid.GetFieldData()
@@ -89,6 +95,55 @@ def collect_errors(reader):
     reader.SetParserErrorObserver(reader.GetCommand(tag))
     reader.GetExecutive().AddObserver(vtkCommand.ErrorEvent, lambda caller, event: None)
     return messages
+
+
+def missing_points(reader, grid):
+    """Why the data set `grid` that `reader` read lacks points its file declares, or "".
+
+    Some cuts of a file (within its appended data, after the field data) are read without an
+    error: VTK then returns no points, no coordinates and no arrays, which would pass for an empty
+    snapshot. The file's header still declares how many points it has (a .vtu's NumberOfPoints, a
+    .vtr's extent), and every point array holds one tuple per point.
+    """
+    declared = reader.GetNumberOfPoints()
+    read = grid.GetNumberOfPoints()
+    if read != declared:
+        return f"it declares {declared} points and {read} were read"
+    if grid.IsA("vtkRectilinearGrid"):
+        for axis, coordinates, size in zip("xyz", (grid.GetXCoordinates(), grid.GetYCoordinates(),
+                                                   grid.GetZCoordinates()), grid.GetDimensions()):
+            if coordinates is None or coordinates.GetNumberOfTuples() != size:
+                return f"its {axis} coordinates are missing or not {size} long"
+    elif read and grid.GetPoints() is None:
+        return f"it declares {declared} points and their coordinates were not read"
+    data = grid.GetPointData()
+    for i in range(data.GetNumberOfArrays()):
+        array = data.GetAbstractArray(i)
+        if array.GetNumberOfTuples() != read:
+            return f"its point array {array.GetName()} has {array.GetNumberOfTuples()} values for {read} points"
+    return ""
+
+
+@contextmanager
+def vtk_warnings():
+    """A list that gathers the warnings VTK gives while the block runs (through its output window:
+    a damaged file's parser warns about it), to be named in an error. VTK still prints them."""
+    from vtkmodules.util.misc import calldata_type
+    from vtkmodules.vtkCommonCore import VTK_STRING, vtkCommand, vtkOutputWindow
+
+    messages = []
+
+    @calldata_type(VTK_STRING)
+    def keep(caller, event, text):
+        found = re.search(r"\(0x[0-9a-fA-F]+\): (.*)", text, re.DOTALL)
+        messages.append(" ".join((found.group(1) if found else text).split()))
+
+    window = vtkOutputWindow.GetInstance()
+    tag = window.AddObserver(vtkCommand.WarningEvent, keep)
+    try:
+        yield messages
+    finally:
+        window.RemoveObserver(tag)
 
 
 def read_vtu(path):

@@ -8,6 +8,7 @@ import pytest
 import mpile
 from conftest import REPOSITORY, mpile_binary
 from mpile.files import RunFileError
+from test_snapshots import cut_short
 
 
 @pytest.fixture(scope="module")
@@ -50,3 +51,20 @@ def test_refuses_what_it_cannot_read(column_run, tmp_path):
     wrong.write_text("not a grid")
     with pytest.raises(RunFileError, match="is not a VTK XML rectilinear grid"):
         mpile.open_grid_snapshots(wrong)[0].r
+
+
+def test_a_real_grid_snapshot_cut_short_anywhere_is_refused(column_run, tmp_path):
+    """A grid .vtr cut short in its appended data raises RunFileError naming the file at every
+    cut, including those after which VTK reports no error and returns no coordinates."""
+    whole = sorted(column_run.glob("grid_*.vtr"))[-1]
+    nodes = len(mpile.open_grid_snapshots(whole)[0].r) * len(mpile.open_grid_snapshots(whole)[0].y)
+    opened, messages = [], []
+    for end, cut in cut_short(whole, tmp_path):
+        try:
+            opened.append((end, len(mpile.open_grid_snapshots(cut)[0].r)))
+        except RunFileError as error:
+            messages.append(str(error))
+    assert opened == [], f"cut at these lengths, {whole.name} opened with (length, r nodes): {opened}"
+    assert all("cut.vtr is not a readable VTK XML rectilinear grid (.vtr), cut short or damaged: " in message
+               for message in messages), messages[:3]
+    assert any(f"it declares {nodes} points and 0 were read" in message for message in messages)

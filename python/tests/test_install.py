@@ -14,7 +14,7 @@ import mpile
 
 def test_every_exported_name_is_what_it_says():
     """A submodule named like a function would shadow it once imported: import them all first."""
-    for module in ("files", "history", "phase_table", "snapshots", "display", "monopile"):
+    for module in ("files", "history", "phase_table", "snapshots", "display", "monopile", "cases"):
         importlib.import_module(f"mpile.{module}")
     for name in mpile.__all__:
         value = getattr(mpile, name)

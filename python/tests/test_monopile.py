@@ -18,7 +18,7 @@ def test_installation_rows_and_forces(synthetic_run):
     assert run.label == "synthetic monopile"
     assert len(run.time) == 501  # the installation's rows only
     assert run.time[0] == pytest.approx(0.01, rel=EXACT)  # the first row after the held phase's last
-    row = run.row_at(0.3)
+    row = run.index_at(0.3)
     assert run.penetration[row] == pytest.approx(0.3, rel=EXACT)
     assert run.time[row] == pytest.approx(3.0, rel=EXACT)
     expected = {"tip": (6.0, 150.0, -12.0), "external_shaft": (-60.0, 24.0, -18.0),
@@ -28,7 +28,26 @@ def test_installation_rows_and_forces(synthetic_run):
         assert got == pytest.approx(values, rel=EXACT)
     # The 1e6 N/rad of the held phase stay out.
     assert max(np.abs(run.forces["tip"]["F_r"]).max(), np.abs(run.forces["tip"]["F_y"]).max()) < 300.0
-    assert run.row_at(0.6) is None  # 0.5 m reached
+    assert run.index_at(0.6) is None  # 0.5 m reached
+
+
+def test_row_at_gives_the_values_of_a_row(synthetic_run):
+    """row_at is the row (time, penetration and every force there), index_at its index; both None
+    beyond the deepest penetration reached."""
+    run = mpile.installation(synthetic_run)
+    index = run.index_at(0.3)
+    assert isinstance(index, int) and run.penetration[index] == pytest.approx(0.3, rel=EXACT)
+    row = run.row_at(0.3)
+    assert row.index == index
+    assert row.penetration == pytest.approx(0.3, rel=EXACT) and row.time == pytest.approx(3.0, rel=EXACT)
+    expected = {"tip": (6.0, 150.0, -12.0), "external_shaft": (-60.0, 24.0, -18.0),
+                "internal_shaft": (30.0, 12.0, -9.0)}
+    assert set(row.forces) == set(expected)
+    for surface, values in expected.items():
+        assert [row.forces[surface][c] for c in ("F_r", "F_y", "F_theta")] == pytest.approx(values, rel=EXACT)
+        assert all(type(row.forces[surface][c]) is float for c in ("F_r", "F_y", "F_theta"))
+    assert run.row_at(0.0).index == 0  # the installation's first row
+    assert run.row_at(0.6) is None and run.index_at(0.6) is None
 
 
 def test_shaft_ratios(synthetic_run):

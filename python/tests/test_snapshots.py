@@ -1,4 +1,6 @@
 """open_snapshots and follow_particle: particles followed by id across re-sorted snapshots."""
+import re
+
 import numpy as np
 import pytest
 from vtkmodules.util.numpy_support import numpy_to_vtk
@@ -186,3 +188,34 @@ def test_truncated_snapshot_is_refused(tmp_path, capfd, cut_at, problem):
         snapshot.positions
     assert "ERR|" not in capfd.readouterr().err
     assert mpile.open_snapshots(whole)[0].positions.shape == (200, 2)  # the whole file still reads
+
+
+def cut_short(whole, directory):
+    """Copies of the file `whole` cut at every length from its appended data's start to 300 bytes
+    into it (where VTK reads some cuts without an error and returns no points) and at half its
+    length, as (length, path)."""
+    data = whole.read_bytes()
+    start = data.index(b"<AppendedData")
+    for end in sorted(set(range(start, min(start + 300, len(data)))) | {len(data) // 2}):
+        cut = directory / f"cut{whole.suffix}"
+        cut.write_bytes(data[:end])
+        yield end, cut
+
+
+def test_a_real_snapshot_cut_short_anywhere_is_refused(real_run, tmp_path):
+    """A run's .vtu cut short in its appended data: every cut raises RunFileError naming the file,
+    including those after which VTK reports no error but reads none of the declared points."""
+    whole = sorted(real_run.glob("particles_*.vtu"))[-1]
+    points = len(mpile.open_snapshots(whole)[0].positions)
+    assert points > 100
+    opened, messages = [], []
+    for end, cut in cut_short(whole, tmp_path):
+        try:
+            snapshot = mpile.open_snapshots(cut)[0]
+            opened.append((end, len(snapshot.positions)))
+        except RunFileError as error:
+            messages.append(str(error))
+    assert opened == [], f"cut at these lengths, {whole.name} opened with (length, points): {opened}"
+    pattern = re.compile(r"cut\.vtu is not a readable VTK XML unstructured grid \(\.vtu\), cut short or damaged: ")
+    assert all(pattern.search(message) for message in messages), messages[:3]
+    assert any(f"it declares {points} points and 0 were read" in message for message in messages)
