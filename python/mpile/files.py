@@ -61,6 +61,10 @@ def read_only(path):
         raise RunFileError(f"{path} is not a readable HDF5 file ({error})") from None
     try:
         yield handle
+    except OSError as error:
+        # HDF5 refuses a chunk whose Fletcher32 checksum does not match (mpile writes one on every
+        # chunk): data damaged on disk, not numbers to read back.
+        raise RunFileError(f"{path}: damaged data, it cannot be read ({error})") from None
     finally:
         handle.close()
 

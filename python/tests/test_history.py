@@ -1,4 +1,5 @@
 """open_history: the series of history.h5 as an xarray Dataset and a pandas DataFrame."""
+import shutil
 import subprocess
 import sys
 import time
@@ -183,6 +184,28 @@ def test_real_run(real_run):
     with h5py.File(real_run / "history.h5", "r") as raw:
         for name in ("energy/kinetic", "bodies/incline/u_y", "reactions/incline/slope/F_r"):
             np.testing.assert_array_equal(ds[name].values, raw[name][:])
+
+
+def test_data_damaged_on_disk_is_refused_not_read_back_as_other_numbers(real_run, tmp_path):
+    # mpile writes a Fletcher32 checksum on every chunk: one flipped byte in /energy/kinetic's data
+    # makes the read fail, and the package says so with its own error. Without the checksums the
+    # series read back with one value changed and no word.
+    damaged = tmp_path / "history.h5"
+    shutil.copyfile(real_run / "history.h5", damaged)
+    with h5py.File(damaged, "r") as raw:
+        kinetic = raw["energy/kinetic"]
+        assert kinetic.fletcher32
+        offset = kinetic.id.get_chunk_info(0).byte_offset
+    with open(damaged, "r+b") as raw:
+        raw.seek(offset + 8 * 20 + 3)
+        byte = raw.read(1)
+        raw.seek(offset + 8 * 20 + 3)
+        raw.write(bytes([byte[0] ^ 0xFF]))
+    with pytest.raises(mpile.RunFileError, match="damaged data, it cannot be read"):
+        mpile.open_history(damaged)
+    with pytest.raises(mpile.RunFileError, match="damaged data"):
+        mpile.read_series(damaged, ["/energy/kinetic", "/time"])
+    assert len(mpile.read_series(damaged, ["/time"])["/time"]) > 20  # the rest reads as before
 
 
 def test_xarray_alone_reads_a_group_on_the_shared_time(real_run):
