@@ -229,6 +229,11 @@ int check_case(const RunOptions& options, std::ostream& out, std::ostream& err) 
   if (options.strict && refused_when_strict(spec.warnings)) {
     return exit_bad_input;
   }
+  if (options.print_resolved) {
+    // What the history's case_resolved will hold: a file that runs as this case on its own.
+    out << spec.resolved;
+    return exit_success;
+  }
   out << spec.file << ": " << spec.title << " ("
       << (spec.mode == GeometryMode::axisymmetric ? "axisymmetric" : "plane strain") << ")\n";
   out << "grid: " << scene->grid.cells_r() << " x " << scene->grid.cells_y() << " cells, "

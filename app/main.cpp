@@ -99,6 +99,9 @@ int main(int argc, char** argv) {
                    "and estimate its run time from how far it got")
       ->check(finite_positive_seconds);
   check->add_flag("--strict", run_options.strict, strict_help);
+  check->add_flag("--print-resolved", run_options.print_resolved,
+                  "print the case as it runs (bases merged, --set values applied) as one TOML "
+                  "file, once it is checked, instead of the summary");
 
   mpile::SweepOptions sweep_options;
   auto* sweep = app.add_subcommand(

@@ -24,6 +24,8 @@ struct RunOptions {
   /// --strict: a plausibility warning of units (io/case_warnings.hpp) refuses the case (exit
   /// status 2) instead of being printed; notes on resolution are printed either way.
   bool strict = false;
+  /// check --print-resolved: print the case as it runs (bases merged, --set applied) as TOML.
+  bool print_resolved = false;
 };
 
 /// Exit statuses of the command line.

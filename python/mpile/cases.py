@@ -29,14 +29,12 @@ import re
 import shutil
 import signal
 import subprocess
-import tempfile
 import threading
 import time
 import tomllib
 import warnings
 from pathlib import Path
 
-from .files import RunFileError
 
 
 class CaseError(ValueError):
@@ -362,24 +360,20 @@ class Case:
         self.unset(key)
 
     def resolved_text(self):
-        """The case as mpile resolves it (bases merged, values set), as TOML text: the history's
-        `case_resolved` of a run of it. mpile takes it from a run stopped after its first step in a
-        temporary directory (the case's setup, as long as `mpile check`'s)."""
+        """The case as mpile resolves it (bases merged, values set), as TOML text: what the
+        history's `case_resolved` of a run of it holds (`mpile check CASE --set ...
+        --print-resolved`)."""
         key = (tuple(self._sets), self.path.stat().st_mtime_ns if self.path.exists() else None)
         if self._resolved is None or self._resolved[0] != key:
-            from .history import attributes
-
-            with tempfile.TemporaryDirectory(prefix="mpile-case-") as directory:
-                status, _, stderr = _execute([self.mpile, "run", *self._arguments(), "--out", directory,
-                                              "--threads", "1", "--stop-after", "1"])
-                if status == 2:
-                    raise CaseError(_refusal(stderr), status, stderr)
-                try:
-                    attrs = attributes(directory)
-                except RunFileError:
-                    raise RunError(f"mpile wrote no history resolving {self.path} (exit status {status}):\n"
-                                   + _failure(stderr), status=status, output=stderr) from None
-            self._resolved = (key, attrs["case_resolved"], attrs.get("title", ""))
+            status, stdout, stderr = _execute([self.mpile, "check", *self._arguments(), "--threads", "1",
+                                               "--print-resolved"])
+            if status == 2:
+                raise CaseError(_refusal(stderr), status, stderr)
+            if status != 0:
+                raise RunError(f"mpile could not resolve {self.path} (exit status {status}):\n"
+                               + _failure(stderr), status=status, output=stderr)
+            # The title a run takes: the case's, else its file's name (docs/case-format.md).
+            self._resolved = (key, stdout, tomllib.loads(stdout).get("title", self.path.stem))
         return self._resolved[1]
 
     def resolved(self):
