@@ -35,9 +35,9 @@ def estimate(mpile, case, pilot, threads):
     return (float(found.group(2)) if found.group(2) else high, high), note
 
 
-def shown(value):
+def shown(value, form=".3g"):
     low, high = value
-    return f"{high:.3g}" if low == high else f"{low:.3g} to {high:.3g}"
+    return f"{high:{form}}" if low == high else f"{low:{form}} to {high:{form}}"
 
 
 def run(mpile, case, out, threads):
@@ -71,7 +71,7 @@ def main():
         ran = f"{wall:.3g}" + ("" if status == 0 else f" (exit {status})")
         ratio = ""
         if value is not None and wall > 0:
-            ratio = shown((value[0] / wall, value[1] / wall))
+            ratio = shown((value[0] / wall, value[1] / wall), ".2f")
         print(f"| `{name[:-5]}` | {args.pilot:g} | {text} | {ran} | {ratio} |", flush=True)
     return 0
 
