@@ -151,6 +151,8 @@ private:
   /// Throws SimulationError naming what failed at (step, time); returns when nothing did.
   void stop_if_failed(const StepFailure& failure, long step, double time) const;
   void report_stress_free_inside_rigid(std::int64_t count);
+  /// Warns, once, of pore water in more tension than water can carry where nothing caps it.
+  void report_water_tension();
   /// Particle-to-grid alone (for the equilibrium check), in the scene's mode and shape functions.
   void particle_to_grid();
   void prepare();
@@ -199,6 +201,8 @@ private:
   /// The log says how many soil particles lie inside rigid bodies when a step's count reaches this
   /// (then the next power of ten); not in checkpoints.
   std::int64_t stress_free_report_at_ = 1;
+  /// Whether report_water_tension has warned (not in checkpoints: a restart warns again).
+  bool water_tension_reported_ = false;
   /// Each particle's c_p + |v_p| from the last stress update, kept only with a moving mesh.
   std::vector<double> signal_speed_;
   double last_dt_ = 0.0;

@@ -313,3 +313,38 @@ add_test(NAME Hypoplastic.ElementTestsMeetTheIndependentIntegration
                  $<TARGET_FILE:mpile> ${CMAKE_CURRENT_BINARY_DIR}/hypoplastic_reference)
 set_tests_properties(Hypoplastic.ElementTestsMeetTheIndependentIntegration PROPERTIES
                      PASS_REGULAR_EXPRESSION "all within 0.0001\n")
+
+# Mandel's problem (docs/verification.md, "Mandel's problem"): the closed form against its Laplace
+# transform inverted numerically (Python alone), and the two coarse cases against it (about 2 s
+# each). The lid (the top grid line moved as the closed form's plate) meets it: measured at
+# f3801ae, the centre's Mandel-Cryer peak 0.47 % low, |p - ref| <= 0.0054 p0 after the load's rise,
+# the reaction within 0.75 % of F, the ledger within 1.3 %; the bounds are about twice those. The
+# force-driven plate carries its load to 0.02 % (bound 0.1 %) and shows the rise, 3.0 % low; its
+# pressure lags the closed form by up to 0.041 p0 and its ledger peaks at 3.6 %, because the water
+# is tied to the plate in both directions at its wall (no flow along its underside: the issue of
+# the wall's water): bounds 0.05, 0.06 and 0.05 hold today's state until that is fixed.
+add_test(NAME Mandel.Pytest
+         COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
+                 ${PROJECT_SOURCE_DIR}/tests/mandel_test.py)
+set_tests_properties(Mandel.Pytest PROPERTIES LABELS python)
+foreach(lid_or_plate lid plate)
+  set(mandel_output ${CMAKE_CURRENT_BINARY_DIR}/mandel_${lid_or_plate})
+  add_test(NAME Mandel.Run_${lid_or_plate}
+           COMMAND mpile run ${PROJECT_SOURCE_DIR}/cases/verification/mandel_${lid_or_plate}.toml
+                   --threads 1 --out ${mandel_output})
+  set_tests_properties(Mandel.Run_${lid_or_plate} PROPERTIES FIXTURES_SETUP mandel_${lid_or_plate}
+                       LABELS study)
+  if(lid_or_plate STREQUAL "lid")
+    set(mandel_bounds --expect peak=0.01 --expect after_rise=0.01 --expect reaction=0.015
+                      --expect residual=0.025)
+  else()
+    set(mandel_bounds --expect peak=0.05 --expect after_rise=0.06 --expect reaction=0.001
+                      --expect residual=0.05)
+  endif()
+  add_test(NAME Mandel.MeetsTheClosedForm_${lid_or_plate}
+           COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/mandel.py --compare ${mandel_output}
+                   ${mandel_bounds})
+  set_tests_properties(Mandel.MeetsTheClosedForm_${lid_or_plate} PROPERTIES
+                       FIXTURES_REQUIRED mandel_${lid_or_plate} LABELS study
+                       PASS_REGULAR_EXPRESSION "mandel check: ok\n")
+endforeach()

@@ -616,9 +616,11 @@ def compare(run, load_from=None):
           f"{ref_curve[kr]:.4f} at {grid_t[kr] / model.T:.4f}; the step's {peak_ref:.4f} at "
           f"{tau_ref:.4f} (x = 0). Peak error {(p_centre[k] - ref_curve[kr]) / ref_curve[kr]:+.2%}; "
           f"rises above 1: {'yes' if p_centre[k] > 1.0 else 'no'}")
+    summary = {"peak": float(p_centre[k]), "peak_reference": float(ref_curve[kr])}
     if np.any(after):
         ref_all = np.array([model.loaded("p", x_centre, t, load) for t in time[after]]) / model.p0
         err = p_centre[after] - ref_all
+        summary["after_rise"] = float(np.max(np.abs(err)))
         print(f"  after the rise: largest |p - ref| / p0 {np.max(np.abs(err)):.4f} at t / T = "
               f"{time[after][np.argmax(np.abs(err))] / model.T:.4f}; rms {np.sqrt(np.mean(err**2)):.4f}")
 
@@ -679,6 +681,7 @@ def compare(run, load_from=None):
         print(line)
     if np.any(after):
         dev = (contact[after] - driving[after]) / model.F
+        summary["reaction"] = float(np.max(np.abs(dev)))
         print(f"  after the rise: reaction - drive within {dev.min():+.3%} .. {dev.max():+.3%} of F, "
               f"mean {dev.mean():+.3%}")
         if base is not None:
@@ -753,6 +756,24 @@ def compare(run, load_from=None):
     status = str(attrs.get("status", ""))
     print("stopped by a guard: " + ("yes: " + status if ("unstable" in status or "failed" in status)
                                      else "no"))
+    summary["residual_peak"] = float(abs(rel[kp]))
+    summary["complete"] = status.startswith("complete")
+    return summary
+
+
+def check(summary, expect):
+    """The run's summary against the bounds asked for (--expect NAME=BOUND): the peak's relative
+    error, the largest |p - ref| / p0 after the rise, |reaction - drive| / F after the rise, and
+    the largest relative energy residual after step 100. Returns the failures."""
+    failures = [] if summary["complete"] else ["the run did not complete"]
+    measured = {"peak": abs(summary["peak"] - summary["peak_reference"]) / summary["peak_reference"],
+                "after_rise": summary.get("after_rise", float("inf")),
+                "reaction": summary.get("reaction", float("inf")),
+                "residual": summary["residual_peak"]}
+    for name, bound in expect.items():
+        if not measured[name] <= bound:
+            failures.append(f"{name} {measured[name]:.4g} > {bound:g}")
+    return failures
 
 
 def main():
@@ -763,6 +784,11 @@ def main():
     what.add_argument("--write-lid", nargs=2, metavar=("PLATE_CASE", "LID_CASE"),
                       help="write the lid variant of a plate case (the top moved as the closed "
                            "form's plate)")
+    parser.add_argument("--expect", action="append", default=[], metavar="NAME=BOUND",
+                        help="with --compare: fail (exit 1) unless NAME (peak: the centre's peak "
+                             "p's relative error; after_rise: max |p - ref| / p0 after the rise; "
+                             "reaction: max |reaction - drive| / F after it; residual: the largest "
+                             "relative energy residual after step 100) is at most BOUND")
     parser.add_argument("--load-from", metavar="PLATE_CASE",
                         help="with --compare on a lid run: the plate case whose force it stands for "
                              f"(default {DEFAULT_PLATE_CASE})")
@@ -789,7 +815,17 @@ def main():
         print()
         reference_table(model)
     else:
-        compare(args.compare, args.load_from)
+        summary = compare(args.compare, args.load_from)
+        if args.expect:
+            expect = {}
+            for item in args.expect:
+                name, _, bound = item.partition("=")
+                if name not in ("peak", "after_rise", "reaction", "residual"):
+                    sys.exit(f"--expect {item}: no such quantity")
+                expect[name] = float(bound)
+            failures = check(summary, expect)
+            print("mandel check: " + ("ok" if not failures else "FAILED: " + "; ".join(failures)))
+            sys.exit(1 if failures else 0)
 
 
 if __name__ == "__main__":

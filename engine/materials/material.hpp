@@ -4,6 +4,7 @@
 #include "engine/tensor.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -54,6 +55,9 @@ public:
   /// The sea's pressure on the seabed (Pa) that a saturated material's pore pressure and total
   /// stress are kept relative to (physics.md section 9c); outputs add it back. 0 for every other.
   virtual double water_column_pressure() const { return 0.0; }
+  /// The highest pore pressure p (tension positive, the sea's column included as the state keeps
+  /// it) the water may reach before it cavitates: infinite without a cut-off or without water.
+  virtual double pore_pressure_limit() const { return std::numeric_limits<double>::infinity(); }
   /// A particle's total stress as outputs report it, the sea's pressure added back.
   Stress reported_stress(Stress stress) const {
     const double column = water_column_pressure();

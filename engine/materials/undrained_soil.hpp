@@ -52,6 +52,7 @@ public:
   double water_stiffness() const { return water_stiffness_; }
   double water_density() const { return water_density_; }
   double water_column_pressure() const override { return column_pressure_; }
+  double pore_pressure_limit() const override { return pore_limit_; }
   Drainage drainage() const { return coupled_ ? Drainage::coupled : Drainage::undrained; }
 
 private:
