@@ -316,13 +316,15 @@ void note_pure_flip_in_saturated_soil(const TomlTable& material, const CaseSpec&
       });
   // With the implicit pore pressure and one excess pore pressure per cell it does not grow
   // (docs/saturated.md: the quick GDP cases under FLIP, ledger within 0.03 %); with the implicit
-  // pore pressure alone the same cases went unstable at t = 0.085 s.
+  // pore pressure alone the quick coupled GDP case ends with its ledger 4.7 % out (9 % at its
+  // peak; at f3801ae).
   if (pure_flip && !(spec.solver.implicit_pore_pressure && spec.solver.cell_mean_pore_pressure)) {
     add(warnings, CaseWarning::Kind::resolution, material, "drainage",
         "saturated soil is nearly incompressible, and under pure FLIP (xpic_order = 0, "
         "flip_fraction = 1) a mode the grid does not see can grow in it (docs/verification.md: "
         "1.9 % of a pulse came back at an absorbing face; docs/saturated.md: the quick GDP case "
-        "went unstable); take [solver] implicit_pore_pressure = true with "
+        "with per-particle pressures ended 4.7 % out of energy balance); take [solver] "
+        "implicit_pore_pressure = true with "
         "cell_mean_pore_pressure = true, as the saturated installation cases do");
   }
 }
