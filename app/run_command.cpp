@@ -91,285 +91,375 @@ int refuse_case(std::ostream& err, const std::string& case_path) {
   return exit_bad_input;
 }
 
-int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
-  // First of all, so that a SIGINT or SIGTERM while the case is read and built (seconds for a
-  // large one) stops the run cleanly instead of killing it.
-  StopOnSignals signals;
-  const auto wall_start = std::chrono::steady_clock::now();
-  CaseSpec spec;
-  std::unique_ptr<Scene> scene;
-  Checkpoint restored;
-  std::string restart = options.restart;
-  std::string continuation_reason;
-  try {
-    spec = read_case_file(options.case_path, options.overrides);
-    if (options.continue_run && restart.empty()) {
-      const Continuation c = find_continuation(output_directory(options, spec), spec.resolved);
-      if (c.complete) {
-        out << "mpile: " << c.reason << "; nothing to continue\n";
-        return exit_success;
-      }
-      restart = c.checkpoint;
-      continuation_reason = c.reason;
+namespace {
+
+/// A stage's outcome: std::nullopt to go on, else the exit status the command ends with.
+using Stop = std::optional<int>;
+
+/// `mpile run` in its stages: open (read the case, find what it continues, build the scene, read
+/// the checkpoint), start the solver, prepare the outputs (directory, lock, log), run the phases
+/// with their observers, and close (the history's status and the summary, for each way a run
+/// ends). Each stage handles its own errors; nothing is written before the outputs' stage.
+class RunStages {
+public:
+  RunStages(const RunOptions& options, std::ostream& out, std::ostream& err)
+      : options_(options), out_(out), err_(err), log_(&out),
+        wall_start_(std::chrono::steady_clock::now()) {}
+
+  int run() {
+    if (const Stop stop = open()) {
+      return *stop;
     }
-    scene = build_scene(spec);
-    if (restart.empty()) {
-      for (const MonitorSpec& monitor : spec.output.monitors) {
-        monitored_particle(monitor, *scene); // refused here, before anything is written
-      }
+    // Before anything is written: with --strict a likely slip of units refuses the run.
+    print_case_warnings(err_, spec_.warnings, options_.strict);
+    if (options_.strict && refused_when_strict(spec_.warnings)) {
+      return exit_bad_input;
     }
-    if (!restart.empty()) {
-      restored = read_checkpoint(restart, spec, *scene);
-      if (restored.progress.phase >= spec.phases.size()) {
+    if (const Stop stop = start_solver()) {
+      return *stop;
+    }
+    if (stop_requested != 0) {
+      err_ << "mpile: interrupted before the run started; nothing was written\n";
+      return exit_interrupted;
+    }
+    if (!continuation_reason_.empty()) {
+      out_ << "mpile: --continue: " << continuation_reason_
+           << (restarting() ? "" : ": the run starts from the beginning") << '\n';
+    }
+    if (const Stop stop = prepare_outputs()) {
+      return *stop;
+    }
+    try {
+      return run_phases();
+    } catch (const std::runtime_error& e) {
+      // The outputs could not even be started (the history's header, the snapshot index).
+      return stop_with(std::string("mpile: ") + e.what(), exit_failure);
+    }
+  }
+
+private:
+  bool restarting() const { return !restart_.empty(); }
+
+  /// Open: the case read (bases, --set), what --continue continues, the scene built, a fresh
+  /// run's monitors found and a continued run's checkpoint read. Bad input: exit 2.
+  Stop open() {
+    restart_ = options_.restart;
+    try {
+      spec_ = read_case_file(options_.case_path, options_.overrides);
+      if (options_.continue_run && restart_.empty()) {
+        const Continuation c = find_continuation(output_directory(options_, spec_), spec_.resolved);
+        if (c.complete) {
+          out_ << "mpile: " << c.reason << "; nothing to continue\n";
+          return exit_success;
+        }
+        restart_ = c.checkpoint;
+        continuation_reason_ = c.reason;
+      }
+      scene_ = build_scene(spec_);
+      if (!restarting()) {
+        for (const MonitorSpec& monitor : spec_.output.monitors) {
+          monitored_particle(monitor, *scene_); // refused here, before anything is written
+        }
+        return std::nullopt;
+      }
+      restored_ = read_checkpoint(restart_, spec_, *scene_);
+      if (restored_.progress.phase >= spec_.phases.size()) {
         // A complete run goes on only when its last phase may now end later.
-        const std::string last = "phases." + std::to_string(spec.phases.size() - 1) + ".";
-        if (std::none_of(restored.changed_keys.begin(), restored.changed_keys.end(),
+        const std::string last = "phases." + std::to_string(spec_.phases.size() - 1) + ".";
+        if (std::none_of(restored_.changed_keys.begin(), restored_.changed_keys.end(),
                          [&](const std::string& key) { return key.starts_with(last); })) {
-          throw CaseError(restart +
+          throw CaseError(restart_ +
                           ": the run in this checkpoint is complete; nothing to continue (to "
                           "extend it, change the last phase's duration or stop_at, or add a "
                           "phase)");
         }
-        restored.progress.phase = spec.phases.size() - 1;
+        restored_.progress.phase = spec_.phases.size() - 1;
       }
+    } catch (const std::exception&) {
+      return refuse_case(err_, options_.case_path);
     }
-  } catch (const std::exception&) {
-    return refuse_case(err, options.case_path);
-  }
-  const bool restarting = !restart.empty();
-  // Before anything is written: with --strict a likely slip of units refuses the run.
-  print_case_warnings(err, spec.warnings, options.strict);
-  if (options.strict && refused_when_strict(spec.warnings)) {
-    return exit_bad_input;
+    return std::nullopt;
   }
 
-  RunLog log(&out);
-  RunProgress progress = restarting ? restored.progress : RunProgress{};
-  const CasePhases phases(spec, *scene);
-  std::unique_ptr<ExplicitSolver> solver;
-  try {
-    solver =
-        restarting ? phases.resume(progress, log, restored.solver) : phases.start(progress, log);
-    if (!restarting) {
-      refuse_implausible_run(spec, *scene, solver->stable_time_step());
-    }
-  } catch (const CaseError& e) {
-    err << "mpile: " << e.what() << '\n';
-    return exit_bad_input;
-  } catch (const std::invalid_argument& e) {
-    err << "mpile: " << spec.file << ": " << e.what() << '\n';
-    return exit_bad_input;
-  }
-
-  if (stop_requested != 0) {
-    err << "mpile: interrupted before the run started; nothing was written\n";
-    return exit_interrupted;
-  }
-
-  if (!continuation_reason.empty()) {
-    out << "mpile: --continue: " << continuation_reason
-        << (restarting ? "" : ": the run starts from the beginning") << '\n';
-  }
-
-  // Nothing is written before the case has been read, built and judged runnable.
-  const std::string directory = output_directory(options, spec);
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) {
-    err << "mpile: cannot create the output directory " << directory << ": " << error.message()
-        << '\n';
-    return exit_failure;
-  }
-
-  // One run at a time in a directory; the lock lasts as long as this run.
-  std::optional<OutputLock> lock;
-  try {
-    lock.emplace(directory);
-    if (!restarting) {
-      // A fresh run replaces the outputs of an earlier run in the same directory, so that no
-      // stale snapshot or checkpoint is taken for part of this one.
-      remove_earlier_outputs(directory);
-    }
-  } catch (const OutputBusy& e) {
-    err << "mpile: " << e.what() << '\n';
-    return exit_bad_input;
-  } catch (const std::runtime_error& e) {
-    err << "mpile: " << e.what() << '\n';
-    return exit_failure;
-  }
-
-  // The run's log beside its outputs (appended to by a restart), flushed line by line.
-  std::ofstream log_file(directory + "/run.log", restarting ? std::ios::app : std::ios::trunc);
-  auto to_log_file = [&](const std::string& line) {
-    if (log_file) {
-      log_file << line << std::endl;
-    }
-  };
-  if (log_file) {
-    log.also_to(&log_file);
-    to_log_file(
-        std::string("mpile ") + MPILE_VERSION + ": " +
-        (restarting ? "continuing " + spec.file + " from " + restart : "running " + spec.file) +
-        " on " + std::to_string(options.threads) + " threads");
-    if (!continuation_reason.empty()) {
-      to_log_file("--continue: " + continuation_reason);
-    }
-    // The warnings printed as the run began, beside its outputs where they are read.
-    print_case_warnings(log_file, spec.warnings, false);
-    log_file.flush();
-  }
-
-  const OutputSpec& output = spec.output;
-  const OutputSchedule schedule{output.history_interval, output.snapshot_interval,
-                                output.snapshot_times,   output.snapshot_penetrations,
-                                output.penetration_body, output.checkpoint_interval};
-  const std::string checkpoint_path = directory + "/checkpoint.h5";
-  try {
-    std::unique_ptr<HistoryWriter> history_file;
+  /// The solver at the run's first phase, or at the checkpoint's; an implausible fresh run is
+  /// refused (exit 2).
+  Stop start_solver() {
+    progress_ = restarting() ? restored_.progress : RunProgress{};
+    phases_.emplace(spec_, *scene_);
     try {
-      history_file =
-          std::make_unique<HistoryWriter>(directory + "/history.h5", spec, *scene, options.threads,
-                                          restarting ? progress.history_rows : 0);
+      solver_ = restarting() ? phases_->resume(progress_, log_, restored_.solver)
+                             : phases_->start(progress_, log_);
+      if (!restarting()) {
+        refuse_implausible_run(spec_, *scene_, solver_->stable_time_step());
+      }
+    } catch (const CaseError& e) {
+      err_ << "mpile: " << e.what() << '\n';
+      return exit_bad_input;
+    } catch (const std::invalid_argument& e) {
+      err_ << "mpile: " << spec_.file << ": " << e.what() << '\n';
+      return exit_bad_input;
+    }
+    return std::nullopt;
+  }
+
+  /// The output directory made and locked (one run at a time in it), an earlier run's outputs
+  /// removed for a fresh run, and the run's log opened beside them.
+  Stop prepare_outputs() {
+    directory_ = output_directory(options_, spec_);
+    checkpoint_path_ = directory_ + "/checkpoint.h5";
+    std::error_code error;
+    std::filesystem::create_directories(directory_, error);
+    if (error) {
+      err_ << "mpile: cannot create the output directory " << directory_ << ": " << error.message()
+           << '\n';
+      return exit_failure;
+    }
+    try {
+      lock_.emplace(directory_);
+      if (!restarting()) {
+        // A fresh run replaces the outputs of an earlier run in the same directory, so that no
+        // stale snapshot or checkpoint is taken for part of this one.
+        remove_earlier_outputs(directory_);
+      }
+    } catch (const OutputBusy& e) {
+      err_ << "mpile: " << e.what() << '\n';
+      return exit_bad_input;
+    } catch (const std::runtime_error& e) {
+      err_ << "mpile: " << e.what() << '\n';
+      return exit_failure;
+    }
+    // Appended to by a restart, flushed line by line.
+    log_file_.open(directory_ + "/run.log", restarting() ? std::ios::app : std::ios::trunc);
+    if (log_file_) {
+      log_.also_to(&log_file_);
+      to_log_file(std::string("mpile ") + MPILE_VERSION + ": " +
+                  (restarting() ? "continuing " + spec_.file + " from " + restart_
+                                : "running " + spec_.file) +
+                  " on " + std::to_string(options_.threads) + " threads");
+      if (!continuation_reason_.empty()) {
+        to_log_file("--continue: " + continuation_reason_);
+      }
+      // The warnings printed as the run began, beside its outputs where they are read.
+      print_case_warnings(log_file_, spec_.warnings, false);
+      log_file_.flush();
+    }
+    return std::nullopt;
+  }
+
+  /// The history opened (created, or continued after a restart); a checkpoint whose history does
+  /// not fit it is bad input.
+  Stop open_history() {
+    try {
+      history_ = std::make_unique<HistoryWriter>(directory_ + "/history.h5", spec_, *scene_,
+                                                 options_.threads,
+                                                 restarting() ? progress_.history_rows : 0);
     } catch (const NoRoomForOutput&) {
       throw; // a full disk, not a checkpoint that does not fit its history
     } catch (const std::runtime_error& e) {
-      if (!restarting) {
+      if (!restarting()) {
         throw;
       }
-      // The checkpoint and the history it continues do not fit together: bad input.
-      err << "mpile: " << restart << ": cannot continue the history in " << directory;
-      if (!std::filesystem::exists(directory + "/history.h5")) {
-        err << ": it has no history.h5; restart into the output directory of the run that wrote "
-               "the checkpoint (--out)\n";
+      err_ << "mpile: " << restart_ << ": cannot continue the history in " << directory_;
+      if (!std::filesystem::exists(directory_ + "/history.h5")) {
+        err_ << ": it has no history.h5; restart into the output directory of the run that wrote "
+                "the checkpoint (--out)\n";
       } else {
-        err << ": " << e.what() << '\n';
+        err_ << ": " << e.what() << '\n';
       }
       return exit_bad_input;
     }
-    HistoryWriter& history = *history_file;
-    SnapshotWriter snapshots(directory, output.grid_snapshots);
-    auto save_state = [&] {
-      // The checkpoint counts the history's rows: they must be in the file before it does, or a
-      // run killed after the checkpoint restarts from rows the file never got.
-      history.flush();
-      progress.snapshots = snapshots.entries();
-      progress.history_rows = history.rows();
-      write_checkpoint(checkpoint_path, spec, *scene, solver->state(), progress);
-    };
-    ProgressReporter reporter(err, isatty(fileno(stderr)) != 0);
-    PhaseRunner runner(*solver, phases.phases(), schedule, progress, log);
-    HistoryObserver history_observer(history, *solver);
-    SnapshotObserver snapshot_observer(snapshots, *scene);
-    CheckpointObserver checkpoint_observer(save_state);
-    ProgressObserver progress_observer(reporter);
+    return std::nullopt;
+  }
+
+  /// Run: the phases with their observers (history, snapshots, checkpoints, progress) until they
+  /// end, are interrupted or fail; then the matching close.
+  int run_phases() {
+    if (const Stop stop = open_history()) {
+      return *stop;
+    }
+    const OutputSpec& output = spec_.output;
+    const OutputSchedule schedule{output.history_interval, output.snapshot_interval,
+                                  output.snapshot_times,   output.snapshot_penetrations,
+                                  output.penetration_body, output.checkpoint_interval};
+    snapshots_.emplace(directory_, output.grid_snapshots);
+    reporter_.emplace(err_, isatty(fileno(stderr)) != 0);
+    runner_.emplace(*solver_, phases_->phases(), schedule, progress_, log_);
+    HistoryObserver history_observer(*history_, *solver_);
+    SnapshotObserver snapshot_observer(*snapshots_, *scene_);
+    CheckpointObserver checkpoint_observer([this] { save_state(); });
+    ProgressObserver progress_observer(*reporter_);
     for (RunObserver* observer : std::initializer_list<RunObserver*>{
              &history_observer, &snapshot_observer, &checkpoint_observer, &progress_observer}) {
-      runner.add_observer(*observer);
+      runner_->add_observer(*observer);
     }
-    auto residual_summary = [&] {
-      const PhaseRunner::ResidualSummary r = runner.residual_summary();
-      return HistoryWriter::ResidualSummary{r.final, r.peak, r.peak_time};
-    };
-    if (restarting) {
-      snapshots.restore(progress.snapshots);
-      out << "mpile: continuing " << spec.file << " from " << restart
-          << " at t = " << format_time(solver->time()) << " s\n";
+    if (restarting()) {
+      snapshots_->restore(progress_.snapshots);
+      out_ << "mpile: continuing " << spec_.file << " from " << restart_
+           << " at t = " << format_time(solver_->time()) << " s\n";
     } else {
-      runner.start();
+      runner_->start();
     }
     const auto stop_due = [&](long steps_this_run) {
       return stop_requested != 0 ||
-             (options.stop_after_steps > 0 && steps_this_run >= options.stop_after_steps) ||
-             (options.stop_after_seconds > 0.0 &&
-              seconds_since(wall_start) >= options.stop_after_seconds);
-    };
-    // An output that cannot be written (a full disk, a file-size limit) stops the run: what was
-    // written before stays readable, and the message names the file.
-    const auto cannot_write = [&](const std::runtime_error& e) {
-      reporter.finish();
-      std::ostringstream line;
-      line << "mpile: " << e.what() << "; the run stopped at t = " << format_time(solver->time())
-           << " s (outputs so far are in " << directory;
-      if (std::filesystem::exists(checkpoint_path)) {
-        line << "; once there is room, continue with --restart " << checkpoint_path;
-      }
-      line << ")";
-      try {
-        history.close_after_failure(seconds_since(wall_start), std::string("failed: ") + e.what(),
-                                    residual_summary());
-      } catch (const std::runtime_error&) {
-        // Not even the status could be written: the history keeps its whole rows so far.
-      }
-      err << line.str() << '\n';
-      to_log_file(line.str());
-      return exit_failure;
+             (options_.stop_after_steps > 0 && steps_this_run >= options_.stop_after_steps) ||
+             (options_.stop_after_seconds > 0.0 &&
+              seconds_since(wall_start_) >= options_.stop_after_seconds);
     };
     try {
       try {
-        if (runner.run(phases.set_up_on(*solver), stop_due) == PhaseRunner::Outcome::interrupted) {
-          const double t = solver->time();
-          reporter.finish();
-          // The checkpoint lists the snapshots an uninterrupted run has by now; the one taken at
-          // the interruption is this run's alone (a restart writes its number again).
-          save_state();
-          runner.snapshot_now();
-          history.close(seconds_since(wall_start), "interrupted at t = " + format_time(t) + " s",
-                        residual_summary());
-          std::ostringstream line;
-          line << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint "
-               << checkpoint_path << " (continue with --restart " << checkpoint_path << ")";
-          err << line.str() << '\n';
-          to_log_file(line.str());
-          return exit_interrupted;
+        if (runner_->run(phases_->set_up_on(*solver_), stop_due) ==
+            PhaseRunner::Outcome::interrupted) {
+          return close_interrupted();
         }
       } catch (const SimulationError& e) {
-        reporter.finish();
-        save_state();
-        history.close(seconds_since(wall_start), std::string("failed: ") + e.what(),
-                      residual_summary());
-        const std::string line =
-            std::string("mpile: ") + e.what() + " (outputs so far are in " + directory + ")";
-        err << line << '\n';
-        to_log_file(line);
-        return exit_failure;
+        return close_failed(e);
       }
-      const double t = solver->time();
-      runner.snapshot_now();
-      save_state();
-      const double wall = seconds_since(wall_start);
-      // A run that completes with energy unaccounted for says so where it is read first: the
-      // history's status and the last line of the log.
-      const double warning = solver->settings().energy_residual_warning;
-      const double final_residual = runner.residual_summary().final;
-      const bool doubtful = progress.peak_residual > warning || final_residual > warning;
-      std::ostringstream residual;
-      residual << std::setprecision(3) << "energy residual " << 100.0 * final_residual
-               << " % at the end, peak " << 100.0 * progress.peak_residual
-               << " % at t = " << format_time(progress.peak_residual_time) << " s";
-      if (doubtful) {
-        residual << " (energy_residual_warning " << 100.0 * warning << " %)";
-      }
-      history.close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
-                    residual_summary());
-      std::ostringstream done;
-      done << "mpile: " << spec.title
-           << (doubtful ? " done, but its energy balance is doubtful" : " done")
-           << ": t = " << format_time(t) << " s in " << solver->step_count() << " steps, "
-           << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
-           << "; outputs in " << directory;
-      out << done.str() << "\n";
-      to_log_file(done.str());
+      return close_complete();
     } catch (const std::runtime_error& e) {
-      return cannot_write(e);
+      return close_cannot_write(e);
     }
-  } catch (const std::runtime_error& e) {
-    // The outputs could not even be started (the history's header, the snapshot index).
-    const std::string line = std::string("mpile: ") + e.what();
-    err << line << '\n';
-    to_log_file(line);
-    return exit_failure;
   }
-  return exit_success;
+
+  /// The checkpoint, after the history's rows it counts.
+  void save_state() {
+    // The rows must be in the file before the checkpoint counts them, or a run killed after the
+    // checkpoint restarts from rows the file never got.
+    history_->flush();
+    progress_.snapshots = snapshots_->entries();
+    progress_.history_rows = history_->rows();
+    write_checkpoint(checkpoint_path_, spec_, *scene_, solver_->state(), progress_);
+  }
+
+  HistoryWriter::ResidualSummary residual_summary() const {
+    const PhaseRunner::ResidualSummary r = runner_->residual_summary();
+    return {r.final, r.peak, r.peak_time};
+  }
+
+  /// Interrupted (a signal, --stop-after): a checkpoint to continue from.
+  int close_interrupted() {
+    const double t = solver_->time();
+    reporter_->finish();
+    // The checkpoint lists the snapshots an uninterrupted run has by now; the one taken at the
+    // interruption is this run's alone (a restart writes its number again).
+    save_state();
+    runner_->snapshot_now();
+    history_->close(seconds_since(wall_start_), "interrupted at t = " + format_time(t) + " s",
+                    residual_summary());
+    std::ostringstream line;
+    line << "mpile: interrupted at t = " << format_time(t) << " s; checkpoint " << checkpoint_path_
+         << " (continue with --restart " << checkpoint_path_ << ")";
+    return stop_with(line.str(), exit_interrupted);
+  }
+
+  /// Unstable or out of the grid: the failure as the history's status, and a checkpoint.
+  int close_failed(const SimulationError& e) {
+    reporter_->finish();
+    save_state();
+    history_->close(seconds_since(wall_start_), std::string("failed: ") + e.what(),
+                    residual_summary());
+    return stop_with(std::string("mpile: ") + e.what() + " (outputs so far are in " + directory_ +
+                         ")",
+                     exit_failure);
+  }
+
+  /// An output that cannot be written (a full disk, a file-size limit) stops the run: what was
+  /// written before stays readable, and the message names the file.
+  int close_cannot_write(const std::runtime_error& e) {
+    reporter_->finish();
+    std::ostringstream line;
+    line << "mpile: " << e.what() << "; the run stopped at t = " << format_time(solver_->time())
+         << " s (outputs so far are in " << directory_;
+    if (std::filesystem::exists(checkpoint_path_)) {
+      line << "; once there is room, continue with --restart " << checkpoint_path_;
+    }
+    line << ")";
+    try {
+      history_->close_after_failure(seconds_since(wall_start_), std::string("failed: ") + e.what(),
+                                    residual_summary());
+    } catch (const std::runtime_error&) {
+      // Not even the status could be written: the history keeps its whole rows so far.
+    }
+    return stop_with(line.str(), exit_failure);
+  }
+
+  /// Complete: the last snapshot and checkpoint, and the summary, which says so where energy went
+  /// unaccounted for (the history's status and the log's last line, where it is read first).
+  int close_complete() {
+    const double t = solver_->time();
+    runner_->snapshot_now();
+    save_state();
+    const double wall = seconds_since(wall_start_);
+    const double warning = solver_->settings().energy_residual_warning;
+    const double final_residual = runner_->residual_summary().final;
+    const bool doubtful = progress_.peak_residual > warning || final_residual > warning;
+    std::ostringstream residual;
+    residual << std::setprecision(3) << "energy residual " << 100.0 * final_residual
+             << " % at the end, peak " << 100.0 * progress_.peak_residual
+             << " % at t = " << format_time(progress_.peak_residual_time) << " s";
+    if (doubtful) {
+      residual << " (energy_residual_warning " << 100.0 * warning << " %)";
+    }
+    history_->close(wall, doubtful ? "complete, but the " + residual.str() : "complete",
+                    residual_summary());
+    std::ostringstream done;
+    done << "mpile: " << spec_.title
+         << (doubtful ? " done, but its energy balance is doubtful" : " done")
+         << ": t = " << format_time(t) << " s in " << solver_->step_count() << " steps, "
+         << std::fixed << std::setprecision(1) << wall << " s wall; " << residual.str()
+         << "; outputs in " << directory_;
+    out_ << done.str() << "\n";
+    to_log_file(done.str());
+    return exit_success;
+  }
+
+  /// The closing line, on stderr and in the log; returns `status`.
+  int stop_with(const std::string& line, int status) {
+    err_ << line << '\n';
+    to_log_file(line);
+    return status;
+  }
+
+  void to_log_file(const std::string& line) {
+    if (log_file_) {
+      log_file_ << line << std::endl;
+    }
+  }
+
+  const RunOptions& options_;
+  std::ostream& out_;
+  std::ostream& err_;
+  RunLog log_;
+  const std::chrono::steady_clock::time_point wall_start_;
+  // Open.
+  CaseSpec spec_;
+  std::unique_ptr<Scene> scene_;
+  Checkpoint restored_;
+  std::string restart_; // the checkpoint the run continues from; empty for a fresh run
+  std::string continuation_reason_;
+  // The solver.
+  RunProgress progress_;
+  std::optional<CasePhases> phases_;
+  std::unique_ptr<ExplicitSolver> solver_;
+  // The outputs.
+  std::string directory_;
+  std::string checkpoint_path_;
+  std::optional<OutputLock> lock_;
+  std::ofstream log_file_;
+  // The run.
+  std::unique_ptr<HistoryWriter> history_;
+  std::optional<SnapshotWriter> snapshots_;
+  std::optional<ProgressReporter> reporter_;
+  std::optional<PhaseRunner> runner_;
+};
+
+} // namespace
+
+int run_case(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  // First of all, so that a SIGINT or SIGTERM while the case is read and built (seconds for a
+  // large one) stops the run cleanly instead of killing it.
+  StopOnSignals signals;
+  RunStages stages(options, out, err);
+  return stages.run();
 }
 
 } // namespace mpile
