@@ -6,7 +6,7 @@ engine's parameters alone and inverted numerically (Talbot's contour, mpmath).
     /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/mandel_test.py
 
 Python alone, a few seconds. The series (Cheng and Detournay 1988; Abousleiman et al. 1996) is in
-tools/mandel.py; docs/verification.md, "Mandel's problem", runs the engine against it.
+tools/mandel.py; docs/consolidation.md runs the engine against it.
 
 The independent solution. With sigma_xx = sigma_xy = 0 everywhere, the plates' strain eps(t) =
 eps_yy uniform and fields of x alone (plane strain, alpha = 1, p compression positive, stresses

@@ -314,7 +314,7 @@ add_test(NAME Hypoplastic.ElementTestsMeetTheIndependentIntegration
 set_tests_properties(Hypoplastic.ElementTestsMeetTheIndependentIntegration PROPERTIES
                      PASS_REGULAR_EXPRESSION "all within 0.0001\n")
 
-# Mandel's problem (docs/verification.md, "Mandel's problem"): the closed form against its Laplace
+# Mandel's problem (docs/consolidation.md): the closed form against its Laplace
 # transform inverted numerically (Python alone), and the two coarse cases against it (about 2 s
 # each). The lid (the top grid line moved as the closed form's plate) meets it: measured at
 # f3801ae, the centre's Mandel-Cryer peak 0.47 % low, |p - ref| <= 0.0054 p0 after the load's rise,
