@@ -1238,6 +1238,9 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   if (drained_table && (spec.solver.gravity[0] != 0.0 || spec.solver.gravity[1] != 0.0)) {
     note_drained_face_under_gravity(*drained_table, spec.warnings);
   }
+  if (spec.solver.gravity[1] != 0.0) {
+    note_dry_soil_over_saturated(spec, body_tables, spec.warnings);
+  }
   RigidNames declared_rigid;
   for (const auto& [index, table] : rigid_tables) {
     declared_rigid.insert(spec.bodies[index].name);

@@ -329,6 +329,43 @@ void note_pure_flip_in_saturated_soil(const TomlTable& material, const CaseSpec&
   }
 }
 
+void note_dry_soil_over_saturated(const CaseSpec& spec, const std::vector<TomlTable>& body_tables,
+                                  std::vector<CaseWarning>& warnings) {
+  const auto drainage_of = [&](const BodySpec& body) {
+    for (const MaterialSpec& m : spec.materials) {
+      if (m.name == body.material) {
+        return m.water.drainage;
+      }
+    }
+    return Drainage::drained;
+  };
+  for (std::size_t d = 0; d < body_tables.size() && d < spec.bodies.size(); ++d) {
+    const BodySpec& dry = spec.bodies[d];
+    if (dry.rigid || drainage_of(dry) != Drainage::drained) {
+      continue;
+    }
+    const Rectangle& above = dry.region.bounds();
+    for (const BodySpec& wet : spec.bodies) {
+      const Rectangle& below = wet.region.bounds();
+      const double touch = 1e-9 * std::max(1.0, std::abs(below.y_max));
+      if (wet.rigid || drainage_of(wet) == Drainage::drained || above.r_min >= below.r_max ||
+          below.r_min >= above.r_max || std::abs(above.y_min - below.y_max) > touch) {
+        continue;
+      }
+      add(warnings, CaseWarning::Kind::resolution, body_tables[d], "material",
+          "dry '" + dry.material + "' rests on saturated '" + wet.material + "' (body '" +
+              wet.name +
+              "'): a water table inside the soil is not modelled yet; the K0 procedure takes the "
+              "saturated body's water hydrostatic, and its vertical stress, from that body's own "
+              "k0 surface, without the dry layer's weight above it (or with it at the saturated "
+              "unit weight, if the surface is the ground's), so its effective stress starts "
+              "wrong; make the whole depth saturated, or check the K0 state (docs/physics.md "
+              "section 9)");
+      break;
+    }
+  }
+}
+
 void note_drained_face_under_gravity(const TomlTable& boundaries,
                                      std::vector<CaseWarning>& warnings) {
   add(warnings, CaseWarning::Kind::resolution, boundaries, "drained",

@@ -60,4 +60,10 @@ bool refused_when_strict(const std::vector<CaseWarning>& warnings);
 /// ..."); with `strict`, warnings of units say that they refuse the case.
 void print_case_warnings(std::ostream& out, const std::vector<CaseWarning>& warnings, bool strict);
 
+/// A dry body resting on a saturated one (a water table inside the soil), which the engine does not
+/// model yet: the saturated body's K0 state and pore pressure would start wrong. `body_tables` are
+/// the [[bodies]] tables in order (empty when a generator made the bodies).
+void note_dry_soil_over_saturated(const CaseSpec& spec, const std::vector<TomlTable>& body_tables,
+                                  std::vector<CaseWarning>& warnings);
+
 } // namespace mpile

@@ -379,5 +379,41 @@ TEST(CaseWarnings, ADrainedFaceUnderGravityIsNoted) {
       << notes(column);
 }
 
+// Dry sand resting on saturated sand (a water table inside the soil) is not modelled: the K0
+// procedure would start the saturated body's water and vertical stress from its own k0 surface
+// without the dry layer's weight. The same column split at 3 m into a dry top and a saturated
+// bottom is noted at the dry body's material; the column saturated whole, or dry whole, is not.
+TEST(CaseWarnings, DrySoilOnSaturatedSoilIsNotedAsAWaterTableNotModelled) {
+  const std::string saturated =
+      "type = \"linear_elastic\"\nyoung_modulus = 50e6\npoisson_ratio = 0.3\n"
+      "density = 1600.0\ndrainage = \"coupled\"\nhydraulic_conductivity = 1e-3\n";
+  const std::string column = saturated_column(5.0, 20, 0.2, saturated);
+  std::string split = replaced(column, "region = { r = [0.0, 0.5], y = [0.0, 5] }",
+                               "region = { r = [0.0, 0.5], y = [0.0, 3.0] }\n[[bodies]]\n"
+                               "name = \"crust\"\nmaterial = \"dry\"\n"
+                               "region = { r = [0.0, 0.5], y = [3.0, 5.0] }");
+  split = replaced(split, "[[bodies]]\nname = \"column\"",
+                   "[materials.dry]\ntype = \"linear_elastic\"\nyoung_modulus = 50e6\n"
+                   "poisson_ratio = 0.3\ndensity = 1600.0\n[[bodies]]\nname = \"column\"");
+  split = replaced(split, "k0 = [{ body = \"column\", surface = 5, k0 = 0.5 }]",
+                   "k0 = [{ body = \"column\", surface = 3.0, k0 = 0.5 }, "
+                   "{ body = \"crust\", surface = 5.0, k0 = 0.5 }]");
+  const auto notes = [](const std::string& text) {
+    std::string found;
+    for (const CaseWarning& w : read_case_text(text, "case.toml").warnings) {
+      if (w.text.find("a water table inside the soil is not modelled") != std::string::npos) {
+        found += w.text + "\n";
+      }
+    }
+    return found;
+  };
+  const std::string noted = notes(split);
+  EXPECT_NE(noted.find(": bodies[1].material: dry 'dry' rests on saturated 'sand' (body 'column')"),
+            std::string::npos)
+      << noted;
+  EXPECT_EQ(notes(column), "");
+  EXPECT_EQ(notes(replaced(split, "material = \"dry\"", "material = \"sand\"")), "");
+}
+
 } // namespace
 } // namespace mpile
