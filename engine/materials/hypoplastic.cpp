@@ -184,7 +184,8 @@ Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b
   const double e_d = q.e_d0 * bauer;
   const double f_b = q.granular_hardness / q.exponent * (1.0 + e_i) / e_i * f_b_ratio *
                      (ratio / ratio_n) / f_b_divisor;
-  const double f_e = std::pow(e_c / e, q.beta);
+  // pow(x, 1) is x exactly: a sand with beta = 1 (the seed's) skips a third of the pows here.
+  const double f_e = q.beta == 1.0 ? e_c / e : std::pow(e_c / e, q.beta);
   // Denser than e_d the model has no state: f_d is held at zero there (no dilatancy term).
   const double f_d = std::pow(std::max(e - e_d, 0.0) / (e_c - e_d), q.alpha);
   t.c = f_b * f_e / t.s_norm2;
