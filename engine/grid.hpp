@@ -58,6 +58,9 @@ struct LiquidNode {
   /// the MUSL remap of the skeleton's velocity divides by.
   double mixture_mass = 0.0;
   double mixture_inertia = 0.0;
+  /// The force (r, y) an impermeable support exerted on the water this step to hold it to the
+  /// skeleton: part of the support's reaction, which the skeleton's part alone left short.
+  double held_force[2] = {0.0, 0.0};
 
   double* velocity() { return momentum; }
   const double* velocity() const { return momentum; }

@@ -116,6 +116,26 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
   PassTimer timer(timings_.grid_update);
   const passes::WaterVelocityResult water =
       passes::update_water_velocities<mode>(scene_, step, settings_.mass_scaling);
+  // A support's reaction holds the water too, where its face is impermeable: without that part a
+  // saturated slab's base carried 5.8 % less than its load (the explicit water) and a lid's
+  // reaction read 0.79 of the load under a consolidating cell.
+  // A node two supports hold (a corner) is the first's, as its skeleton's reaction is.
+  std::vector<std::uint8_t> claimed(scene_.grid.nodes.size(), 0);
+  for (NodeConstraint& c : scene_.boundaries.constraints) {
+    if (c.drained || (c.field != NodeConstraint::all_fields && c.field != 0)) {
+      continue;
+    }
+    for (const int node : c.nodes) {
+      const auto i = static_cast<std::size_t>(node);
+      const LiquidNode& held = scene_.grid.liquid[i];
+      for (int d = 0; d < 2; ++d) {
+        if ((c.dofs & (1u << d)) != 0 && (claimed[i] & (1u << d)) == 0) {
+          c.reaction[static_cast<std::size_t>(d)] += held.held_force[d];
+          claimed[i] |= static_cast<std::uint8_t>(1u << d);
+        }
+      }
+    }
+  }
   // With the pore pressure solved on the grid the drag is booked there, at the corrected
   // velocities: the predictor's drag and the correction's add to one drag implicit in the
   // corrected relative flow, and the pore pressure's work is booked on the same velocities

@@ -268,10 +268,14 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
         // booked the mixture's reaction as if the water had moved freely; held, the water's share
         // of the mixture's momentum, M_nw = n M_w, changes by M_nw (v - w_free) more, and the
         // face does that work too.
+        if (d < 2) {
+          water.held_force[d] = 0.0;
+        }
         if (at_wall) {
           w_new = v; // tied to the skeleton in couple_phases, its drag booked there
         } else if (d < 2 && (grid.water_held[i] & (1u << d)) != 0) {
           result.support_work += beta * porosity * mass[d] * (v - w_new) * v;
+          water.held_force[d] = beta * porosity * mass[d] * (v - w_new) / dt;
           w_new = v;
         }
         // Darcy's drag takes n Q (w - v)^2 per unit time, at the velocities it acts on: the

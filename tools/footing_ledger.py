@@ -76,6 +76,9 @@ def main():
     parser.add_argument("--body", default="footing", help="the rigid footing's body name")
     parser.add_argument("--surface", default="base", help="its base's contact surface")
     parser.add_argument("--every", type=int, default=1, help="print every n-th row (and the last)")
+    parser.add_argument("--expect-residual-below", type=float, metavar="FRACTION",
+                        help="fail (exit 1) unless the largest |relative residual| past the first "
+                             "tenth of the run is below FRACTION")
     args = parser.parse_args()
     if args.run:
         if not args.out:
@@ -140,6 +143,13 @@ def main():
             if inside.any():
                 parts.append(f"{lo:g}-{hi:g} B: {np.mean(q[inside]) / c:.2f}")
         print(f"# mean q / c over settlement bands (B = {width:g} m): " + ", ".join(parts))
+    if args.expect_residual_below is not None:
+        late = t >= 0.1 * t[-1]  # the first rows' ratio is of tiny energies
+        worst = float(np.max(np.abs(s["/energy/relative_residual"][late])))
+        ok = status.startswith("complete") and worst < args.expect_residual_below
+        print(f"footing ledger: largest |relative residual| {worst:.4f} "
+              f"({'ok' if ok else 'FAILED'}, bound {args.expect_residual_below:g})")
+        return 0 if ok else 1
     return 0
 
 
