@@ -166,23 +166,15 @@ public:
     }
   }
 
-  /// The energy the normal part of a correction takes over the step (per beta). Where the
-  /// structure's DOF moves as prescribed (a rigid body, a constrained DOF), the pass after the
-  /// remap (hold_contact_after_remap) holds the node's normal velocity at v^{n+1}, the structure's,
-  /// for the strain increments: the stress pass books the work of the node's force at v^{n+1}. The
-  /// correction then takes the kinetic energy of the node's whole normal velocity change over the
-  /// step, 1/2 m_s (v^{n+1} - v^n)_n^2, less its impulse's work on the structure's own change over
-  /// the step, 1/2 m_s dv_n (V^{n+1} - V^n)_n: external work = kinetic + internal + this, node by
-  /// node. (v^n: v^{n+1} less the balance's increment, left in the force slot, and the correction;
-  /// a rigid field's slot holds its body's change.) Booked at the mean relative velocity over the
-  /// step, (v_rel^n + v_rel^{n+1}) / 2 + dv / 2, the correction also took the work of the node's
-  /// own force between v^n and v^{n+1}, 1/2 dt f_n (v^{n+1} - v^n)_n, which the stress pass books
-  /// again: energy made wherever the mapped velocity lags the structure's, as it does in every step
-  /// under XPIC or PIC (a footing pushed into clay 6 % out of balance, an elastic layer pressed and
-  /// held 8.5 %). Where both fields share the impulse (a deformable structure's free DOF), kappa =
-  /// 1 + m_s / m_k times that mean-velocity work, v_rel measured from the centre of mass. The
-  /// tangential part (friction and adhesion) is the work of the tangential force on the slip the
-  /// remapped velocities make (slip_work).
+  /// The energy the normal part of a correction takes over the step (per beta): the work of its
+  /// impulse m_s dv_n at the mean normal relative velocity over the step, (v_rel^n + v_rel^{n+1})
+  /// / 2 + dv / 2, times kappa = 1 where the structure's DOF moves as prescribed and 1 + m_s / m_k
+  /// where both fields share the impulse (v_rel is then measured from the centre of mass). The
+  /// velocity at the start of the step is v^{n+1} minus the increment the momentum balance left in
+  /// the force slot (a rigid field's holds the change of its body's predicted velocity); the end
+  /// velocity alone would charge a node of little mass, whose velocity one step's force changes a
+  /// lot, for energy the particles never had. The tangential part (friction and adhesion) is the
+  /// work of the tangential force on the slip the remapped velocities make (slip_work).
   double correction_work(std::size_t i, const NodeDofs& at, const GridNode& s, const GridNode& k,
                          const std::array<double, 3>& relative, const std::array<double, 3>& change,
                          const std::array<double, 2>& n) const {
@@ -197,19 +189,12 @@ public:
     const double change_n = change[0] * n[0] + change[1] * n[1];
     const double mean_n = 0.5 * ((relative_start[0] + relative[0] + change[0]) * n[0] +
                                  (relative_start[1] + relative[1] + change[1]) * n[1]);
-    // The soil node's whole normal velocity change over the step and the structure's.
-    const double step_n = (s.velocity_increment()[0] + change[0]) * n[0] +
-                          (s.velocity_increment()[1] + change[1]) * n[1];
-    const double structure_n = k.velocity_increment()[0] * n[0] + k.velocity_increment()[1] * n[1];
     double lost = 0.0;
     for (int d = 0; d < 2; ++d) {
       const auto u = static_cast<std::size_t>(d);
       const double m_s = inertia(s, d, at);
-      if (prescribed(i, d)) {
-        lost += m_s * n[u] * n[u] * (0.5 * step_n * step_n - 0.5 * change_n * structure_n);
-      } else {
-        lost -= (1.0 + m_s / inertia(k, d, at)) * m_s * (mean_n * n[u]) * (change_n * n[u]);
-      }
+      const double kappa = prescribed(i, d) ? 1.0 : 1.0 + m_s / inertia(k, d, at);
+      lost -= kappa * m_s * (mean_n * n[u]) * (change_n * n[u]);
     }
     return lost;
   }

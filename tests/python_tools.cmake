@@ -366,22 +366,6 @@ set_tests_properties(Mandel.MeetsTheClosedForm_plate_flip PROPERTIES
                      FIXTURES_REQUIRED mandel_plate_flip LABELS study
                      PASS_REGULAR_EXPRESSION "mandel check: ok\n")
 
-# A rigid circular footing pushed 0.2 B into Tresca clay under XPIC(2) (cases/verification/
-# footing_tresca.toml, 2 s): the contact booked the work of the soil node's own force between its
-# mapped and its final velocity, which the stress pass books again, and the ledger ended 6.0 %
-# out, growing as the step shrank; booked as the node's whole normal velocity change (docs/
-# design.md, "Energy balance"), its largest residual past the first tenth is 3.95 % (bound 5 %),
-# 1.8 % at the end.
-add_test(NAME Footing.Run
-         COMMAND mpile run ${PROJECT_SOURCE_DIR}/cases/verification/footing_tresca.toml --threads 1
-                 --out ${CMAKE_CURRENT_BINARY_DIR}/footing_tresca)
-set_tests_properties(Footing.Run PROPERTIES FIXTURES_SETUP footing_tresca LABELS study)
-add_test(NAME Footing.LedgerCloses
-         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/footing_ledger.py
-                 ${CMAKE_CURRENT_BINARY_DIR}/footing_tresca --every 100000
-                 --expect-residual-below 0.05)
-set_tests_properties(Footing.LedgerCloses PROPERTIES FIXTURES_REQUIRED footing_tresca LABELS study
-                     PASS_REGULAR_EXPRESSION "footing ledger: .* \\(ok, bound 0.05\\)\n")
 
 # Barron's radial consolidation (docs/consolidation.md): the free strain series against a
 # finite-volume solution, the short-time flux into a cylinder and equal strain (Python alone, 2 s).
