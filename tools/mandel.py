@@ -47,6 +47,9 @@ import sys
 
 import numpy as np
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from case_history import integrate_points, load_points, mpile_package, toml_value  # noqa: E402
+
 STANDARD_GRAVITY = 9.80665  # engine/materials/pore_water.hpp: k is measured under it
 SUPERPOSITION_TERMS = 4000  # the ramp's terms fall as 1/n^3: 4000 leave < 1e-8 of F
 DEFAULT_PLATE_CASE = "cases/verification/mandel_plate.toml"
@@ -271,22 +274,6 @@ class Mandel:
 
 # --- the case ---------------------------------------------------------------------------------
 
-def load_points(function, name):
-    """A case's time function as the points of a piecewise-linear history (docs/case-format.md,
-    "Functions"): a number or constant (a step at 0), a ramp, a table."""
-    if isinstance(function, (int, float)):
-        return [(0.0, float(function))]
-    kind = function.get("type")
-    if kind == "constant":
-        return [(0.0, float(function["value"]))]
-    if kind == "ramp":
-        return [(0.0, 0.0), (float(function["duration"]), float(function["value"]))]
-    if kind == "table":
-        points = [(float(t), float(v)) for t, v in function["points"]]
-        if points[0][0] > 0.0:  # v0 before t0
-            points.insert(0, (0.0, points[0][1]))
-        return points
-    raise ValueError(f"{name}: a {kind} force is not a load Mandel's problem has")
 
 
 def from_case(case, load_case=None):
@@ -350,35 +337,8 @@ def from_case(case, load_case=None):
     return model, info
 
 
-def integrate_points(points, t):
-    """The integral from 0 to t of a piecewise-linear history (zero before its first point unless
-    its first value is not, held after its last): a prescribed velocity's displacement."""
-    times = np.array([q[0] for q in points], float)
-    values = np.array([q[1] for q in points], float)
-    if t <= times[0]:
-        return values[0] * t if times[0] > 0 and values[0] != 0.0 else 0.0
-    total = values[0] * times[0]
-    k = int(np.searchsorted(times, t)) - 1
-    total += np.sum(0.5 * (values[1:k + 1] + values[:k]) * np.diff(times[:k + 1]))
-    if k + 1 < times.size:
-        v_t = values[k] + (values[k + 1] - values[k]) * (t - times[k]) / (times[k + 1] - times[k])
-    else:
-        v_t = values[k]
-    return total + 0.5 * (values[k] + v_t) * (t - times[k])
 
 
-def _toml_value(value):
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, (int, float)):
-        return repr(value)
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{ " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + " }"
-    raise TypeError(f"no TOML for {value!r}")
 
 
 def lid_case_text(plate_path, steps_per_rise=40, steps_after=120):
@@ -437,25 +397,25 @@ def lid_case_text(plate_path, steps_per_rise=40, steps_after=120):
         'geometry = "plane_strain"',
         "",
         "[grid]",
-        f"r = {_toml_value(case['grid']['r'])}",
-        f"y = {_toml_value(case['grid']['y'])}",
+        f"r = {toml_value(case['grid']['r'])}",
+        f"y = {toml_value(case['grid']['y'])}",
         "",
         f"[materials.{soil_name}]",
     ]
-    lines += [f"{k} = {_toml_value(v)}" for k, v in soil.items()]
+    lines += [f"{k} = {toml_value(v)}" for k, v in soil.items()]
     lines += ["", "[[bodies]]"]
-    lines += [f"{k} = {_toml_value(v)}" for k, v in body.items()]
+    lines += [f"{k} = {toml_value(v)}" for k, v in body.items()]
     lines += ["", "[[prescribed]]", 'name = "lid"', f"nodes = {{ y = {model.b!r} }}",
               f"velocity_y = {{ type = \"table\", points = [\n{rows}] }}", ""]
-    lines += ["[boundaries]"] + [f"{k} = {_toml_value(v)}" for k, v in case["boundaries"].items()]
-    lines += ["", "[solver]"] + [f"{k} = {_toml_value(v)}" for k, v in case.get("solver", {}).items()]
+    lines += ["[boundaries]"] + [f"{k} = {toml_value(v)}" for k, v in case["boundaries"].items()]
+    lines += ["", "[solver]"] + [f"{k} = {toml_value(v)}" for k, v in case.get("solver", {}).items()]
     for phase in case["phases"]:
-        lines += ["", "[[phases]]"] + [f"{k} = {_toml_value(v)}" for k, v in phase.items()]
+        lines += ["", "[[phases]]"] + [f"{k} = {toml_value(v)}" for k, v in phase.items()]
     output = dict(case.get("output", {}))
     monitors = output.pop("monitor", [])
-    lines += ["", "[output]"] + [f"{k} = {_toml_value(v)}" for k, v in output.items()]
+    lines += ["", "[output]"] + [f"{k} = {toml_value(v)}" for k, v in output.items()]
     for monitor in monitors:
-        lines += ["", "[[output.monitor]]"] + [f"{k} = {_toml_value(v)}" for k, v in monitor.items()]
+        lines += ["", "[[output.monitor]]"] + [f"{k} = {toml_value(v)}" for k, v in monitor.items()]
     return "\n".join(lines) + "\n"
 
 
@@ -495,10 +455,6 @@ def reference_table(model):
 
 # --- a run against it -------------------------------------------------------------------------
 
-def _mpile():
-    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "python"))
-    import mpile
-    return mpile
 
 
 def _at(times, series, t):
@@ -516,7 +472,7 @@ def compare(run, load_from=None):
     import h5py
     import tomllib
 
-    mpile = _mpile()
+    mpile = mpile_package()
     path = pathlib.Path(run)
     history = path / "history.h5" if path.is_dir() else path
     case = mpile.case(history)
