@@ -75,8 +75,10 @@ TEST(ImplicitPorePressure, MassScalingKeepsTheConsolidationTime) {
 // The undrained P-wave at sqrt((M + K_w / n) / rho_sat) = 1 685.7 m/s within 2 % (the front
 // between 6 and 12 ms, as the explicit water's test measures it), though each step is 5.3 times
 // longer than the time the wave takes to cross a cell: the pressure is implicit. The ledger
-// closes within 2 % (the target) once backward Euler's damping of the front is booked; without
-// it 5.2 % went missing. Undrained, and coupled with a k too small for the water to move.
+// closes within 2 % (the target) with backward Euler's S dp^2 / 2 booked as damping (1.95 %
+// undrained at 586f9aa; 1.5 % when the correction's kinetic energy was booked too, which put slow
+// consolidation 30 % out; 5.2 % with nothing booked). Undrained, and coupled with a k too small
+// for the water to move.
 TEST(ImplicitPorePressure, UndrainedPWaveAtTheSkeletonsStep) {
   for (const std::string water :
        {"drainage = \"undrained\"", "drainage = \"coupled\"\nhydraulic_conductivity = 1e-9"}) {

@@ -91,7 +91,7 @@ import numpy as np
 from scipy import linalg, special
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from case_history import integrate_points, load_points, mpile_package, toml_value  # noqa: E402
+from case_history import coupled_soil, integrate_points, load_points, mpile_package, toml_value  # noqa: E402
 
 STANDARD_GRAVITY = 9.80665  # engine/materials/pore_water.hpp: k is measured under it
 LOAD_TAG = "# barron.py load (t s, q Pa):"  # the lid case's load history, for --compare
@@ -373,28 +373,13 @@ class Cell:
         return 0.5 * (lo + hi)
 
 
-def _soil(case):
-    materials = case["materials"]
-    coupled = [name for name, m in materials.items() if m.get("drainage") == "coupled"]
-    if len(coupled) != 1:
-        raise ValueError(f"one coupled material expected, found {coupled}")
-    name = coupled[0]
-    m = materials[name]
-    if m.get("type") != "linear_elastic":
-        raise ValueError(f"materials.{name}: the references are for a linear elastic skeleton")
-    bodies = [b for b in case["bodies"] if b["material"] == name and "rigid" not in b]
-    if len(bodies) != 1:
-        raise ValueError("one soil body expected")
-    return name, m, bodies[0]
-
-
 def from_case(case, text=""):
     """The cell of a parsed case: its soil, its extents and its load, from the rigid plate's
     force_y (a plate case) or from the lid case's load line (written by --write-lid). Returns
     (cell, info)."""
     if case.get("geometry", "axisymmetric") != "axisymmetric":
         raise ValueError("the cell is axisymmetric")
-    name, m, body = _soil(case)
+    name, m, body = coupled_soil(case)
     region = body["region"]
     r_w, r_e = region["r"]
     y0, y1 = region["y"]

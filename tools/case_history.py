@@ -1,10 +1,27 @@
 """What the closed-form tools (tools/mandel.py, tools/barron.py) read from and write into case
-files alike: a case's time function as a piecewise-linear history and its integral, a Python value
-as TOML text, and the repository's Python package."""
+files alike: the coupled soil a closed form is for, a case's time function as a piecewise-linear
+history and its integral, a Python value as TOML text, and the repository's Python package."""
 import pathlib
 import sys
 
 import numpy as np
+
+
+def coupled_soil(case):
+    """(name, material table, soil body) of a case's one coupled, linear elastic material and the
+    one deformable body made of it: what the closed forms are for."""
+    materials = case["materials"]
+    coupled = [name for name, m in materials.items() if m.get("drainage") == "coupled"]
+    if len(coupled) != 1:
+        raise ValueError(f"one coupled material expected, found {coupled}")
+    name = coupled[0]
+    m = materials[name]
+    if m.get("type") != "linear_elastic":
+        raise ValueError(f"materials.{name}: the closed forms are for a linear elastic skeleton")
+    bodies = [b for b in case["bodies"] if b["material"] == name and "rigid" not in b]
+    if len(bodies) != 1:
+        raise ValueError("one soil body expected")
+    return name, m, bodies[0]
 
 
 def load_points(function, name):

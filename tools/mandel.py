@@ -48,7 +48,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from case_history import integrate_points, load_points, mpile_package, toml_value  # noqa: E402
+from case_history import coupled_soil, integrate_points, load_points, mpile_package, toml_value  # noqa: E402
 
 STANDARD_GRAVITY = 9.80665  # engine/materials/pore_water.hpp: k is measured under it
 SUPERPOSITION_TERMS = 4000  # the ramp's terms fall as 1/n^3: 4000 leave < 1e-8 of F
@@ -284,20 +284,11 @@ def from_case(case, load_case=None):
     if case.get("geometry") != "plane_strain":
         raise ValueError("Mandel's problem is plane strain: the case's geometry is "
                          f"{case.get('geometry', 'axisymmetric')!r}")
-    materials = case["materials"]
-    coupled = [name for name, m in materials.items() if m.get("drainage") == "coupled"]
-    if len(coupled) != 1:
-        raise ValueError(f"one coupled material expected, found {coupled}")
-    name = coupled[0]
-    m = materials[name]
-    if m.get("type") != "linear_elastic":
-        raise ValueError(f"materials.{name}: the closed form is for a linear elastic skeleton")
+    name, m, soil_body = coupled_soil(case)
     porosity = 1.0 - m["density"] / m.get("grain_density", 2650.0)
     bodies = case["bodies"]
-    soil = [body for body in bodies if body["material"] == name and "rigid" not in body]
+    soil = [soil_body]
     plates = [body for body in bodies if "rigid" in body and "force_y" in body["rigid"]]
-    if len(soil) != 1:
-        raise ValueError("one soil body expected")
     region = soil[0]["region"]
     if "r" not in region or region["r"][0] != 0.0 or region["y"][0] != 0.0:
         raise ValueError("the soil must be the rectangle [0, a] x [0, b]")

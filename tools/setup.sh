@@ -10,7 +10,7 @@ packages=(
   libcli11-dev libtoml11-dev
   python3-numpy python3-h5py python3-matplotlib python3-vtk9
   python3-pandas python3-xarray python3-h5netcdf python3-pytest python3-venv python3-setuptools python3-pip
-  python3-jsonschema python3-scipy
+  python3-jsonschema python3-scipy python3-mpmath
   snakemake slurm-wlm munge
   xvfb xauth
 )
