@@ -1,0 +1,170 @@
+#!/usr/bin/python3
+"""tools/vibratory_compare.py on synthetic histories whose answers are known exactly: a pile that
+sinks at a constant rate while it oscillates at the drive's frequency, after a phase that drove it
+elsewhere, and two monitors, one near PPT A with a known pore pressure.
+
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/vibratory_compare_test.py
+
+Python alone, about a second. What must come out: the cycle mean of a sine over whole cycles
+vanishes, so each row is the linear trend at its time, counted from the vibration phase's start
+(the earlier phase's penetration left out); the last window moves back to end at the last row;
+the frequency comes from the phase's harmonic force_y in case_resolved; the monitor is the one that
+started nearest PPT A; its pore pressure is printed compression positive per 0.5 s window.
+"""
+import math
+import pathlib
+import sys
+
+import h5py
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+import vibratory_compare as vc  # noqa: E402
+
+FREQUENCY = 25.0
+START = 0.3          # s: the vibration phase's start
+BEFORE = 0.15        # m: the penetration reached before it (jacked)
+RATE = 0.058         # m/s: the synthetic sinking during vibration
+AMPLITUDE = 1.5e-3   # m: the oscillation about it
+
+CASE = f"""
+[[phases]]
+name = "jacking"
+duration = 0.5
+
+[[phases]]
+name = "vibration"
+duration = 3.0
+drive = {{ body = "pile", force_y = {{ type = "harmonic", amplitude = 41.9, frequency = {FREQUENCY} }} }}
+"""
+
+
+def pore(t):
+    """The monitor's pore pressure, tension positive as written (Pa): 3 kPa of compression with a
+    1.5 kPa swing whose amplitude falls from 1 to 0 over the 3 s."""
+    return -(3.0e3 + 1.5e3 * (1.0 - t / 3.0) * np.sin(2 * np.pi * FREQUENCY * t))
+
+
+def write_history(path, end=START + 3.0, interval=1e-3, case=CASE):
+    """Rows every `interval` to `end`, the phase boundary a row of its own, as the engine writes."""
+    time = np.unique(np.concatenate((np.arange(0.0, end + 0.5 * interval, interval), [START])))
+    t = time - START
+    penetration = np.where(t < 0.0, BEFORE * time / START,
+                           BEFORE + RATE * t + AMPLITUDE * np.sin(2 * np.pi * FREQUENCY * t))
+    with h5py.File(path, "w") as f:
+        f.attrs["case_resolved"] = case
+        f.attrs["title"] = "synthetic vibratory run"
+        f.attrs["status"] = "complete"
+        f.attrs["threads"] = 1
+        f.attrs["wall_time"] = 12.0
+        f["time"] = time
+        for index, (name, start) in enumerate((("jacking", 0.0), ("vibration", START))):
+            g = f.create_group(f"phases/{index}")
+            g.attrs["name"] = name
+            g.attrs["start"] = start
+        f["bodies/pile/penetration"] = penetration
+        for name, (r, y), pressure in (("far", (0.2, 0.3), np.zeros_like(time)),
+                                       ("ppt_a", (0.036, 0.621), np.where(t < 0, -3e3, pore(t)))):
+            g = f.create_group(f"monitors/{name}")
+            g["r"] = np.full_like(time, r)
+            g["y"] = np.full_like(time, y)
+            g["pore_pressure"] = pressure
+    return path
+
+
+def test_cycle_mean_of_a_trend_and_sine_is_the_trend_at_the_centre():
+    """Over one whole period the sine's trapezoid sums to zero for any sampling that has both
+    window ends (interpolated) and the rows between; the linear part is exact."""
+    time = np.linspace(0.0, 1.0, 1001)
+    values = 2.0 + 3.0 * time + 0.7 * np.sin(2 * np.pi * 25.0 * time + 0.3)
+    for centre in (0.25, 0.5137, 0.98):
+        mean, at = vc.cycle_mean(time, values, centre, 0.04)
+        assert at == pytest.approx(centre)
+        # The sine's remainder: interpolating its ends linearly costs O((2 pi f dt)^2) of it.
+        assert mean == pytest.approx(2.0 + 3.0 * centre, abs=0.7 * (2 * np.pi * 25e-3) ** 2)
+
+
+def test_cycle_mean_moves_a_window_past_the_end_back_and_refuses_one_before_the_start():
+    time = np.linspace(0.0, 1.0, 1001)
+    values = 3.0 * time
+    mean, at = vc.cycle_mean(time, values, 1.0, 0.04)
+    assert at == pytest.approx(0.98)
+    assert mean == pytest.approx(3.0 * 0.98)
+    with pytest.raises(ValueError):
+        vc.cycle_mean(time, values, 0.01, 0.04)
+
+
+def test_reads_the_vibration_phase_and_counts_from_its_start(tmp_path):
+    run = vc.read_run(write_history(tmp_path / "history.h5"), "vibration")
+    assert run["body"] == "pile"
+    assert run["start"] == pytest.approx(START)
+    assert run["start_penetration"] == pytest.approx(BEFORE)
+    assert run["time"][0] == pytest.approx(0.0)
+    assert run["time"][-1] == pytest.approx(3.0)
+    assert vc.drive_frequency(run["case"], "vibration") == FREQUENCY
+    assert vc.drive_frequency(run["case"], "jacking") is None
+
+
+def test_rows_are_the_trend_at_each_time(tmp_path):
+    run = vc.read_run(write_history(tmp_path / "history.h5"), "vibration")
+    rows = vc.penetration_rows(run, 1.0 / FREQUENCY)
+    assert [r[0] for r in rows] == list(vc.TIMES)
+    for t, cycles, mm, centre in rows:
+        assert cycles == pytest.approx(t * FREQUENCY)
+        expected_centre = min(t, 3.0 - 0.02)          # the last window ends at the last row
+        assert centre == pytest.approx(expected_centre)
+        assert mm == pytest.approx(1e3 * RATE * expected_centre, abs=0.02)
+
+
+def test_a_short_run_leaves_the_times_it_did_not_reach_empty(tmp_path):
+    run = vc.read_run(write_history(tmp_path / "history.h5", end=START + 1.1), "vibration")
+    rows = {t: (mm, centre) for t, _, mm, centre in vc.penetration_rows(run, 1.0 / FREQUENCY)}
+    assert rows[1.0][0] == pytest.approx(1e3 * RATE * 1.0, abs=0.02)
+    assert rows[1.25] == (None, None)
+    assert rows[3.0] == (None, None)
+
+
+def test_the_monitor_nearest_ppt_a_and_its_pore_pressure_compression_positive(tmp_path):
+    run = vc.read_run(write_history(tmp_path / "history.h5"), "vibration")
+    assert vc.nearest_monitor(run["monitors"], vc.PPT_A) == "ppt_a"
+    assert vc.nearest_monitor(run["monitors"], (0.21, 0.3)) == "far"
+    rows = vc.pore_rows(run["time"], run["monitors"]["ppt_a"][1])
+    assert [w for w, _, _ in rows] == list(vc.PPT_WINDOWS)
+    # The first window by hand: its first crest is a quarter cycle in (t = 0.01 s), its first
+    # trough three quarters (0.03 s), both on rows (every 1 ms from the phase's start).
+    assert rows[0][2] == pytest.approx(3.0 + 1.5 * (1.0 - 0.01 / 3.0), abs=1e-9)
+    assert rows[0][1] == pytest.approx(3.0 - 1.5 * (1.0 - 0.03 / 3.0), abs=1e-9)
+    # Every window against the rows' own extremes in it, compression positive.
+    for (a, b), low, high in rows:
+        t = np.arange(round(a * 1e3), round(b * 1e3) + 1) * 1e-3
+        assert high == pytest.approx(np.max(-pore(t)) / 1e3, abs=1e-6)
+        assert low == pytest.approx(np.min(-pore(t)) / 1e3, abs=1e-6)
+
+
+def test_main_prints_the_table_beside_the_measured_column(tmp_path, capsys):
+    write_history(tmp_path / "history.h5")
+    assert vc.main([str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "| 0.50 | 12 | 29.0 | 21.4 | 32.8 | 1.36 |" in out
+    assert "| 3.00 | 75 | 172.8 (2.980 s) | 174.5 | 168.5 | 0.99 |" in out
+    assert "monitor 'ppt_a'" in out
+    assert "| 0-0.5 | 1.5 / 4.5 | 1.6 / 4.8 | 1.2 / 4.8 |" in out
+
+
+def test_the_measured_numbers_are_the_pages(tmp_path):
+    """The tool's columns are docs/vibratory-model-test.md section 3's: each measured and CEL
+    penetration and each PPT A window appears in the page's tables."""
+    page = (ROOT / "docs" / "vibratory-model-test.md").read_text()
+    for t, mm in vc.MEASURED_MM.items():
+        row = [line for line in page.splitlines() if line.startswith(f"| {t:.2f} | ")]
+        assert row, t
+        cells = [c.strip() for c in row[0].split("|")[1:-1]]
+        assert float(cells[2]) == mm and float(cells[3]) == vc.CEL_MM[t]
+    measured = next(line for line in page.splitlines() if line.startswith("| measured, min / max"))
+    assert [tuple(map(float, c.split("/"))) for c in measured.split("|")[2:-1]] == list(
+        vc.PPT_MEASURED_KPA)
+    cel = next(line for line in page.splitlines() if line.startswith("| CEL mu(t'_N) = 0.25, min"))
+    assert [tuple(map(float, c.split("/"))) for c in cel.split("|")[2:-1]] == list(vc.PPT_CEL_KPA)
+    assert math.isclose(vc.PPT_A[1], 0.62)

@@ -1,0 +1,214 @@
+#!/usr/bin/python3
+"""Vogelsang's vibratory model test (docs/vibratory-model-test.md): a run's penetration after the
+start of vibration against the measured one, and the pore pressure at the monitor nearest PPT A.
+
+    tools/vibratory_compare.py /tmp/vib_runs/run2            # a run's directory or its history.h5
+    tools/vibratory_compare.py RUN --phase vibration --ppt-a 0.035 0.62
+
+Penetration is the rigid body's /bodies/<body>/penetration less its value where the vibration phase
+starts (the jacking or settlement before it is not counted, as [S24] subtracts its pile's
+settlement under its own weight), averaged over one cycle centred on each time, as the page's
+section 3 reads [S24]'s simulated curves; the measured column is the experiment's mean trend. A
+window that would reach past the run's last row is moved back to end there, and its centre is
+printed. The cycle is 1 / the drive's frequency (the phase's harmonic force_y, or --frequency).
+
+The pore pressure is the monitor's pore_pressure (relative to the atmosphere with a [water] level,
+tension positive in the file, printed compression positive, kPa), its least and greatest value in
+each 0.5 s of vibration against [S24] Fig. 3's. The monitor is the one whose particle started
+nearest PPT A's assumed position (--ppt-a; the page: beside the pile, 0.19 m deep, radius not
+given). A monitor follows its particle, the transducer stays put: the columns compare a point
+of the soil with a point in space.
+"""
+import argparse
+import math
+import pathlib
+import sys
+import tomllib
+
+import h5py
+import numpy as np
+
+# Staubach P (2024) Hydro-mechanically coupled CEL analyses with effective contact stresses,
+# Int. J. Numer. Anal. Methods Geomech., doi:10.1002/nag.3725 ([S24]), Fig. 2, read to 0.1 mm in
+# docs/vibratory-model-test.md section 3: penetration after the start of vibration (mm, downward
+# positive); the experiment's mean trend and the CEL run with mu = 0.25 on the effective normal
+# stress (averaged over one cycle centred on t).
+TIMES = (0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0, 2.25, 2.5, 2.75, 3.0)
+MEASURED_MM = {0.25: 7.8, 0.5: 21.4, 0.75: 39.9, 1.0: 59.0, 1.5: 93.3, 2.0: 122.7, 2.5: 149.5,
+               3.0: 174.5}
+CEL_MM = {0.25: 15.3, 0.5: 32.8, 0.75: 52.3, 1.0: 67.4, 1.5: 94.5, 2.0: 120.8, 2.5: 145.5,
+          3.0: 168.5}
+
+# [S24] Fig. 3: the pore pressure at PPT A, least / greatest in each 0.5 s (kPa), measured and the
+# CEL run with mu = 0.25 (docs/vibratory-model-test.md section 3).
+PPT_WINDOWS = ((0.0, 0.5), (0.5, 1.0), (1.0, 1.5), (1.5, 2.0), (2.0, 2.5), (2.5, 3.0))
+PPT_MEASURED_KPA = ((1.6, 4.8), (1.3, 5.2), (1.6, 5.0), (2.0, 4.4), (2.1, 4.2), (2.2, 4.0))
+PPT_CEL_KPA = ((1.2, 4.8), (0.9, 5.4), (1.4, 4.2), (2.1, 4.0), (2.3, 3.9), (2.0, 3.7))
+
+# PPT A's position in the axisymmetric model (r, y), m: ASSUMED. Depth 0.19 m below the surface
+# (the tip's depth when the pile passes it at about 0.8 s: 0.15 + 0.044 m, the page's section 1)
+# under the chamber's 0.81 m surface; the radius is not given (35 mm, 2.1 pile radii).
+PPT_A = (0.035, 0.81 - 0.19)
+
+
+def text(value):
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def cycle_mean(time, values, centre, period):
+    """The mean of a row series over [centre - period / 2, centre + period / 2], the trapezoid rule
+    on the rows inside with the window's ends interpolated; moved back to end at the last row when
+    it would pass it. Returns (mean, the window's centre)."""
+    time = np.asarray(time, float)
+    values = np.asarray(values, float)
+    start, end = centre - 0.5 * period, centre + 0.5 * period
+    if end > time[-1]:
+        start, end = time[-1] - period, time[-1]
+    if start < time[0]:
+        raise ValueError(f"a cycle about t = {centre:g} s reaches before the first row")
+    inside = (time > start) & (time < end)
+    t = np.concatenate(([start], time[inside], [end]))
+    v = np.concatenate(([np.interp(start, time, values)], values[inside],
+                        [np.interp(end, time, values)]))
+    return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(t)) / (end - start)), 0.5 * (start + end)
+
+
+def drive_frequency(case, phase_name):
+    """The frequency of the phase's harmonic force_y, or None."""
+    for phase in case.get("phases", []):
+        if phase.get("name") == phase_name:
+            force = phase.get("drive", {}).get("force_y")
+            if isinstance(force, dict) and force.get("type") == "harmonic":
+                return float(force["frequency"])
+    return None
+
+
+def read_run(path, phase_name, body=None):
+    """What the comparison needs from history.h5: the case, its attributes, time since the phase's
+    start, the body's penetration since then, and each monitor's first position and pore pressure."""
+    path = pathlib.Path(path)
+    history = path / "history.h5" if path.is_dir() else path
+    with h5py.File(history, "r", locking=False) as f:
+        attrs = {k: f.attrs[k] for k in f.attrs}
+        resolved = attrs.get("case_resolved") or attrs.get("case_text")
+        case = tomllib.loads(text(resolved)) if resolved is not None else {}
+        phases = {text(g.attrs["name"]): dict(g.attrs) for g in f["phases"].values()}
+        if phase_name not in phases:
+            raise SystemExit(f"{history}: no phase named {phase_name!r} (phases: "
+                             f"{', '.join(phases)})")
+        start = float(phases[phase_name]["start"])
+        bodies = sorted(f["bodies"].keys()) if "bodies" in f else []
+        if body is None:
+            if len(bodies) != 1:
+                raise SystemExit(f"{history}: name the body (--body), one of {bodies}")
+            body = bodies[0]
+        time = f["time"][()]
+        penetration = f[f"bodies/{body}/penetration"][()]
+        monitors = {}
+        for name, group in (f["monitors"].items() if "monitors" in f else []):
+            if "pore_pressure" not in group:
+                continue
+            r, y = group["r"][()], group["y"][()]
+            first = np.flatnonzero(np.isfinite(r) & np.isfinite(y))
+            if first.size:
+                monitors[name] = ((float(r[first[0]]), float(y[first[0]])), group["pore_pressure"][()])
+    keep = time >= start
+    if not np.any(keep):
+        raise SystemExit(f"{history}: the run has not reached phase {phase_name!r}")
+    start_penetration = float(np.interp(start, time, penetration))
+    return {"history": history, "attrs": attrs, "case": case, "body": body, "start": start,
+            "time": time[keep] - start, "penetration": penetration[keep] - start_penetration,
+            "start_penetration": start_penetration,
+            "monitors": {n: (pos, p[keep]) for n, (pos, p) in monitors.items()}}
+
+
+def penetration_rows(run, period):
+    """(t, cycles, computed mm or None, window centre) for each of TIMES the run covers."""
+    time, pen = run["time"], run["penetration"]
+    rows = []
+    for t in TIMES:
+        if t + 0.5 * period > time[-1] + period:  # not reached: more than half a cycle short
+            rows.append((t, t / period, None, None))
+            continue
+        mean, centre = cycle_mean(time, pen, t, period)
+        rows.append((t, t / period, 1e3 * mean, centre))
+    return rows
+
+
+def nearest_monitor(monitors, point):
+    if not monitors:
+        return None
+    return min(monitors, key=lambda n: math.dist(monitors[n][0], point))
+
+
+def pore_rows(time, pore):
+    """(window, least, greatest) of the pore pressure, compression positive, kPa, per window."""
+    rows = []
+    for a, b in PPT_WINDOWS:
+        inside = (time >= a) & (time <= b) & np.isfinite(pore)
+        if b > time[-1] + 1e-9 or not np.any(inside):
+            rows.append(((a, b), None, None))
+            continue
+        u = -pore[inside] / 1e3
+        rows.append(((a, b), float(u.min()), float(u.max())))
+    return rows
+
+
+def fmt(value, digits=1):
+    return "-" if value is None else f"{value:.{digits}f}"
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("run", help="the run's output directory or its history.h5")
+    parser.add_argument("--phase", default="vibration", help="the vibration phase (default vibration)")
+    parser.add_argument("--body", help="the pile (default: the only rigid body)")
+    parser.add_argument("--frequency", type=float,
+                        help="the cycle's frequency, Hz (default: the phase's harmonic force_y)")
+    parser.add_argument("--ppt-a", type=float, nargs=2, default=PPT_A, metavar=("R", "Y"),
+                        help=f"PPT A's position, m (default {PPT_A[0]:g} {PPT_A[1]:g}, assumed)")
+    args = parser.parse_args(argv)
+
+    run = read_run(args.run, args.phase, args.body)
+    frequency = args.frequency or drive_frequency(run["case"], args.phase)
+    if not frequency:
+        raise SystemExit("the phase drives no harmonic force_y: give --frequency")
+    period = 1.0 / frequency
+    attrs = run["attrs"]
+    print(f"run: {run['history']}")
+    print(f"  {text(attrs.get('title', ''))}; status: {text(attrs.get('status', '?'))}; commit "
+          f"{text(attrs.get('commit', '?'))}; threads {int(attrs.get('threads', 0)) or '?'}; wall time "
+          f"{float(attrs.get('wall_time', float('nan'))):.0f} s")
+    print(f"  phase {args.phase!r} from t = {run['start']:.4g} s, at penetration "
+          f"{1e3 * run['start_penetration']:.1f} mm (not counted below); run reaches "
+          f"{run['time'][-1]:.4g} s of it; cycle {period:g} s")
+    print()
+    print("| t (s) | cycles | computed (mm) | experiment (mm) | CEL mu = 0.25 (mm) | computed / experiment |")
+    print("|---|---|---|---|---|---|")
+    for t, cycles, mm, centre in penetration_rows(run, period):
+        measured = MEASURED_MM.get(t)
+        shown = fmt(mm) if centre is None or abs(centre - t) < 1e-9 else f"{fmt(mm)} ({centre:.3f} s)"
+        ratio = fmt(mm / measured, 2) if mm is not None and measured else "-"
+        print(f"| {t:.2f} | {cycles:.0f} | {shown} | {fmt(measured)} | {fmt(CEL_MM.get(t))} | {ratio} |")
+
+    name = nearest_monitor(run["monitors"], tuple(args.ppt_a))
+    print()
+    if name is None:
+        print("no monitor records a pore pressure: no PPT A column")
+        return 0
+    (r, y), pore = run["monitors"][name]
+    print(f"pore pressure at monitor {name!r}, started at (r, y) = ({r:.4f}, {y:.4f}) m, "
+          f"{1e3 * math.dist((r, y), tuple(args.ppt_a)):.1f} mm from PPT A's assumed "
+          f"({args.ppt_a[0]:g}, {args.ppt_a[1]:g}); compression positive, kPa:")
+    print()
+    print("| t (s) | computed min / max | measured min / max | CEL mu = 0.25 min / max |")
+    print("|---|---|---|---|")
+    for ((a, b), low, high), measured, cel in zip(pore_rows(run["time"], pore), PPT_MEASURED_KPA,
+                                                  PPT_CEL_KPA):
+        print(f"| {a:g}-{b:g} | {fmt(low)} / {fmt(high)} | {measured[0]:.1f} / {measured[1]:.1f} | "
+              f"{cel[0]:.1f} / {cel[1]:.1f} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
