@@ -130,6 +130,8 @@ void Boundaries::mark_constrained_dofs(Grid& grid) const {
     std::fill(mask.begin(), mask.end(), std::uint8_t{0});
   }
   grid.water_held.assign(grid.nodes.size(), 0);
+  std::vector<std::uint8_t> drained(grid.nodes.size(), 0);
+  bool any_drained = false;
   for (const NodeConstraint& c : constraints) {
     for (int f = 0; f < grid.field_count(); ++f) {
       if (c.field != NodeConstraint::all_fields && c.field != f) {
@@ -138,8 +140,9 @@ void Boundaries::mark_constrained_dofs(Grid& grid) const {
       std::vector<std::uint8_t>& mask = grid.field_constrained(f);
       for (const int node : c.nodes) {
         mask[static_cast<std::size_t>(node)] |= c.dofs;
-        if (f == 0 && !c.drained) {
-          grid.water_held[static_cast<std::size_t>(node)] |= c.dofs;
+        if (f == 0) {
+          (c.drained ? drained : grid.water_held)[static_cast<std::size_t>(node)] |= c.dofs;
+          any_drained = any_drained || c.drained;
         }
       }
     }
@@ -155,6 +158,29 @@ void Boundaries::mark_constrained_dofs(Grid& grid) const {
     for (const int node : face.nodes) {
       grid.water_held[static_cast<std::size_t>(node)] |= normal;
     }
+  }
+  // A DOF another support or an absorbing face holds impermeably is held, not drained. The kept
+  // velocities survive a change of phase (the same faces stay drained) and are dropped where a face
+  // stops draining.
+  if (any_drained) {
+    for (std::size_t i = 0; i < drained.size(); ++i) {
+      drained[i] = static_cast<std::uint8_t>(drained[i] & ~grid.water_held[i] & (DOF_R | DOF_Y));
+    }
+    if (grid.drain_water_velocity.size() != grid.nodes.size()) {
+      grid.drain_water_velocity.assign(grid.nodes.size(),
+                                       {std::nan(""), std::nan(""), std::nan("")});
+    }
+    for (std::size_t i = 0; i < drained.size(); ++i) {
+      for (int d = 0; d < 2; ++d) {
+        if ((drained[i] & (1u << d)) == 0) {
+          grid.drain_water_velocity[i][static_cast<std::size_t>(d)] = std::nan("");
+        }
+      }
+    }
+    grid.water_drained = std::move(drained);
+  } else {
+    grid.water_drained.clear();
+    grid.drain_water_velocity.clear();
   }
 }
 

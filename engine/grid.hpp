@@ -61,6 +61,8 @@ struct LiquidNode {
   /// The force (r, y) an impermeable support exerted on the water this step to hold it to the
   /// skeleton: part of the support's reaction, which the skeleton's part alone left short.
   double held_force[2] = {0.0, 0.0};
+  /// At a drained DOF: the velocity the drain kept less the particles' mapped one (r, y; m/s).
+  double drain_jump[2] = {0.0, 0.0};
 
   double* velocity() { return momentum; }
   const double* velocity() const { return momentum; }
@@ -130,6 +132,15 @@ public:
   /// Field 0's constrained DOFs that hold the pore water of coupled soil to the skeleton too
   /// (impermeable faces); a drained face's are not among them.
   std::vector<std::uint8_t> water_held;
+  /// Field 0's constrained DOFs at a drained face (the skeleton held, the water free), and the
+  /// water velocity each such DOF ended the last step with (NaN where none): the one state the
+  /// grid keeps between steps. At a drain the water's Darcy velocity jumps against the next
+  /// node's, and the particles, mapped from one side only, smear it into their neighbour's every
+  /// step; the drag then restores only dt Q / (M_w + dt Q) of it, so a radial drain passed 0.6 of
+  /// its Darcy flux, less as the step shrank (docs/consolidation.md, "Radial consolidation").
+  /// Kept only in a scene with a drained face, else empty; checkpoints carry it.
+  std::vector<std::uint8_t> water_drained;
+  std::vector<std::array<double, 3>> drain_water_velocity;
   /// The pore water's share of field 0's internal force per node (r, y; N or N/rad): -sum V p
   /// grad N over its saturated particles, for the effective normal force of contact; kept only in
   /// a scene with contact and undrained soil, else empty.

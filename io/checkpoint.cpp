@@ -75,6 +75,13 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
         "/grid/y_nodes",
         std::vector<double>(scene.grid.y_axis().nodes().begin(), scene.grid.y_axis().nodes().end()),
         "m");
+    if (!scene.grid.drain_water_velocity.empty()) {
+      std::vector<double> kept;
+      for (const auto& w : scene.grid.drain_water_velocity) {
+        kept.insert(kept.end(), w.begin(), w.end());
+      }
+      file.write("/grid/drain_water_velocity", kept, "m/s (r, y, theta per node; NaN: none kept)");
+    }
     for (std::size_t k = 0; k < scene.rigid_bodies.size(); ++k) {
       file.write("/rigid_bodies/" + std::to_string(k), rigid_state(scene.rigid_bodies[k]),
                  "velocity (3), displacement (3), contact (3), driving (3), centre (2), work");
@@ -233,6 +240,18 @@ Checkpoint read_checkpoint_file(const std::string& path, const CaseSpec& spec, S
   p.cell_r = file.read_int32("/particles/cell_r");
   p.cell_y = file.read_int32("/particles/cell_y");
   scene.grid.set_y_nodes(file.read_doubles("/grid/y_nodes"));
+  if (file.exists("/grid/drain_water_velocity")) {
+    // A drained face's water velocities (Grid::drain_water_velocity); a checkpoint without them
+    // restarts its drains from the particles' water, as the first step does.
+    const auto kept = file.read_doubles("/grid/drain_water_velocity");
+    if (kept.size() != 3 * scene.grid.nodes.size()) {
+      refuse("the drained faces' water velocities do not fit the case's grid");
+    }
+    scene.grid.drain_water_velocity.resize(scene.grid.nodes.size());
+    for (std::size_t i = 0; i < scene.grid.nodes.size(); ++i) {
+      scene.grid.drain_water_velocity[i] = {kept[3 * i], kept[3 * i + 1], kept[3 * i + 2]};
+    }
+  }
 
   for (std::size_t k = 0; k < scene.rigid_bodies.size(); ++k) {
     restore_rigid_state(scene.rigid_bodies[k],

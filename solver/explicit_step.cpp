@@ -140,7 +140,7 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
   // velocities: the predictor's drag and the correction's add to one drag implicit in the
   // corrected relative flow, and the pore pressure's work is booked on the same velocities
   // (docs/saturated.md, "The step's energy identity").
-  return {.external_work = water.support_work,
+  return {.external_work = water.support_work + water.drain_work,
           .drag = settings_.implicit_pore_pressure ? 0.0 : water.drag};
 }
 
@@ -223,9 +223,9 @@ EnergyIncrement ExplicitSolver::balance_momentum(const passes::StepParameters& s
   // Absorbing faces' terms from the grid's coordinates this step, for both of their passes.
   const std::vector<passes::FaceNodeTerms> faces = passes::absorbing_face_terms(scene_);
   passes::apply_holding_tractions(scene_, faces, step);
-  const double tied_drag = liquid_phases_.empty()
-                               ? 0.0
-                               : passes::couple_phases<mode>(scene_, step, settings_.mass_scaling);
+  const passes::CoupledPhasesResult coupled =
+      liquid_phases_.empty() ? passes::CoupledPhasesResult{}
+                             : passes::couple_phases<mode>(scene_, step, settings_.mass_scaling);
   const passes::GridUpdateResult grid =
       passes::update_grid_velocities<mode>(scene_, settings_, step);
   const passes::AbsorbedWork absorbed = passes::absorb_at_faces(scene_, faces, settings_, step);
@@ -233,7 +233,7 @@ EnergyIncrement ExplicitSolver::balance_momentum(const passes::StepParameters& s
   return {.external_work = absorbed.holding,
           .damping = grid.damping_dissipation,
           .radiated = absorbed.radiated,
-          .drag = tied_drag};
+          .drag = coupled.tied_drag};
 }
 
 template <GeometryMode mode>

@@ -46,13 +46,19 @@ void map_water_to_grid(Scene& scene, const ParticleBins& bins,
                        const std::vector<const LiquidPhase*>& phases,
                        const SolverSettings& settings);
 /// ... the water's inertia and drag folded into field 0's nodes before their momentum balance ...
-/// Returns the kinetic energy the water tied to the skeleton at a structure's wall gives up.
+/// Returns the kinetic energy the water tied to the skeleton at a structure's wall gives up, and
+/// the work a drained face does in giving its nodes' water the velocity they kept.
+struct CoupledPhasesResult {
+  double tied_drag = 0.0;
+  double drain_work = 0.0;
+};
 template <GeometryMode mode>
-double couple_phases(Scene& scene, const StepParameters& step, double mass_scaling);
+CoupledPhasesResult couple_phases(Scene& scene, const StepParameters& step, double mass_scaling);
 /// ... the water's velocities from the skeleton's final ones ...
 struct WaterVelocityResult {
   double drag = 0.0;         // taken by Darcy's drag over the step
   double support_work = 0.0; // done on the water by the impermeable faces
+  double drain_work = 0.0;   // done on the water by the drained faces (Grid::drain_water_velocity)
 };
 template <GeometryMode mode>
 WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step,

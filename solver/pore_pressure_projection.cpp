@@ -367,6 +367,9 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       if (liquid) {
         water_correction_[dof] = water_response_[dof] * f;
         grid.liquid[i].velocity()[d] += water_correction_[dof];
+        if (!grid.water_drained.empty() && (grid.water_drained[i] & (1u << d)) != 0) {
+          grid.drain_water_velocity[i][static_cast<std::size_t>(d)] = grid.liquid[i].velocity()[d];
+        }
       }
     }
   });

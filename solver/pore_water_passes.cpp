@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -161,12 +162,14 @@ inline EffectiveDof effective_dof(double skeleton_mass, double share, double wat
 } // namespace
 
 template <GeometryMode mode>
-double couple_phases(Scene& scene, const StepParameters& step, double beta) {
+CoupledPhasesResult couple_phases(Scene& scene, const StepParameters& step, double beta) {
   Grid& grid = scene.grid;
   const bool structures = !grid.structure_fields.empty();
+  const bool drains = !grid.water_drained.empty();
   return parallel_reduce(
-      grid.liquid.size(), 0.0,
-      [&](std::size_t begin, std::size_t end, double merged) {
+      grid.liquid.size(), CoupledPhasesResult{},
+      [&](std::size_t begin, std::size_t end, CoupledPhasesResult result) {
+        double& merged = result.tied_drag;
         for (std::size_t i = begin; i < end; ++i) {
           LiquidNode& water = grid.liquid[i];
           if (!(water.mass > 0.0)) {
@@ -193,7 +196,17 @@ double couple_phases(Scene& scene, const StepParameters& step, double beta) {
           double mass = skeleton_mass;
           for (int d = 0; d < 2; ++d) {
             const double v = (node.momentum[d] - water.skeleton_momentum[d]) / skeleton_mass;
-            const double w = water.momentum[d] / water.mass;
+            double w = water.momentum[d] / water.mass;
+            if (drains && (grid.water_drained[i] & (1u << d)) != 0) {
+              // The drain keeps the water velocity it ended the last step with (Grid::
+              // drain_water_velocity); the kinetic energy that changes is the drain's work.
+              const double kept = grid.drain_water_velocity[i][static_cast<std::size_t>(d)];
+              water.drain_jump[d] = 0.0;
+              if (std::isfinite(kept)) {
+                water.drain_jump[d] = kept - w;
+                w = kept;
+              }
+            }
             water.velocity()[d] = w;
             if (tied) {
               mass = node.mass;
@@ -230,9 +243,14 @@ double couple_phases(Scene& scene, const StepParameters& step, double beta) {
             node.force[2] = dof.force;
           }
         }
-        return merged;
+        return result;
       },
-      std::plus<>(), true);
+      [](CoupledPhasesResult a, const CoupledPhasesResult& b) {
+        a.tied_drag += b.tied_drag;
+        a.drain_work += b.drain_work;
+        return a;
+      },
+      true);
 }
 
 template <GeometryMode mode>
@@ -242,12 +260,16 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
   const double dt = step.dt;
   const double dt_over_beta = dt / beta; // the water's inertia scaled as the skeleton's
   const bool structures = !grid.structure_fields.empty();
+  const bool drains = !grid.water_drained.empty();
   auto update = [&](std::size_t begin, std::size_t end, WaterVelocityResult result) {
     for (std::size_t i = begin; i < end; ++i) {
       LiquidNode& water = grid.liquid[i];
       const GridNode& node = grid.nodes[i];
       if (!(water.mass > 0.0) || node.mass <= step.mass_floor) {
         water = LiquidNode{};
+        if (drains) {
+          grid.drain_water_velocity[i] = {std::nan(""), std::nan(""), std::nan("")};
+        }
         continue;
       }
       const double mass[3] = {water.mass, water.mass, water.inertia};
@@ -284,6 +306,14 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
         result.drag += porosity * drag[d] * (w_new - v) * (w_new - v) * dt;
         water.velocity()[d] = w_new;
         water.velocity_increment()[d] = w_new - w;
+        if (drains && d < 2 && (grid.water_drained[i] & (1u << d)) != 0) {
+          grid.drain_water_velocity[i][static_cast<std::size_t>(d)] = w_new;
+          // The particles take this step's increment from the kept velocity, w_new - w, but
+          // their water's momentum at the node was the mapped one: their kinetic energy changes
+          // by share (w_mapped - w) (w_new - w) less than the grid's to first order, the work of
+          // the momentum the drain gave the node.
+          result.drain_work -= beta * water.share * water.drain_jump[d] * (w_new - w);
+        }
       }
     }
     return result;
@@ -293,6 +323,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
       [](WaterVelocityResult a, const WaterVelocityResult& b) {
         a.drag += b.drag;
         a.support_work += b.support_work;
+        a.drain_work += b.drain_work;
         return a;
       },
       true);
@@ -420,6 +451,7 @@ void remap_water(Scene& scene, const ParticleBins& bins,
                      });
   });
   const bool structures = !grid.structure_fields.empty();
+  const bool drains = !grid.water_drained.empty();
   parallel_for(grid.liquid.size(), [&](std::size_t i) {
     LiquidNode& water = grid.liquid[i];
     const GridNode& node = grid.nodes[i];
@@ -432,6 +464,11 @@ void remap_water(Scene& scene, const ParticleBins& bins,
       // Impermeable where the skeleton is held or a structure is, as in update_water_velocities.
       if (at_wall || (d < 2 && (grid.water_held[i] & (1u << d)) != 0)) {
         water.velocity()[d] = node.velocity()[d];
+      } else if (drains && d < 2 && (grid.water_drained[i] & (1u << d)) != 0 &&
+                 std::isfinite(grid.drain_water_velocity[i][static_cast<std::size_t>(d)])) {
+        // A drain keeps its own velocity through the remap too: the flow's divergence must see
+        // the flux whose drag update_water_velocities booked.
+        water.velocity()[d] = grid.drain_water_velocity[i][static_cast<std::size_t>(d)];
       }
     }
   });
@@ -593,8 +630,10 @@ MPILE_WATER_PASSES(GeometryMode::plane_strain, ShapeFunctions::gimp)
 #undef MPILE_WATER_PASSES
 template void rescale_remapped_skeleton<GeometryMode::axisymmetric>(Scene&);
 template void rescale_remapped_skeleton<GeometryMode::plane_strain>(Scene&);
-template double couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&, double);
-template double couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&, double);
+template CoupledPhasesResult
+couple_phases<GeometryMode::axisymmetric>(Scene&, const StepParameters&, double);
+template CoupledPhasesResult
+couple_phases<GeometryMode::plane_strain>(Scene&, const StepParameters&, double);
 template WaterVelocityResult
 update_water_velocities<GeometryMode::axisymmetric>(Scene&, const StepParameters&, double);
 template WaterVelocityResult

@@ -23,7 +23,9 @@
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <atomic>
+#include <bit>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -948,6 +950,53 @@ TEST(RunCommand, RestartWithContactAndAFreeRigidBodyIsBitwiseIdentical) {
   // This short run ends with 78 % of its (small) energy unaccounted for, without tripping the
   // guard (over 50 % for 100 steps): the status says so.
   EXPECT_EQ(ha.string_attribute("/", "status").rfind("complete, but the energy residual", 0), 0u);
+}
+
+// A drained face keeps its water's velocity from step to step (Grid::drain_water_velocity): the
+// checkpoint carries it, so a restart of the radial consolidation cell is bitwise the whole run.
+// Without it the restarted drain starts again from the particles' water and the histories part.
+TEST(RunCommand, ADrainedFaceRestartsBitwiseIdentically) {
+  const auto directory = fresh_directory("restart_drain");
+  std::ifstream in(std::filesystem::path(MPILE_SOURCE_DIR) /
+                   "cases/verification/radial_consolidation.toml");
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string c = text.str();
+  const auto at = c.find("duration = 5.0");
+  ASSERT_NE(at, std::string::npos);
+  c.replace(at, 14, "duration = 0.05");
+  const auto interval = c.find("history_interval = 0.005");
+  ASSERT_NE(interval, std::string::npos);
+  c.replace(interval, 24, "history_interval = 0.0005\ncheckpoint_interval = 0.01");
+  const std::string path = (directory / "case.toml").string();
+  std::ofstream(path) << c;
+
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_split(path, directory, 1500));
+
+  Hdf5File a((directory / "whole" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  Hdf5File b((directory / "split" / "checkpoint.h5").string(), Hdf5File::Mode::read);
+  for (const std::string& name : particle_datasets()) {
+    EXPECT_EQ(a.read_doubles("/particles/" + name), b.read_doubles("/particles/" + name)) << name;
+  }
+  const auto kept = a.read_doubles("/grid/drain_water_velocity");
+  const auto kept_split = b.read_doubles("/grid/drain_water_velocity");
+  ASSERT_EQ(kept.size(), kept_split.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) { // NaN where nothing is kept: equal as bits
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(kept[k]), std::bit_cast<std::uint64_t>(kept_split[k]))
+        << k;
+  }
+  // The drain's nodes (r = r_w, three rows) keep a radial velocity; no other node keeps any.
+  ASSERT_EQ(kept.size(), 3u * 19u * 3u);
+  for (std::size_t node = 0; node < kept.size() / 3; ++node) {
+    EXPECT_EQ(std::isfinite(kept[3 * node]), node % 19 == 0) << node;
+    EXPECT_FALSE(std::isfinite(kept[3 * node + 1])) << node;
+  }
+  Hdf5File ha((directory / "whole" / "history.h5").string(), Hdf5File::Mode::read);
+  Hdf5File hb((directory / "split" / "history.h5").string(), Hdf5File::Mode::read);
+  for (const char* series : {"/time", "/energy/external_work", "/energy/drag",
+                             "/boundaries/lid/F_y", "/monitors/at_the_drain/pore_pressure"}) {
+    EXPECT_EQ(ha.read_doubles(series), hb.read_doubles(series)) << series;
+  }
 }
 
 TEST(RunCommand, AQuietRunIsPlainlyComplete) {

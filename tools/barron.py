@@ -618,6 +618,11 @@ def run_series(run):
         resolved = resolved.decode() if isinstance(resolved, bytes) else str(resolved)
         attrs = {k: f.attrs[k] for k in ("status", "wall_time") if k in f.attrs}
         steps = int(f["step"][-1]) if "step" in f else None
+        # The ledger's largest relative residual after step 100 (the first steps' energies are
+        # too small for a ratio to mean anything).
+        late = f["step"][:] > 100
+        residual = np.abs(f["energy/relative_residual"][:])
+        residual_peak = float(residual[late].max()) if late.any() else float("nan")
     case = tomllib.loads(resolved)
     cell, info = from_case(case, text)
     snaps = mpile.open_snapshots(history.parent)
@@ -629,7 +634,8 @@ def run_series(run):
         times.append(t)
         means.append(float(np.sum(volume * excess) / np.sum(volume)))
     ds = mpile.open_history(history)
-    hist = {"time": ds["time"].values, "dt": ds["dt"].values, "steps": steps}
+    hist = {"time": ds["time"].values, "dt": ds["dt"].values, "steps": steps,
+            "residual_peak": residual_peak}
     hist.update({k: (v.decode() if isinstance(v, bytes) else v) for k, v in attrs.items()})
     if info["lid"]:
         hist["F_y"] = ds[f"boundaries/{info['lid']}/F_y"].values
@@ -717,7 +723,26 @@ def compare(run, profile=True):
     if profile:
         print_profile(cell, info, case, snaps, times, levels)
         print_monitors(cell, hist, levels)
+    print(f"energy ledger: largest relative residual after step 100 {hist['residual_peak']:.4%}; "
+          f"status {hist.get('status', '')}")
+    results["residual"] = hist["residual_peak"]
+    results["complete"] = str(hist.get("status", "")).startswith("complete")
     return results
+
+
+def check(results, expect):
+    """The run's results against the bounds asked for (--expect NAME=BOUND): 'U0.2', 'U0.5',
+    'U0.8' the pore pressure's |U - U_series| where the series has that U (the run must reach
+    it), 'residual' the ledger's largest relative residual after step 100. Returns the failures."""
+    failures = [] if results.get("complete") else ["the run did not complete"]
+    for name, bound in expect.items():
+        if name == "residual":
+            measured = results["residual"]
+        else:
+            measured = abs(results.get((float(name[1:]), "pore pressure"), float("inf")))
+        if not measured <= bound:
+            failures.append(f"{name} {measured:.4g} > {bound:g}")
+    return failures
 
 
 def cell_table(cell, info, case, snaps):
@@ -803,6 +828,11 @@ def main():
     what.add_argument("--write-lid", nargs=2, metavar=("PLATE_CASE", "LID_CASE"),
                       help="write the lid case from the plate case")
     parser.add_argument("--no-profile", action="store_true", help="--compare: U only")
+    parser.add_argument("--expect", action="append", default=[], metavar="NAME=BOUND",
+                        help="with --compare: fail (exit 1) unless NAME (U0.2, U0.5, U0.8: the pore "
+                             "pressure's |U - U_series| where the series has that U; residual: "
+                             "the ledger's largest relative residual after step 100) is at most "
+                             "BOUND")
     args = parser.parse_args()
     if args.case:
         case, text = read_case(args.case)
@@ -814,7 +844,17 @@ def main():
         pathlib.Path(args.write_lid[1]).write_text(text)
         print(f"wrote {args.write_lid[1]}")
     else:
-        compare(args.compare, profile=not args.no_profile)
+        results = compare(args.compare, profile=not args.no_profile)
+        if args.expect:
+            expect = {}
+            for item in args.expect:
+                name, _, bound = item.partition("=")
+                if name not in ("U0.2", "U0.5", "U0.8", "residual"):
+                    sys.exit(f"--expect {item}: no such quantity")
+                expect[name] = float(bound)
+            failures = check(results, expect)
+            print("barron check: " + ("ok" if not failures else "FAILED: " + "; ".join(failures)))
+            return 1 if failures else 0
     return 0
 
 
