@@ -64,7 +64,7 @@ TEST(CaseFiles, EveryShippedCaseFileIsValid) {
   EXPECT_GE(files, 8);
   // No base file lies unused (it would go unchecked).
   EXPECT_EQ(bases, used);
-  EXPECT_EQ(bases.size(), 4u);
+  EXPECT_EQ(bases.size(), 6u);
 }
 
 // Tests that edit a monopile case's text use flat copies (tests/data/); the shipped cases build
