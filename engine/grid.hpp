@@ -63,6 +63,11 @@ struct LiquidNode {
   double held_force[2] = {0.0, 0.0};
   /// At a drained DOF: the velocity the drain kept less the particles' mapped one (r, y; m/s).
   double drain_jump[2] = {0.0, 0.0};
+  /// At a structure's wall: the kinetic energy tying the phases took per DOF (r, y), and the DOFs
+  /// (DofBit) along which the wall runs on a grid line, where the water flows along the wall
+  /// after the contact (update_water_velocities) instead of keeping to the skeleton.
+  double tie_merged[2] = {0.0, 0.0};
+  std::uint8_t wall_free = 0;
 
   double* velocity() { return momentum; }
   const double* velocity() const { return momentum; }

@@ -141,7 +141,7 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
   // corrected relative flow, and the pore pressure's work is booked on the same velocities
   // (docs/saturated.md, "The step's energy identity").
   return {.external_work = water.support_work + water.drain_work,
-          .drag = settings_.implicit_pore_pressure ? 0.0 : water.drag};
+          .drag = water.tied_drag + (settings_.implicit_pore_pressure ? 0.0 : water.drag)};
 }
 
 template <GeometryMode mode, ShapeFunctions shape>

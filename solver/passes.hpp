@@ -59,6 +59,7 @@ struct WaterVelocityResult {
   double drag = 0.0;         // taken by Darcy's drag over the step
   double support_work = 0.0; // done on the water by the impermeable faces
   double drain_work = 0.0;   // done on the water by the drained faces (Grid::drain_water_velocity)
+  double tied_drag = 0.0;    // the kinetic energy tying the phases at a wall took (couple_phases)
 };
 template <GeometryMode mode>
 WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step,

@@ -224,7 +224,8 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       const bool held = (grid.constrained[i] & (1u << d)) != 0;
       DofResponse r;
       if (liquid) {
-        const bool water_held = at_wall || (grid.water_held[i] & (1u << d)) != 0;
+        const bool along_wall = (grid.liquid[i].wall_free & (1u << d)) != 0;
+        const bool water_held = (at_wall && !along_wall) || (grid.water_held[i] & (1u << d)) != 0;
         r = coupled_response(grid.liquid[i], node.velocity()[d], grid.liquid[i].velocity()[d], held,
                              water_held, dt_over_beta);
       } else {

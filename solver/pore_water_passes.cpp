@@ -212,7 +212,9 @@ CoupledPhasesResult couple_phases(Scene& scene, const StepParameters& step, doub
               mass = node.mass;
               node.momentum[d] = mass * v;
               node.force[d] += beta * water.share * (w - v) / step.dt;
-              merged += beta * 0.5 * skeleton_mass * water.share / mass * (w - v) * (w - v);
+              // Booked once the contact has said whether the water stays tied along this DOF.
+              water.tie_merged[d] =
+                  beta * 0.5 * skeleton_mass * water.share / mass * (w - v) * (w - v);
               continue;
             }
             const EffectiveDof dof =
@@ -253,6 +255,64 @@ CoupledPhasesResult couple_phases(Scene& scene, const StepParameters& step, doub
       true);
 }
 
+namespace {
+
+/// The DOFs (r, y) along which the wall at node i runs on a grid line: a contact there this step
+/// whose normal has no component along the DOF (a shaft's face along y, a plate's underside along
+/// r), the skeleton not held along it. Elsewhere at a wall (a cone, a corner, a structure in
+/// reach but not touching) the water keeps to the skeleton in both directions.
+std::uint8_t wall_free_dofs(const Scene& scene, const Grid& grid, std::size_t i) {
+  for (const ContactPair& pair : scene.contacts) {
+    if (pair.state.size() <= i || pair.state[i] == 0) {
+      continue;
+    }
+    const auto& n = pair.contact_normal[i];
+    std::uint8_t free = 0;
+    for (int d = 0; d < 2; ++d) {
+      const bool along = std::abs(n[static_cast<std::size_t>(d)]) <= 1e-9 &&
+                         std::abs(n[static_cast<std::size_t>(1 - d)]) >= 1.0 - 1e-9;
+      // A held skeleton DOF along the wall (a drained face beside it) lets the water past only
+      // if it is drained.
+      const bool held = (grid.constrained[i] & (1u << d)) != 0;
+      const bool drained = !grid.water_drained.empty() && (grid.water_drained[i] & (1u << d)) != 0;
+      if (along && (!held || drained)) {
+        free |= static_cast<std::uint8_t>(1u << d);
+      }
+    }
+    return free;
+  }
+  return 0;
+}
+
+/// Along a wall the water flows past the skeleton (the wall is impermeable across, not along):
+/// the contact has settled the mixture's momentum P = M v along DOF d, which the two phases now
+/// share as the water's own balance with the drag at the new velocities asks,
+///   M_w (w' - w) = dt (F_w - Q (w' - v')),  M_s v' + M_nw w' = P,
+/// so the structure's impulse, friction included, is the mixture's, as when tied.
+void split_along_wall(LiquidNode& water, GridNode& node, int d, double dt, double dt_over_beta,
+                      WaterVelocityResult& result) {
+  const auto k = static_cast<std::size_t>(d);
+  const double share = water.share;
+  const double skeleton_mass = water.mixture_mass - share;
+  const double momentum = node.mass * node.velocity()[k];
+  const double w = water.velocity()[k];
+  const double q = dt_over_beta * water.drag;
+  const double w_new =
+      (water.mass * w + dt_over_beta * water.force[k] + q * momentum / skeleton_mass) /
+      (water.mass + q * (1.0 + share / skeleton_mass));
+  const double v_new = (momentum - share * w_new) / skeleton_mass;
+  node.velocity_increment()[k] += v_new - node.velocity()[k];
+  node.velocity()[k] = v_new;
+  water.held_force[k] = 0.0;
+  // Darcy's drag at the velocities it acts on, as at any node; the tie's merged energy is not
+  // booked along this DOF, the phases having parted again.
+  result.drag += share / water.mass * water.drag * (w_new - v_new) * (w_new - v_new) * dt;
+  water.velocity()[k] = w_new;
+  water.velocity_increment()[k] = w_new - w;
+}
+
+} // namespace
+
 template <GeometryMode mode>
 WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step, double beta) {
   constexpr int dofs = has_theta(mode) ? 3 : 2;
@@ -264,7 +324,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
   auto update = [&](std::size_t begin, std::size_t end, WaterVelocityResult result) {
     for (std::size_t i = begin; i < end; ++i) {
       LiquidNode& water = grid.liquid[i];
-      const GridNode& node = grid.nodes[i];
+      GridNode& node = grid.nodes[i];
       if (!(water.mass > 0.0) || node.mass <= step.mass_floor) {
         water = LiquidNode{};
         if (drains) {
@@ -278,8 +338,18 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
       // which the contact has just kept out of the wall (the wall's tangential drag on the water
       // is left out: water has no friction).
       const bool at_wall = structures && grid.structure_occupies(i, step.mass_floor);
+      water.wall_free = at_wall ? wall_free_dofs(scene, grid, i) : 0;
       const double drag[3] = {water.drag, water.drag, water.drag_inertia};
       for (int d = 0; d < dofs; ++d) {
+        const bool along_wall = at_wall && d < 2 && (water.wall_free & (1u << d)) != 0;
+        if (along_wall && (grid.constrained[i] & (1u << d)) == 0) {
+          split_along_wall(water, node, d, dt, dt_over_beta, result);
+          continue;
+        }
+        const bool tied = at_wall && !along_wall; // along a held, drained DOF: as at a drain
+        if (tied && d < 2) {
+          result.tied_drag += water.tie_merged[d];
+        }
         const double v = node.velocity()[d];
         const double w = water.velocity()[d];
         const double held = mass[d] + dt_over_beta * drag[d];
@@ -293,7 +363,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
         if (d < 2) {
           water.held_force[d] = 0.0;
         }
-        if (at_wall) {
+        if (tied) {
           w_new = v; // tied to the skeleton in couple_phases, its drag booked there
         } else if (d < 2 && (grid.water_held[i] & (1u << d)) != 0) {
           result.support_work += beta * porosity * mass[d] * (v - w_new) * v;
@@ -324,6 +394,7 @@ WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& 
         a.drag += b.drag;
         a.support_work += b.support_work;
         a.drain_work += b.drain_work;
+        a.tied_drag += b.tied_drag;
         return a;
       },
       true);
@@ -461,8 +532,10 @@ void remap_water(Scene& scene, const ParticleBins& bins,
                                water.inertia > 0.0 ? 1.0 / water.inertia : 0.0};
     for (int d = 0; d < dofs; ++d) {
       water.velocity()[d] = water.momentum[d] * inverse[d];
-      // Impermeable where the skeleton is held or a structure is, as in update_water_velocities.
-      if (at_wall || (d < 2 && (grid.water_held[i] & (1u << d)) != 0)) {
+      // Impermeable where the skeleton is held or a structure is, as in update_water_velocities
+      // (along a wall on a grid line the water flows past the skeleton).
+      const bool along_wall = d < 2 && (water.wall_free & (1u << d)) != 0;
+      if ((at_wall && !along_wall) || (d < 2 && (grid.water_held[i] & (1u << d)) != 0)) {
         water.velocity()[d] = node.velocity()[d];
       } else if (drains && d < 2 && (grid.water_drained[i] & (1u << d)) != 0 &&
                  std::isfinite(grid.drain_water_velocity[i][static_cast<std::size_t>(d)])) {

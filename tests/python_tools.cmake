@@ -319,10 +319,12 @@ set_tests_properties(Hypoplastic.ElementTestsMeetTheIndependentIntegration PROPE
 # each). The lid (the top grid line moved as the closed form's plate) meets it: measured at
 # f3801ae, the centre's Mandel-Cryer peak 0.47 % low, |p - ref| <= 0.0054 p0 after the load's rise,
 # the reaction within 0.75 % of F, the ledger within 1.3 %; the bounds are about twice those. The
-# force-driven plate carries its load to 0.02 % (bound 0.1 %) and shows the rise, 3.0 % low; its
-# pressure lags the closed form by up to 0.041 p0 and its ledger peaks at 3.6 %, because the water
-# is tied to the plate in both directions at its wall (no flow along its underside: the issue of
-# the wall's water): bounds 0.05, 0.06 and 0.05 hold today's state until that is fixed.
+# force-driven plate carries its load to 0.02 % (bound 0.1 %) and shows the rise. While the water
+# was tied to the plate in both directions at its wall (no flow along its underside) the peak was
+# 3.0 % low, the pressure lagged by up to 0.041 p0 and the ledger peaked at 3.6 %; with the water
+# flowing along the wall, 2.86 %, 0.0338 p0 and 3.3 % (pure FLIP below: 0.90 %, 0.0129 p0, 1.29 %,
+# were 3 %, 0.041 p0, 1.54 %). Bounds 0.04, 0.05 and 0.05 (FLIP: 0.02, 0.025, 0.03): the wall cells'
+# soil, which the pressure moves and the contact corrects a step later, is what is left.
 add_test(NAME Mandel.Pytest
          COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
                  ${PROJECT_SOURCE_DIR}/tests/mandel_test.py)
@@ -338,7 +340,7 @@ foreach(lid_or_plate lid plate)
     set(mandel_bounds --expect peak=0.01 --expect after_rise=0.01 --expect reaction=0.015
                       --expect residual=0.025)
   else()
-    set(mandel_bounds --expect peak=0.05 --expect after_rise=0.06 --expect reaction=0.001
+    set(mandel_bounds --expect peak=0.04 --expect after_rise=0.05 --expect reaction=0.001
                       --expect residual=0.05)
   endif()
   add_test(NAME Mandel.MeetsTheClosedForm_${lid_or_plate}
@@ -351,7 +353,7 @@ endforeach()
 # The plate under pure FLIP at Courant 0.2 to 2 T (70 770 steps, about 13 s): implicit pore pressure
 # with FLIP in slow consolidation went unstable after 10 000 to 35 000 steps while the projection
 # booked its correction's kinetic energy as damping and moved the particles with the uncorrected
-# velocity; at f3801ae it runs through, its ledger within 1.54 % (bound 3 %), the rest as above.
+# velocity; at f3801ae it ran through, its ledger within 1.54 % (bound 3 %), the rest as above.
 set(mandel_output ${CMAKE_CURRENT_BINARY_DIR}/mandel_plate_flip)
 add_test(NAME Mandel.Run_plate_flip
          COMMAND mpile run ${PROJECT_SOURCE_DIR}/cases/verification/mandel_plate.toml --threads 1
@@ -360,7 +362,7 @@ add_test(NAME Mandel.Run_plate_flip
 set_tests_properties(Mandel.Run_plate_flip PROPERTIES FIXTURES_SETUP mandel_plate_flip LABELS study)
 add_test(NAME Mandel.MeetsTheClosedForm_plate_flip
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/mandel.py --compare ${mandel_output}
-                 --expect peak=0.05 --expect after_rise=0.06 --expect reaction=0.001
+                 --expect peak=0.02 --expect after_rise=0.025 --expect reaction=0.001
                  --expect residual=0.03)
 set_tests_properties(Mandel.MeetsTheClosedForm_plate_flip PROPERTIES
                      FIXTURES_REQUIRED mandel_plate_flip LABELS study
@@ -404,3 +406,18 @@ foreach(variant c08 c04 implicit)
                        FIXTURES_REQUIRED barron_${variant} LABELS study
                        PASS_REGULAR_EXPRESSION "barron check: ok\n")
 endforeach()
+# The cell under its rigid frictionless plate (force-driven), to t = 1.4 s: while the water was
+# tied to the plate's underside in both directions (no flow along the wall, physics.md 9b) it
+# lagged the series by 0.069 at U = 0.2 and 0.168 at U = 0.5 (b907032); flowing along the wall
+# (update_water_velocities' split after the contact) it lags by 0.0046 and 0.0079, within the grid's
+# own scheme's 0.0077 and 0.0131, the ledger at most 1.1 %. Bounds 0.015, 0.02 and 5 % as the lid's.
+set(barron_output ${CMAKE_CURRENT_BINARY_DIR}/barron_plate)
+add_test(NAME Barron.Run_plate
+         COMMAND mpile run ${PROJECT_SOURCE_DIR}/cases/verification/radial_consolidation_plate.toml
+                 --threads 1 --out ${barron_output} --set phases.0.duration=1.4)
+set_tests_properties(Barron.Run_plate PROPERTIES FIXTURES_SETUP barron_plate LABELS study)
+add_test(NAME Barron.MeetsTheSeries_plate
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/barron.py --compare ${barron_output}
+                 --no-profile --expect U0.2=0.015 --expect U0.5=0.02 --expect residual=0.05)
+set_tests_properties(Barron.MeetsTheSeries_plate PROPERTIES FIXTURES_REQUIRED barron_plate
+                     LABELS study PASS_REGULAR_EXPRESSION "barron check: ok\n")
