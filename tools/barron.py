@@ -91,7 +91,8 @@ import numpy as np
 from scipy import linalg, special
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from case_history import coupled_soil, integrate_points, load_points, mpile_package, toml_value  # noqa: E402
+from case_history import (coupled_soil, expect_check, integrate_points, load_points,  # noqa: E402
+                          mpile_package, toml_value)
 
 STANDARD_GRAVITY = 9.80665  # engine/materials/pore_water.hpp: k is measured under it
 LOAD_TAG = "# barron.py load (t s, q Pa):"  # the lid case's load history, for --compare
@@ -846,15 +847,8 @@ def main():
     else:
         results = compare(args.compare, profile=not args.no_profile)
         if args.expect:
-            expect = {}
-            for item in args.expect:
-                name, _, bound = item.partition("=")
-                if name not in ("U0.2", "U0.5", "U0.8", "residual"):
-                    sys.exit(f"--expect {item}: no such quantity")
-                expect[name] = float(bound)
-            failures = check(results, expect)
-            print("barron check: " + ("ok" if not failures else "FAILED: " + "; ".join(failures)))
-            return 1 if failures else 0
+            return expect_check("barron", args.expect, ("U0.2", "U0.5", "U0.8", "residual"), check,
+                                results)
     return 0
 
 

@@ -79,3 +79,18 @@ def mpile_package():
     sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "python"))
     import mpile
     return mpile
+
+
+def expect_check(tool, items, names, check, results):
+    """--expect NAME=BOUND items against a run's results: the bounds by name (each one of names),
+    `check(results, bounds)` the failures. Prints "<tool> check: ok" or its failures and returns
+    the exit status (1 on a failure); an unknown name exits with its message."""
+    bounds = {}
+    for item in items:
+        name, _, bound = item.partition("=")
+        if name not in names:
+            sys.exit(f"--expect {item}: no such quantity")
+        bounds[name] = float(bound)
+    failures = check(results, bounds)
+    print(f"{tool} check: " + ("ok" if not failures else "FAILED: " + "; ".join(failures)))
+    return 1 if failures else 0

@@ -48,7 +48,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
-from case_history import coupled_soil, integrate_points, load_points, mpile_package, toml_value  # noqa: E402
+from case_history import (coupled_soil, expect_check, integrate_points, load_points,  # noqa: E402
+                          mpile_package, toml_value)
 
 STANDARD_GRAVITY = 9.80665  # engine/materials/pore_water.hpp: k is measured under it
 SUPERPOSITION_TERMS = 4000  # the ramp's terms fall as 1/n^3: 4000 leave < 1e-8 of F
@@ -764,15 +765,8 @@ def main():
     else:
         summary = compare(args.compare, args.load_from)
         if args.expect:
-            expect = {}
-            for item in args.expect:
-                name, _, bound = item.partition("=")
-                if name not in ("peak", "after_rise", "reaction", "residual"):
-                    sys.exit(f"--expect {item}: no such quantity")
-                expect[name] = float(bound)
-            failures = check(summary, expect)
-            print("mandel check: " + ("ok" if not failures else "FAILED: " + "; ".join(failures)))
-            sys.exit(1 if failures else 0)
+            sys.exit(expect_check("mandel", args.expect, ("peak", "after_rise", "reaction", "residual"),
+                                  check, summary))
 
 
 if __name__ == "__main__":
