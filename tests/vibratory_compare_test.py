@@ -153,6 +153,20 @@ def test_main_prints_the_table_beside_the_measured_column(tmp_path, capsys):
     assert "| 0-0.5 | 1.5 / 4.5 | 1.6 / 4.8 | 1.2 / 4.8 |" in out
 
 
+def test_expect_passes_within_its_band_and_fails_outside_it_or_short(tmp_path, capsys):
+    # The synthetic run sinks 29.0 mm by 0.5 s against the measured 21.4: 1.36 times it.
+    write_history(tmp_path / "history.h5")
+    assert vc.main([str(tmp_path), "--expect", "0.5=0.36"]) == 0
+    assert "vibratory check: ok" in capsys.readouterr().out
+    assert vc.main([str(tmp_path), "--expect", "0.5=0.35"]) == 1
+    assert "vibratory check: FAILED: at 0.5 s 29.0 mm" in capsys.readouterr().out
+    write_history(tmp_path / "short.h5", end=START + 0.4)
+    assert vc.main([str(tmp_path / "short.h5"), "--expect", "0.5=1.0"]) == 1
+    assert "at 0.5 s - mm" in capsys.readouterr().out
+    with pytest.raises(SystemExit):
+        vc.main([str(tmp_path), "--expect", "0.4=0.1"])
+
+
 def test_the_measured_numbers_are_the_pages(tmp_path):
     """The tool's columns are docs/vibratory-model-test.md section 3's: each measured and CEL
     penetration and each PPT A window appears in the page's tables."""

@@ -167,6 +167,10 @@ def main(argv=None):
                         help="the cycle's frequency, Hz (default: the phase's harmonic force_y)")
     parser.add_argument("--ppt-a", type=float, nargs=2, default=PPT_A, metavar=("R", "Y"),
                         help=f"PPT A's position, m (default {PPT_A[0]:g} {PPT_A[1]:g}, assumed)")
+    parser.add_argument("--expect", action="append", default=[], metavar="T=BAND",
+                        help="fail (exit 1) unless the penetration at T s (one of the measured "
+                             "times) is within BAND of the measured one, |computed / measured - 1| "
+                             "<= BAND; prints 'vibratory check: ok' or the failures")
     args = parser.parse_args(argv)
 
     run = read_run(args.run, args.phase, args.body)
@@ -185,11 +189,27 @@ def main(argv=None):
     print()
     print("| t (s) | cycles | computed (mm) | experiment (mm) | CEL mu = 0.25 (mm) | computed / experiment |")
     print("|---|---|---|---|---|---|")
-    for t, cycles, mm, centre in penetration_rows(run, period):
+    rows = penetration_rows(run, period)
+    for t, cycles, mm, centre in rows:
         measured = MEASURED_MM.get(t)
         shown = fmt(mm) if centre is None or abs(centre - t) < 1e-9 else f"{fmt(mm)} ({centre:.3f} s)"
         ratio = fmt(mm / measured, 2) if mm is not None and measured else "-"
         print(f"| {t:.2f} | {cycles:.0f} | {shown} | {fmt(measured)} | {fmt(CEL_MM.get(t))} | {ratio} |")
+
+    if args.expect:
+        computed = {round(t, 6): mm for t, _, mm, _ in rows}
+        failures = []
+        for item in args.expect:
+            at, _, band = item.partition("=")
+            t = round(float(at), 6)
+            if t not in MEASURED_MM:
+                raise SystemExit(f"--expect {item}: no measured penetration at {at} s")
+            mm = computed.get(t)
+            if mm is None or not abs(mm / MEASURED_MM[t] - 1.0) <= float(band):
+                failures.append(f"at {at} s {fmt(mm)} mm against the measured {MEASURED_MM[t]:.1f} "
+                                f"(band {band})")
+        print("vibratory check: " + ("ok" if not failures else "FAILED: " + "; ".join(failures)))
+        return 1 if failures else 0
 
     name = nearest_monitor(run["monitors"], tuple(args.ppt_a))
     print()
