@@ -1,3 +1,11 @@
+# A pytest file of tests/ as the test NAME: Python alone, no engine code, so nothing for a sanitizer
+# to look at (label python, release only).
+function(add_pytest name file)
+  add_test(NAME ${name} COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
+                                ${PROJECT_SOURCE_DIR}/tests/${file})
+  set_tests_properties(${name} PROPERTIES LABELS python)
+endfunction()
+
 # The monopile post-processing tools on a synthetic run whose values are known exactly
 # (tests/make_monopile_history.py): the tests check printed numbers and colours, not only that the
 # tools ran.
@@ -296,18 +304,11 @@ set_tests_properties(HertzFe.QuasiStaticMillimetreElementsFollowHertzsForceWhenS
 
 # Hypoplasticity: the independent reference integrator against the model's closed forms (its own
 # pytest), and the engine's element tests against it (docs/hypoplasticity.md).
-add_test(NAME HypoplasticReference.Pytest
-         COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
-                 ${PROJECT_SOURCE_DIR}/tests/hypoplastic_reference_test.py)
-# Python alone, no engine code: nothing for a sanitizer to look at (label python, release only).
-set_tests_properties(HypoplasticReference.Pytest PROPERTIES LABELS python)
+add_pytest(HypoplasticReference.Pytest hypoplastic_reference_test.py)
 # The seed sand's hypoplastic set (tools/calibrate_seed_sand.py): the case files and the page carry
 # the shipped set, no fitted value moved by a little more than its rounding lowers the fit's
 # objective, and the page's table is the tool's. About 10 s.
-add_test(NAME CalibrateSeedSand.Pytest
-         COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
-                 ${PROJECT_SOURCE_DIR}/tests/calibrate_seed_sand_test.py)
-set_tests_properties(CalibrateSeedSand.Pytest PROPERTIES LABELS python)
+add_pytest(CalibrateSeedSand.Pytest calibrate_seed_sand_test.py)
 add_test(NAME Hypoplastic.ElementTestsMeetTheIndependentIntegration
          COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tests/hypoplastic_against_reference.py
                  $<TARGET_FILE:mpile> ${CMAKE_CURRENT_BINARY_DIR}/hypoplastic_reference)
@@ -325,10 +326,7 @@ set_tests_properties(Hypoplastic.ElementTestsMeetTheIndependentIntegration PROPE
 # flowing along the wall, 2.86 %, 0.0338 p0 and 3.3 % (pure FLIP below: 0.90 %, 0.0129 p0, 1.29 %,
 # were 3 %, 0.041 p0, 1.54 %). Bounds 0.04, 0.05 and 0.05 (FLIP: 0.02, 0.025, 0.03): the wall cells'
 # soil, which the pressure moves and the contact corrects a step later, is what is left.
-add_test(NAME Mandel.Pytest
-         COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
-                 ${PROJECT_SOURCE_DIR}/tests/mandel_test.py)
-set_tests_properties(Mandel.Pytest PROPERTIES LABELS python)
+add_pytest(Mandel.Pytest mandel_test.py)
 foreach(lid_or_plate lid plate)
   set(mandel_output ${CMAKE_CURRENT_BINARY_DIR}/mandel_${lid_or_plate})
   add_test(NAME Mandel.Run_${lid_or_plate}
@@ -371,10 +369,7 @@ set_tests_properties(Mandel.MeetsTheClosedForm_plate_flip PROPERTIES
 
 # Barron's radial consolidation (docs/consolidation.md): the free strain series against a
 # finite-volume solution, the short-time flux into a cylinder and equal strain (Python alone, 2 s).
-add_test(NAME Barron.Pytest
-         COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
-                 ${PROJECT_SOURCE_DIR}/tests/barron_test.py)
-set_tests_properties(Barron.Pytest PROPERTIES LABELS python)
+add_pytest(Barron.Pytest barron_test.py)
 # The coarse cell (18 x 2 cells) under the lid moved as the series settles, to t = 1.4 s (the
 # series' U = 0.5 at 1.35 s), explicitly at Courant 0.8 and 0.4 and with the implicit pore
 # pressure: a drain that restarted its water's velocity from the particles' each step passed 0.6
