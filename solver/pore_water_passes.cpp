@@ -199,7 +199,7 @@ CoupledPhasesResult couple_phases(Scene& scene, const StepParameters& step, doub
             double w = water.momentum[d] / water.mass;
             if (drains && (grid.water_drained[i] & (1u << d)) != 0) {
               // The drain keeps the water velocity it ended the last step with (Grid::
-              // drain_water_velocity); the kinetic energy that changes is the drain's work.
+              // drain_water_velocity); update_water_velocities books the jump's work.
               const double kept = grid.drain_water_velocity[i][static_cast<std::size_t>(d)];
               water.drain_jump[d] = 0.0;
               if (std::isfinite(kept)) {
