@@ -1078,6 +1078,22 @@ void read_pore_water(TomlTable& table, MaterialSpec& material) {
   }
 }
 
+/// Whether `text` names `key` as a word ("friction_angle" in "in [0, friction_angle]", not in
+/// "critical_friction_angle").
+bool mentions(const std::string& text, const std::string& key) {
+  const auto word = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+  };
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const bool starts = at == 0 || !word(text[at - 1]);
+    const bool ends = at + key.size() == text.size() || !word(text[at + key.size()]);
+    if (starts && ends) {
+      return true;
+    }
+  }
+  return false;
+}
+
 } // namespace
 
 MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
@@ -1130,15 +1146,29 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
                     [&](const PoreWaterParameter& p) { return p.name == first; });
     // A value of the wrong unit often makes the model's checks between parameters fail (a
     // friction angle in radians, E50 in kPa: no cap then fits): the key of the likely slip is
-    // blamed, with its hint.
+    // blamed, with its hint, before a named parameter that a base file gave.
+    const std::string blamed = named ? first : "type";
     std::vector<CaseWarning> hints;
     warn_implausible_material(table, material, hints);
     for (const CaseWarning& hint : hints) {
-      if (!named || hint.key == first) {
+      if (!named || hint.key == first || table.nearest_key(first, {hint.key}) == hint.key) {
         table.fail(hint.key, message + "; " + hint.message);
       }
     }
-    table.fail(named ? first : "type", message);
+    // Else the parameters the message compares: the one the case wrote is named.
+    std::vector<std::string> compared;
+    for (const MaterialParameterSpec& p : type->parameters) {
+      if (p.name != first && mentions(message.substr(prefix.size()), p.name)) {
+        compared.push_back(p.name);
+      }
+    }
+    const std::string nearest = table.nearest_key(blamed, compared);
+    if (nearest != blamed) {
+      table.fail(nearest,
+                 named ? message + " (" + blamed + " = " + table.value_and_place(blamed) + ")"
+                       : message);
+    }
+    table.fail(blamed, message);
   }
   return material;
 }

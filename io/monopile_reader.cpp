@@ -50,10 +50,16 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   MonopileGeometry g;
   try {
     g = build_monopile_geometry(p);
-  } catch (const std::invalid_argument& e) {
-    const std::string message = e.what();
-    const std::string key = message.substr(0, message.find(':'));
-    table.fail(key, message.substr(message.find(':') + 2));
+  } catch (const MonopileParameterError& e) {
+    // A check between parameters names the one the case wrote (a diameter in mm is refused by the
+    // base's soil_width), quoting the other.
+    const std::string blamed = table.nearest_key(e.parameter, e.with);
+    if (blamed == e.parameter) {
+      table.fail(e.parameter, e.reason);
+    }
+    const bool must = e.reason.rfind("must", 0) == 0; // "soil_width must exceed ..."
+    table.fail(blamed, e.parameter + (must ? " " : ": ") + e.reason + " (" + e.parameter + " = " +
+                           table.value_and_place(e.parameter) + ")");
   }
   table.finish();
 

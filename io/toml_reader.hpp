@@ -68,6 +68,14 @@ public:
   /// within two edits of it, that key is the error (a typo reported as the key it was meant to be
   /// would point at the wrong line); otherwise "missing (required)", followed by `what` when given.
   [[noreturn]] void missing(const std::string& key, const std::string& what = "") const;
+  /// Of a key a check between keys refuses and the keys it compares it with, the one to blame: the
+  /// one written nearest the user (a --set, then this case file, then a base file, then a default
+  /// left unwritten), `key` on a tie. A value in a base is rarely the slip: `diameter = 746` over a
+  /// base's soil_width is refused by soil_width's check, and is the key to name.
+  std::string nearest_key(const std::string& key, const std::vector<std::string>& with) const;
+  /// A key's value as a message quotes the other side of a check: "5.0 at base.toml:32", or
+  /// "0.2, its default" when the table does not hold it.
+  std::string value_and_place(const std::string& key) const;
   std::string key_path(const std::string& key) const;
   int line_of(const std::string& key) const;
   /// The file a key's value came from (a base case file, or "--set ..."), else this table's file.

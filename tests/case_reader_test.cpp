@@ -545,7 +545,10 @@ std::vector<BadInput> bad_monopile_inputs() {
       {"pile wider than the soil", monopile_edited("soil_width = 5.0", "soil_width = 0.3"),
        "monopile.soil_width: must exceed the pile's outer radius", "soil_width"},
       {"tip below the bottom", monopile_edited("embedment = 3.0", "embedment = 9.9"),
-       "monopile.band_below: the moving band reaches the bottom of the soil", ""},
+       "monopile.embedment: band_below: the moving band reaches the bottom of the soil "
+       "(soil_depth - embedment - band_below must leave room for cells below it) (band_below = "
+       "0.4, its default)",
+       "embedment = 9.9"},
       // A mistyped extent: billions of cells, refused before any node list is built (it took
       // minutes and gigabytes).
       {"soil width of billions of cells",
