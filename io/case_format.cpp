@@ -205,14 +205,18 @@ KeySpec solver_key(const SolverParameter& p, const SolverSettings& defaults) {
   KeySpec key = std::visit(
       [&](auto member) {
         using Value = std::remove_cvref_t<decltype(defaults.*member)>;
+        // Bound to its member of SolverSettings ([[phases]] binds its own to PhaseSpec's).
         if constexpr (std::is_same_v<Value, bool>) {
-          return boolean(p.name, p.meaning).or_default(defaults.*member);
+          return boolean(p.name, p.meaning).or_default(defaults.*member).into(member);
         } else if constexpr (std::is_same_v<Value, int>) {
-          return integer(p.name, p.meaning).or_default(static_cast<long>(defaults.*member));
+          return integer(p.name, p.meaning)
+              .or_default(static_cast<long>(defaults.*member))
+              .into(member);
         } else {
           KeySpec k = number(p.name, p.unit, p.meaning);
-          return p.computed_default.empty() ? std::move(k).or_default(defaults.*member)
-                                            : std::move(k).or_computed(p.computed_default);
+          return (p.computed_default.empty() ? std::move(k).or_default(defaults.*member)
+                                             : std::move(k).or_computed(p.computed_default))
+              .into(member);
         }
       },
       p.member);
@@ -241,8 +245,8 @@ std::vector<KeySpec> solver_keys() {
     keys.push_back(solver_key(p, solver));
     if (p.name == "cell_mean_pore_pressure") {
       keys.push_back(string("scheme", "\"musl\" (strains from remapped velocities) or \"usl\"")
-                         .or_default(std::string(solver.musl ? "musl" : "usl"))
-                         .one_of({"musl", "usl"}));
+                         .one_of({"musl", "usl"})
+                         .choice_into(&SolverSettings::musl, "musl"));
     } else if (p.name == "mass_scaling") {
       keys.push_back(
           numbers("gravity", "m/s^2", "gravitational acceleration (r, y), e.g. [0, -9.81]")
@@ -252,7 +256,8 @@ std::vector<KeySpec> solver_keys() {
       keys.push_back(
           string("shape_functions", "\"linear\" or \"gimp\" (averaged over the particle's domain)")
               .one_of({"linear", "gimp"})
-              .or_computed("\"linear\", \"gimp\" with a moving mesh"));
+              .or_computed("\"linear\", \"gimp\" with a moving mesh")
+              .choice_into(&SolverSettings::shape_functions));
     }
   }
   return keys;
@@ -340,7 +345,8 @@ std::vector<TableSpec> declare() {
                "\"centres\": a particle at each sub-cell centre in the region; \"cut_cells\": "
                "also the sub-cells the outline cuts, each a particle of the part inside")
             .or_default(std::string("centres"))
-            .one_of({"centres", "cut_cells"}),
+            .one_of({"centres", "cut_cells"})
+            .choice_into(&BodySpec::cut_cells),
         numbers("velocity", "m/s", "initial velocity (v_r, v_y, v_theta)")
             .length(3)
             .or_computed("[0, 0, 0]"),
@@ -367,15 +373,22 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"bodies.velocity_profile",
        "An initial velocity component as a function of position along r or y.",
-       {string("component", "the velocity component").needed().one_of({"r", "y", "theta"}),
-        string("along", "the coordinate the function's argument is").needed().one_of({"r", "y"}),
+       {string("component", "the velocity component")
+            .needed()
+            .one_of({"r", "y", "theta"})
+            .choice_into(&VelocityProfile::component),
+        string("along", "the coordinate the function's argument is")
+            .needed()
+            .one_of({"r", "y"})
+            .choice_into(&VelocityProfile::along_y),
         time_function("function", "m/s", "the velocity as a function of position (m)").needed()},
        false});
   {
     std::vector<KeySpec> keys{
         number("mass", "kg/rad", "the whole structure's mass (kg/m in plane strain)")
             .above(0.0)
-            .or_computed("from the particles"),
+            .or_computed("from the particles")
+            .into(&RigidSpec::mass),
         number("polar_inertia", "kg m^2/rad", "axisymmetric: the moment of inertia about the axis")
             .above(0.0)
             .or_computed("from the particles"),
@@ -387,7 +400,8 @@ std::vector<TableSpec> declare() {
     }
     keys.push_back(string("phase", "the phase in which the drives start (their functions count "
                                    "time from its start); before it every DOF is held at rest")
-                       .or_computed(first_phase));
+                       .or_computed(first_phase)
+                       .into(&RigidSpec::phase));
     t.push_back({"bodies.rigid", "A rigid body's mass, inertia and drives.", keys, false});
   }
   t.push_back(
@@ -423,7 +437,9 @@ std::vector<TableSpec> declare() {
       {"contact",
        "Contact between the soil and one structure body (Bardenhagen, Coulomb friction and "
        "adhesion).",
-       {string("structure", "a [[bodies]] name (rigid or deformable)").needed(),
+       {string("structure", "a [[bodies]] name (rigid or deformable)")
+            .needed()
+            .into(&ContactSpec::structure),
         number("friction", "-", "Coulomb coefficient mu = tan(delta)")
             .at_least(0.0)
             .into(&ContactSpec::friction),
@@ -431,13 +447,15 @@ std::vector<TableSpec> declare() {
         string("normals", "\"outline\": from the outline of the structure's region (a polygon must "
                           "be convex); \"mass_gradient\": from the structure's particles")
             .or_default(std::string("outline"))
-            .one_of({"outline", "mass_gradient"}),
+            .one_of({"outline", "mass_gradient"})
+            .choice_into(&ContactSpec::outline, "outline"),
         string("gap",
                "outline only: \"cells\": a node may be in contact once any soil particle of its "
                "cells touches the outline; \"surface\": on a straight run of one surface along r "
                "or y, once the soil's surface interpolated to the node does")
             .or_default(std::string("cells"))
-            .one_of({"cells", "surface"}),
+            .one_of({"cells", "surface"})
+            .choice_into(&ContactSpec::surface_gap),
         any("surfaces", "",
             "outline only: a rectangle's edges named in a table { bottom, right, top, left } (an "
             "edge left out is no contact surface); a polygon's, one name per edge in an array "
@@ -527,16 +545,20 @@ std::vector<TableSpec> declare() {
        false});
   {
     std::vector<KeySpec> keys = drive_keys();
-    keys.push_back(number("mass", "kg/rad", "not allowed: follows from the parameters"));
+    keys.push_back(number("mass", "kg/rad", "not allowed: follows from the parameters")
+                       .or_computed("none")
+                       .into(&RigidSpec::mass));
     keys.push_back(
         number("polar_inertia", "kg m^2/rad", "not allowed: follows from the parameters"));
-    keys.push_back(string("phase", "the phase in which the drives start").or_computed(first_phase));
+    keys.push_back(string("phase", "the phase in which the drives start")
+                       .or_computed(first_phase)
+                       .into(&RigidSpec::phase));
     t.push_back({"monopile.drive", "The monopile's drives.", keys, false});
   }
   t.push_back(
       {"moving_mesh",
        "y-lines that translate with a rigid body; the lines beyond are squeezed and stretched.",
-       {string("body", "a rigid body (axisymmetric cases)").needed(),
+       {string("body", "a rigid body (axisymmetric cases)").needed().into(&MovingMeshSpec::body),
         numbers("band", "m",
                 "[y_bottom, y_top], grid lines strictly inside the grid: the lines "
                 "between them move with the body")
@@ -546,7 +568,8 @@ std::vector<TableSpec> declare() {
                "how far the band may move; the soil is seeded for the finest "
                "cells it will sit in")
             .above(0.0)
-            .or_computed("until a zone beside the band is squeezed to a tenth"),
+            .or_computed("until a zone beside the band is squeezed to a tenth")
+            .into(&MovingMeshSpec::travel),
         numbers("stretch", "m",
                 "[y_bottom, y_top], grid lines below and above the band: only "
                 "the lines between them and the band move")
@@ -587,27 +610,34 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"prescribed",
        "Prescribed velocities on a grid line; the reaction goes to /boundaries/<name>/.",
-       {string("name", "unique").needed(), table("nodes", "the grid line").needed(),
+       {string("name", "unique").needed().into(&MotionSpec::name),
+        table("nodes", "the grid line").needed(),
         time_function("velocity_r", "m/s", "the radial velocity"),
         time_function("velocity_y", "m/s", "the vertical velocity"),
         time_function("velocity_theta", "m/s", "the circumferential velocity"),
         time_function("angular_velocity", "rad/s",
                       "instead of velocity_theta: v_theta = omega r (a rigid rotation)"),
         string("phase", "the phase in which the motion starts; before it the DOFs are held")
-            .or_computed(first_phase),
+            .or_computed(first_phase)
+            .into(&MotionSpec::phase),
         string("body", "a deformable contact structure whose field alone the motion acts on")
-            .or_computed("every field")},
+            .or_computed("every field")
+            .into(&MotionSpec::body)},
        false});
   t.push_back({"prescribed.nodes", "A grid line, or part of it.", node_line_keys(), false});
-  t.push_back(
-      {"loads",
-       "A distributed traction on a grid line, with consistent nodal weights.",
-       {string("name", "unique").needed(), table("nodes", "the grid line").needed(),
-        string("component", "the traction's direction").needed().one_of({"r", "y", "theta"}),
-        time_function("traction", "Pa", "positive along the component's axis").needed(),
-        string("phase", "the phase in which the load starts; zero before")
-            .or_computed(first_phase)},
-       false});
+  t.push_back({"loads",
+               "A distributed traction on a grid line, with consistent nodal weights.",
+               {string("name", "unique").needed().into(&LoadSpec::name),
+                table("nodes", "the grid line").needed(),
+                string("component", "the traction's direction")
+                    .needed()
+                    .one_of({"r", "y", "theta"})
+                    .choice_into(&LoadSpec::component),
+                time_function("traction", "Pa", "positive along the component's axis").needed(),
+                string("phase", "the phase in which the load starts; zero before")
+                    .or_computed(first_phase)
+                    .into(&LoadSpec::phase)},
+               false});
   t.push_back({"loads.nodes", "A grid line, or part of it.", node_line_keys(), false});
   t.push_back(
       {"phases",
@@ -647,15 +677,21 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"phases.stop_at",
        "End the phase once a rigid body has gone down far enough.",
-       {string("body", "a rigid body").needed(),
-        number("penetration", "m", "its total downward displacement; or settlement").above(0.0),
+       {string("body", "a rigid body").needed().into(&PenetrationStop::body),
+        number("penetration", "m", "its total downward displacement; or settlement")
+            .above(0.0)
+            .or_computed("none")
+            .into(&PenetrationStop::penetration),
         number("settlement", "m", "its downward displacement since the phase began (a load test)")
-            .above(0.0),
+            .above(0.0)
+            .or_computed("none")
+            .into(&PenetrationStop::settlement),
         boolean("at_rest", "also wait until the body has come to rest (below 1 mm/s)")
-            .or_default(false)},
+            .or_default(false)
+            .into(&PenetrationStop::at_rest)},
        false});
   {
-    std::vector<KeySpec> keys{string("body", "a rigid body").needed()};
+    std::vector<KeySpec> keys{string("body", "a rigid body").needed().into(&PhaseDrive::body)};
     for (KeySpec& k : drive_keys()) {
       keys.push_back(std::move(k));
     }

@@ -215,20 +215,6 @@ NodeLineSpec read_node_line(TomlTable& owner, const Axes& axes) {
   return line;
 }
 
-int component_index(TomlTable& table, const std::string& key) {
-  const std::string name = table.string(key);
-  if (name == "r") {
-    return 0;
-  }
-  if (name == "y") {
-    return 1;
-  }
-  if (name == "theta") {
-    return 2;
-  }
-  table.fail(key, "must be \"r\", \"y\" or \"theta\", got \"" + name + "\"");
-}
-
 FaceCondition read_face(TomlTable& table, const std::string& key) {
   const std::string name = table.string(key);
   if (name == "free") {
@@ -270,27 +256,26 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
     BodySpec body;
     table.read_into(body);
     if (!names.insert(body.name).second) {
-      table.fail("name", "a body named '" + body.name + "' already exists");
+      table.fail(&BodySpec::name, "a body named '" + body.name + "' already exists");
     }
-    if (const auto clash = groups.clash(body.name, location(table, "name"))) {
-      table.fail("name", *clash);
+    if (const auto clash =
+            groups.clash(body.name, location(table, table.key_of(&BodySpec::name)))) {
+      table.fail(&BodySpec::name, *clash);
     }
     const bool known = std::any_of(spec.materials.begin(), spec.materials.end(),
                                    [&](const MaterialSpec& m) { return m.name == body.material; });
     if (!known) {
-      table.fail("material", "no material named '" + body.material + "' in [materials]");
+      table.fail(&BodySpec::material, "no material named '" + body.material + "' in [materials]");
     }
     body.region = read_region(table, spec.mode, axes.r, axes.y);
     body.line = table.line_of("region");
     body.key = table.key_path("region");
-    body.cut_cells = table.string("seeding") == "cut_cells";
     if (std::optional<TomlTable> profile = table.optional_table("velocity_profile")) {
       VelocityProfile p;
-      p.component = component_index(*profile, "component");
+      profile->read_into(p);
       if (p.component == 2 && spec.mode == GeometryMode::plane_strain) {
-        profile->fail("component", "plane strain has no theta velocity");
+        profile->fail(&VelocityProfile::component, "plane strain has no theta velocity");
       }
-      p.along_y = profile->string("along") == "y";
       p.function = read_time_function(*profile, "function");
       profile->finish();
       body.velocity_profile = p;
@@ -309,7 +294,7 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
           std::find_if(spec.materials.begin(), spec.materials.end(),
                        [&](const MaterialSpec& m) { return m.name == body.material; });
       if (material->water.drainage != Drainage::drained) {
-        table.fail("material",
+        table.fail(&BodySpec::material,
                    "'" + body.material + "' is saturated (drainage = \"" +
                        drainage_names()[static_cast<std::size_t>(material->water.drainage)] +
                        "\"), but a rigid body has no pores: give it a dry material");
@@ -326,32 +311,31 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
   return rigid_tables;
 }
 
-/// The key `body`, which must name a rigid body.
 /// The names of the bodies a file declares rigid with a [bodies.rigid] table. Their drives are
 /// read after the phases (a drive names its phase), while the phases' stop criteria and the moving
 /// mesh name them first.
 using RigidNames = std::set<std::string>;
 
-std::string read_rigid_body_name(TomlTable& table, const CaseSpec& spec,
-                                 const RigidNames& declared_rigid, const std::string& why) {
-  std::string name = table.string("body");
+/// `name`, read under `key`, must name a rigid body.
+void check_rigid_body_name(const TomlTable& table, const std::string& key, const std::string& name,
+                           const CaseSpec& spec, const RigidNames& declared_rigid,
+                           const std::string& why) {
   const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
                                  [&](const BodySpec& b) { return b.name == name; });
   if (body == spec.bodies.end() || !(body->rigid || declared_rigid.contains(name))) {
-    table.fail("body", "no rigid body named '" + name + "'" + why);
+    table.fail(key, "no rigid body named '" + name + "'" + why);
   }
-  return name;
 }
 
-std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
-  const std::string phase = table.string_or("phase", "");
+/// `phase`, read under `key`, must be empty (the first phase) or name a phase.
+void check_phase_reference(const TomlTable& table, const std::string& key, const std::string& phase,
+                           const CaseSpec& spec) {
   const bool known =
       phase.empty() || std::any_of(spec.phases.begin(), spec.phases.end(),
                                    [&](const PhaseSpec& p) { return p.name == phase; });
   if (!known) {
-    table.fail("phase", "no phase named '" + phase + "' in [[phases]]");
+    table.fail(key, "no phase named '" + phase + "' in [[phases]]");
   }
-  return phase;
 }
 
 /// The drive keys of a rigid body's table or a phase's `drive`: per DOF (RigidDof order) a velocity
@@ -393,21 +377,19 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec,
   RigidSpec rigid = body.rigid.value_or(RigidSpec{});
   const bool derived = body.rigid.has_value();
   const bool plane = spec.mode == GeometryMode::plane_strain;
-  const char* inertia_key = plane ? "inertia" : "polar_inertia";
-  for (const char* key : {"mass", inertia_key}) {
+  const std::string inertia_key = plane ? "inertia" : "polar_inertia";
+  for (const std::string& key : {table.key_of(&RigidSpec::mass), inertia_key}) {
     if (derived && table.has(key)) {
       table.fail(key, "the monopile's mass and polar inertia follow from pile_length, diameter, "
                       "wall_thickness and the pile material's density; remove this key");
     }
   }
-  if (table.has("mass")) {
-    rigid.mass = table.number("mass");
-  }
+  table.read_into(rigid);
   if (table.has(inertia_key)) {
     rigid.inertia = table.number(inertia_key);
   }
   rigid.drive = read_drives(table, spec, warnings);
-  rigid.phase = read_phase_reference(table, spec);
+  check_phase_reference(table, table.key_of(&RigidSpec::phase), rigid.phase, spec);
   table.finish();
   body.rigid = rigid;
 }
@@ -415,23 +397,23 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec,
 void read_contacts(TomlTable& top, CaseSpec& spec) {
   for (TomlTable& table : top.tables("contact")) {
     ContactSpec contact;
-    contact.structure = table.string("structure");
+    table.read_into(contact);
     const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
                                    [&](const BodySpec& b) { return b.name == contact.structure; });
     if (body == spec.bodies.end()) {
-      table.fail("structure", "no body named '" + contact.structure + "' in [[bodies]]");
+      table.fail(&ContactSpec::structure,
+                 "no body named '" + contact.structure + "' in [[bodies]]");
     }
     for (const ContactSpec& other : spec.contacts) {
       if (other.structure == contact.structure) {
-        table.fail("structure", "'" + contact.structure + "' already has a [[contact]] entry");
+        table.fail(&ContactSpec::structure,
+                   "'" + contact.structure + "' already has a [[contact]] entry");
       }
     }
-    table.read_into(contact);
-    warn_implausible_friction(table, "friction", contact.friction, spec.warnings);
-    contact.outline = table.string("normals") == "outline";
-    contact.surface_gap = table.string("gap") == "surface";
+    warn_implausible_friction(table, table.key_of(&ContactSpec::friction), contact.friction,
+                              spec.warnings);
     if (contact.surface_gap && !contact.outline) {
-      table.fail("gap", "the soil's surface gap needs the outline's normals");
+      table.fail(&ContactSpec::surface_gap, "the soil's surface gap needs the outline's normals");
     }
     if (contact.outline) {
       contact.surfaces = read_outline_surfaces(table, body->region, body->name);
@@ -477,10 +459,13 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
     return;
   }
   MovingMeshSpec mesh;
-  mesh.body = read_rigid_body_name(*table, spec, declared_rigid, " (the band moves with one)");
+  table->read_into(mesh);
+  check_rigid_body_name(*table, table->key_of(&MovingMeshSpec::body), mesh.body, spec,
+                        declared_rigid, " (the band moves with one)");
   if (spec.mode == GeometryMode::plane_strain) {
-    table->fail("body", "the moving mesh follows a body that only translates along y and spins "
-                        "about the axis: axisymmetric cases only");
+    table->fail(&MovingMeshSpec::body,
+                "the moving mesh follows a body that only translates along y and spins "
+                "about the axis: axisymmetric cases only");
   }
   const auto band = table->numbers("band", 2);
   if (!(band[1] > band[0]) || !on_grid_line(axes.y, band[0]) || !on_grid_line(axes.y, band[1])) {
@@ -489,9 +474,6 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
   if (!(band[0] > axes.y.start()) || !(band[1] < axes.y.end())) {
     table->fail("band", "must lie strictly inside the grid (the lines below and above it are "
                         "squeezed and stretched)");
-  }
-  if (table->has("travel")) {
-    mesh.travel = table->number("travel");
   }
   if (table->has("stretch")) {
     const auto stretch = table->numbers("stretch", 2);
@@ -511,7 +493,7 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
     try {
       moving_mesh_of(mesh, axes.y).lines_at(-mesh.travel);
     } catch (const std::runtime_error& e) {
-      table->fail("travel", e.what());
+      table->fail(&MovingMeshSpec::travel, e.what());
     }
   }
   spec.moving_mesh = mesh;
@@ -531,12 +513,10 @@ void read_affine_motion(TomlTable& top, CaseSpec& spec) {
 void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   const bool theta = has_theta(spec.mode);
   std::set<std::string> names;
-  auto unique_name = [&](TomlTable& table) {
-    std::string name = table.string("name");
+  auto unique_name = [&](const TomlTable& table, const std::string& key, const std::string& name) {
     if (!names.insert(name).second) {
-      table.fail("name", "a prescribed motion or load named '" + name + "' already exists");
+      table.fail(key, "a prescribed motion or load named '" + name + "' already exists");
     }
-    return name;
   };
   // A prescribed motion's reactions go to /boundaries/<name>, beside the constrained faces'.
   GroupNames boundaries("/boundaries");
@@ -551,9 +531,11 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
   for (TomlTable& table : top.tables("prescribed")) {
     MotionSpec motion;
-    motion.name = unique_name(table);
-    if (const auto clash = boundaries.clash(motion.name, location(table, "name"))) {
-      table.fail("name", *clash);
+    table.read_into(motion);
+    const std::string& name_key = table.key_of(&MotionSpec::name);
+    unique_name(table, name_key, motion.name);
+    if (const auto clash = boundaries.clash(motion.name, location(table, name_key))) {
+      table.fail(name_key, *clash);
     }
     motion.nodes = read_node_line(table, axes);
     const char* keys[] = {"velocity_r", "velocity_y", "velocity_theta"};
@@ -576,11 +558,10 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
       motion.theta_is_rotation = true;
     }
     if (!motion.velocity[0] && !motion.velocity[1] && !motion.velocity[2]) {
-      table.fail("name", "prescribes nothing: give velocity_r, velocity_y, velocity_theta or "
-                         "angular_velocity");
+      table.fail(name_key, "prescribes nothing: give velocity_r, velocity_y, velocity_theta or "
+                           "angular_velocity");
     }
-    motion.phase = read_phase_reference(table, spec);
-    motion.body = table.string_or("body", "");
+    check_phase_reference(table, table.key_of(&MotionSpec::phase), motion.phase, spec);
     if (!motion.body.empty()) {
       const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
                                      [&](const BodySpec& b) { return b.name == motion.body; });
@@ -588,12 +569,13 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
           std::any_of(spec.contacts.begin(), spec.contacts.end(),
                       [&](const ContactSpec& c) { return c.structure == motion.body; });
       if (body == spec.bodies.end() || !structure) {
-        table.fail("body",
+        table.fail(&MotionSpec::body,
                    "'" + motion.body +
                        "' is not a contact structure (only those have a field of their own)");
       }
       if (body->rigid) {
-        table.fail("body", "'" + motion.body + "' is rigid: drive it in its [bodies.rigid] table");
+        table.fail(&MotionSpec::body,
+                   "'" + motion.body + "' is rigid: drive it in its [bodies.rigid] table");
       }
     }
     table.finish();
@@ -601,18 +583,18 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
   for (TomlTable& table : top.tables("loads")) {
     LoadSpec load;
-    load.name = unique_name(table);
+    table.read_into(load);
+    unique_name(table, table.key_of(&LoadSpec::name), load.name);
     load.nodes = read_node_line(table, axes);
     if (spec.moving_mesh && load.nodes.along_y) {
       // Its nodal weights come from the y spacing, which the moving mesh changes.
       table.fail("nodes", "a load along an r-line cannot be combined with a moving mesh");
     }
-    load.component = component_index(table, "component");
     if (load.component == 2 && !theta) {
-      table.fail("component", "plane strain has no theta direction");
+      table.fail(&LoadSpec::component, "plane strain has no theta direction");
     }
     load.traction = read_time_function(table, "traction");
-    load.phase = read_phase_reference(table, spec);
+    check_phase_reference(table, table.key_of(&LoadSpec::phase), load.phase, spec);
     table.finish();
     spec.loads.push_back(std::move(load));
   }
@@ -624,65 +606,49 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   if (!table) {
     return;
   }
-  // Each declared setting through its declaration (solver/solver_settings.cpp), its range checked
-  // as it is read; an absent one keeps SolverSettings' default, which the declaration documents.
-  for (const SolverParameter& parameter : solver_parameters()) {
-    if (parameter.per_phase || !table->has(parameter.name)) {
-      continue;
-    }
-    std::visit(
-        [&](auto member) {
-          using Value = std::remove_cvref_t<decltype(s.*member)>;
-          if constexpr (std::is_same_v<Value, bool>) {
-            s.*member = table->boolean(parameter.name);
-          } else if constexpr (std::is_same_v<Value, int>) {
-            s.*member = static_cast<int>(table->integer(parameter.name));
-          } else {
-            s.*member = table->number(parameter.name);
-          }
-        },
-        parameter.member);
-  }
-  s.musl = table->string("scheme") == "musl";
+  // Each setting through its declaration (solver/solver_settings.cpp), bound to its member, its
+  // range checked as it is read; an absent one keeps SolverSettings' default, which the
+  // declaration documents.
+  table->read_into(s);
   if (table->has("gravity")) {
     const auto g = table->numbers("gravity", 2);
     s.gravity = {g[0], g[1]};
     warn_implausible_gravity(*table, {g[0], g[1]}, spec.mode == GeometryMode::axisymmetric,
                              spec.warnings);
   }
-  if (table->has("shape_functions")) {
-    const std::string shape = table->string("shape_functions");
-    s.shape_functions = shape == "gimp" ? ShapeFunctions::gimp : ShapeFunctions::linear;
-    if (s.shape_functions == ShapeFunctions::gimp &&
-        (axes.r.cell_count() < 2 || axes.y.cell_count() < 2)) {
-      table->fail("shape_functions", "GIMP needs at least 2 cells along r and along y (a "
-                                     "particle's domain may reach into the next cell)");
-    }
+  if (s.shape_functions == ShapeFunctions::gimp &&
+      (axes.r.cell_count() < 2 || axes.y.cell_count() < 2)) {
+    table->fail(&SolverSettings::shape_functions,
+                "GIMP needs at least 2 cells along r and along y (a particle's domain may reach "
+                "into the next cell)");
   }
   // The checks between keys; each key's own range was checked as it was read.
   if (s.xpic_order > 0 && s.flip_fraction != 1.0) {
-    table->fail("xpic_order", "XPIC(" + std::to_string(s.xpic_order) +
-                                  ") replaces the FLIP/PIC blend: leave flip_fraction at 1 (got " +
-                                  format_number(s.flip_fraction) + ")");
+    table->fail(&SolverSettings::xpic_order,
+                "XPIC(" + std::to_string(s.xpic_order) +
+                    ") replaces the FLIP/PIC blend: leave flip_fraction at 1 (got " +
+                    format_number(s.flip_fraction) + ")");
   }
   if (s.bbar_consistent_force && !s.bbar) {
-    table->fail("bbar_consistent_force", "is B-bar's transpose in the internal force: it needs "
-                                         "bbar = true");
+    table->fail(&SolverSettings::bbar_consistent_force,
+                "is B-bar's transpose in the internal force: it needs "
+                "bbar = true");
   }
   if (!(s.energy_residual_limit > s.energy_residual_warning)) {
-    table->fail("energy_residual_limit", "must exceed energy_residual_warning (" +
-                                             format_number(s.energy_residual_warning) + "), got " +
-                                             format_number(s.energy_residual_limit));
+    table->fail(&SolverSettings::energy_residual_limit,
+                "must exceed energy_residual_warning (" + format_number(s.energy_residual_warning) +
+                    "), got " + format_number(s.energy_residual_limit));
   }
   if (s.shape_functions == ShapeFunctions::gimp && s.block_cells < 3) {
-    table->fail("block_cells", "must be at least 3 with GIMP shape functions, got " +
-                                   std::to_string(s.block_cells));
+    table->fail(&SolverSettings::block_cells, "must be at least 3 with GIMP shape functions, got " +
+                                                  std::to_string(s.block_cells));
   }
   if (s.implicit_pore_pressure) {
     if (!s.musl) {
-      table->fail("implicit_pore_pressure", "the implicit pore pressure corrects the remapped "
-                                            "velocities the strains are taken from: it needs "
-                                            "scheme = \"musl\"");
+      table->fail(&SolverSettings::implicit_pore_pressure,
+                  "the implicit pore pressure corrects the remapped "
+                  "velocities the strains are taken from: it needs "
+                  "scheme = \"musl\"");
     }
     bool saturated = false;
     for (MaterialSpec& material : spec.materials) {
@@ -692,13 +658,14 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
       }
     }
     if (!saturated) {
-      table->fail("implicit_pore_pressure", "no material is undrained or coupled: there is no "
-                                            "pore pressure to solve for; remove it");
+      table->fail(&SolverSettings::implicit_pore_pressure,
+                  "no material is undrained or coupled: there is no "
+                  "pore pressure to solve for; remove it");
     }
     if (!spec.absorbing.faces.empty()) {
       // Their dashpots take the impedance of the stiffness the step follows, the skeleton's: a
       // saturated P pulse came back from them and 15 % of its energy went unbooked.
-      table->fail("implicit_pore_pressure",
+      table->fail(&SolverSettings::implicit_pore_pressure,
                   "absorbing faces are not built for the implicit pore pressure (their dashpots "
                   "would take the drained skeleton's impedance, not the undrained soil's): leave "
                   "it off with absorbing faces");
@@ -707,8 +674,9 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   if (s.cell_mean_pore_pressure &&
       std::none_of(spec.materials.begin(), spec.materials.end(),
                    [](const MaterialSpec& m) { return m.water.drainage != Drainage::drained; })) {
-    table->fail("cell_mean_pore_pressure", "no material is undrained or coupled: there is no "
-                                           "pore pressure to average; remove it");
+    table->fail(&SolverSettings::cell_mean_pore_pressure,
+                "no material is undrained or coupled: there is no "
+                "pore pressure to average; remove it");
   }
   s.validate(); // what the reader let through is valid; a failure here is the reader's fault
   table->finish();
@@ -760,14 +728,17 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     }
     if (std::optional<TomlTable> stop = table.optional_table("stop_at")) {
       PenetrationStop s;
-      s.body = read_rigid_body_name(*stop, spec, declared_rigid, "");
-      if (stop->has("settlement") == stop->has("penetration")) {
-        stop->fail("penetration", "give either penetration (the total downward displacement) or "
-                                  "settlement (the displacement since the phase started)");
+      stop->read_into(s);
+      check_rigid_body_name(*stop, stop->key_of(&PenetrationStop::body), s.body, spec,
+                            declared_rigid, "");
+      const std::string& penetration = stop->key_of(&PenetrationStop::penetration);
+      const std::string& settlement_key = stop->key_of(&PenetrationStop::settlement);
+      const bool settlement = stop->has(settlement_key);
+      if (settlement == stop->has(penetration)) {
+        stop->fail(penetration, "give either penetration (the total downward displacement) or "
+                                "settlement (the displacement since the phase started)");
       }
-      const bool settlement = stop->has("settlement");
       if (settlement) {
-        s.settlement = stop->number("settlement");
         // The deepest an earlier phase stops at, plus the settlement: how far the band must go
         // at least (an at-rest stop may overshoot; the run then ends the phase at the travel).
         double before = 0.0;
@@ -777,8 +748,6 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
           }
         }
         s.penetration = before + s.settlement;
-      } else {
-        s.penetration = stop->number("penetration");
       }
       if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
           s.penetration >= spec.moving_mesh->travel) {
@@ -795,15 +764,16 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
                  "the step that reaches it carries the band past it; stop short of it";
         }
         why << " or raise " << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
-        stop->fail(settlement ? "settlement" : "penetration", why.str());
+        stop->fail(settlement ? settlement_key : penetration, why.str());
       }
-      s.at_rest = stop->boolean("at_rest");
       stop->finish();
       phase.stop_at = s;
     }
     if (std::optional<TomlTable> drive = table.optional_table("drive")) {
       PhaseDrive d;
-      d.body = read_rigid_body_name(*drive, spec, declared_rigid, "");
+      drive->read_into(d);
+      check_rigid_body_name(*drive, drive->key_of(&PhaseDrive::body), d.body, spec, declared_rigid,
+                            "");
       d.drive = read_drives(*drive, spec, spec.warnings);
       drive->finish();
       phase.drive = d;
@@ -1291,10 +1261,11 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
                               "cells there finer or raise particles_per_cell");
     }
   }
-  const bool shape_given = top.has("solver") && top.table("solver").has("shape_functions");
+  const bool shape_given =
+      top.has("solver") && top.table("solver").has(&SolverSettings::shape_functions);
   if (spec.moving_mesh && shape_given && spec.solver.shape_functions == ShapeFunctions::linear) {
     top.table("solver").fail(
-        "shape_functions",
+        &SolverSettings::shape_functions,
         "bilinear weights on a moving mesh shake the soil: every line moving under a particle "
         "jolts its nodal forces (soil at rest under a moving band: the base reaction swings by "
         "97 % of the weight; the quick jacked pile's base reaction 1.25 to 3.11 MN/rad against "
@@ -1306,8 +1277,9 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     // functions"), so a moving mesh takes GIMP unless the case says otherwise.
     spec.solver.shape_functions = ShapeFunctions::gimp;
     if (spec.solver.block_cells < 3) {
-      top.table("solver").fail("block_cells", "must be at least 3 with GIMP shape functions, "
-                                              "the default with a moving mesh");
+      top.table("solver").fail(&SolverSettings::block_cells,
+                               "must be at least 3 with GIMP shape functions, the default with a "
+                               "moving mesh");
     }
   }
   read_phases(top, spec, declared_rigid);

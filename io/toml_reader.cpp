@@ -577,6 +577,25 @@ void read_key(TomlTable& table, const std::string& key, std::optional<double>& f
 void read_key(TomlTable& table, const std::string& key, std::optional<int>& field) {
   field = static_cast<int>(table.integer(key));
 }
+void read_key(TomlTable& table, const std::string& key, std::optional<long>& field) {
+  field = table.integer(key);
+}
+
+long read_choice(TomlTable& table, const std::string& key) {
+  const std::string x = table.string(key); // refused unless one of the choices
+  const std::vector<std::string>& choices = table.spec()->key(key)->choices;
+  return std::find(choices.begin(), choices.end(), x) - choices.begin();
+}
+
+const std::string& TomlTable::bound_key(const std::type_info& spec, std::ptrdiff_t offset) const {
+  for (const KeySpec& k : declared_keys()) {
+    if (k.bound_to != nullptr && *k.bound_to == spec && k.bound_offset == offset) {
+      return k.name;
+    }
+  }
+  throw std::logic_error("no key of " + (spec_ != nullptr ? table_heading(*spec_) : path_) +
+                         " is bound to that member of " + spec.name());
+}
 
 void TomlTable::finish() const {
   for (const auto& [key, v] : table_->as_table()) {

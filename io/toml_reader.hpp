@@ -56,6 +56,17 @@ public:
   /// holds; an absent one keeps the member's initialiser, its declared default, and an absent
   /// required one is refused.
   template <class Spec> void read_into(Spec& target);
+  /// The key bound to a member of Spec (KeySpec::into), as the declaration names it: a check
+  /// between keys names it so, not by a second spelling. `Target` as for KeySpec::into.
+  template <class Target = void, class T, class Owner>
+  const std::string& key_of(T Owner::*member) const;
+  template <class Target = void, class T, class Owner> bool has(T Owner::*member) const {
+    return has(key_of<Target>(member));
+  }
+  template <class Target = void, class T, class Owner>
+  [[noreturn]] void fail(T Owner::*member, const std::string& message) const {
+    fail(key_of<Target>(member), message);
+  }
 
   /// Throws for any key that was not read.
   void finish() const;
@@ -88,6 +99,7 @@ public:
   double positive(const std::string& key);
 
 private:
+  const std::string& bound_key(const std::type_info& spec, std::ptrdiff_t offset) const;
   const TomlValue& value(const std::string& key);
   [[noreturn]] void type_error(const std::string& key, const std::string& expected) const;
   /// The key's declaration (nullptr for a table without one, or a material's parameter); throws
@@ -109,12 +121,19 @@ private:
 
 template <class Spec> void TomlTable::read_into(Spec& target) {
   for (const KeySpec& key : declared_keys()) {
-    // A required key is read absent too, to be refused as missing.
+    // A required key is read absent too, to be refused as missing; an absent key with a declared
+    // default takes it.
     if (key.bound_to != nullptr && *key.bound_to == typeid(Spec) &&
-        (has(key.name) || key.required)) {
+        (has(key.name) || key.required || !std::holds_alternative<std::monostate>(key.fallback))) {
       key.store(*this, key.name, &target);
     }
   }
+}
+
+template <class Target, class T, class Owner>
+const std::string& TomlTable::key_of(T Owner::*member) const {
+  using Spec = std::conditional_t<std::is_void_v<Target>, Owner, Target>;
+  return bound_key(typeid(Spec), member_offset<Spec>(member));
 }
 
 /// A number as a message quotes it (six significant digits).
