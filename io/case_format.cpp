@@ -175,7 +175,10 @@ std::vector<KeySpec> node_line_keys() {
 /// A material's own keys: its model, its drainage and its pore water (PoreWater's declaration).
 std::vector<KeySpec> material_keys(const std::vector<std::string>& material_names) {
   std::vector<KeySpec> keys{
-      string("type", "the material model").needed().one_of(material_names),
+      string("type", "the material model")
+          .needed()
+          .one_of(material_names)
+          .into(&MaterialSpec::type),
       string("drainage",
              "how the pore water drains: \"drained\" (no water state: a dry or drained soil, "
              "`density` its density), \"undrained\" (saturated, no flow: the water's stiffness "
@@ -184,17 +187,18 @@ std::vector<KeySpec> material_keys(const std::vector<std::string>& material_name
              "`hydraulic_conductivity`); saturated, `density` is the dry density and the "
              "particles weigh the saturated density")
           .or_default(std::string("drained"))
-          .one_of(drainage_names())};
+          .one_of(drainage_names())
+          .choice_into(&PoreWater::drainage)};
   const PoreWater defaults;
   for (const PoreWaterParameter& w : pore_water_parameters()) {
     // The hydraulic conductivity has no default: a coupled material must give it.
     const bool conductivity = w.member == &PoreWater::hydraulic_conductivity;
     KeySpec key =
         conductivity
-            ? number(w.name, w.unit, w.meaning)
+            ? number(w.name, w.unit, w.meaning).or_computed("none")
             : number(w.name, w.unit, w.meaning + "; saturated only").or_default(defaults.*w.member);
     key.range = w.range;
-    keys.push_back(std::move(key));
+    keys.push_back(std::move(key).into(w.member));
   }
   return keys;
 }

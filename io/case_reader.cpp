@@ -1011,17 +1011,8 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
 /// A material's drainage and its pore water's parameters, which only a saturated (undrained or
 /// coupled) material may give; the hydraulic conductivity only a coupled one, which must.
 void read_pore_water(TomlTable& table, MaterialSpec& material) {
-  std::string drainage = "drained";
-  if (table.has("drainage")) {
-    drainage = table.string("drainage");
-  }
-  const auto& names = drainage_names();
-  const auto named = std::find(names.begin(), names.end(), drainage);
-  if (named == names.end()) {
-    table.fail("drainage",
-               "'" + drainage + "' is not a drainage type: drained, undrained or coupled");
-  }
-  material.water.drainage = static_cast<Drainage>(named - names.begin());
+  // Drainage and the water's parameters, bound to PoreWater, each in its declared range.
+  table.read_into(material.water);
   for (const PoreWaterParameter& parameter : pore_water_parameters()) {
     const bool conductivity = parameter.member == &PoreWater::hydraulic_conductivity;
     if (!table.has(parameter.name)) {
@@ -1039,12 +1030,6 @@ void read_pore_water(TomlTable& table, MaterialSpec& material) {
       table.fail(parameter.name, "an undrained material's water does not flow: give k with "
                                  "drainage = \"coupled\", or remove it");
     }
-    const double x = table.number(parameter.name);
-    if (!parameter.range.contains(x)) {
-      table.fail(parameter.name, parameter.name + " must be " + parameter.range.text() + " " +
-                                     parameter.unit + ", got " + format_bound(x));
-    }
-    material.water.*parameter.member = x;
   }
 }
 
@@ -1069,18 +1054,10 @@ bool mentions(const std::string& text, const std::string& key) {
 MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
   MaterialSpec material;
   material.name = name;
-  material.type = table.string("type");
-  const MaterialType* type = nullptr;
-  std::string known;
-  for (const MaterialType& t : material_types()) {
-    known += (known.empty() ? "" : ", ") + t.name;
-    if (t.name == material.type) {
-      type = &t;
-    }
-  }
-  if (type == nullptr) {
-    table.fail("type", "unknown material type '" + material.type + "' (known: " + known + ")");
-  }
+  table.read_into(material); // its type, one of the registry's (the declaration's choices)
+  const MaterialType* type =
+      &*std::find_if(material_types().begin(), material_types().end(),
+                     [&](const MaterialType& t) { return t.name == material.type; });
   read_pore_water(table, material);
   for (const MaterialParameterSpec& parameter : type->parameters) {
     if (table.has(parameter.name)) {
@@ -1117,7 +1094,7 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
     // A value of the wrong unit often makes the model's checks between parameters fail (a
     // friction angle in radians, E50 in kPa: no cap then fits): the key of the likely slip is
     // blamed, with its hint, before a named parameter that a base file gave.
-    const std::string blamed = named ? first : "type";
+    const std::string blamed = named ? first : table.key_of(&MaterialSpec::type);
     std::vector<CaseWarning> hints;
     warn_implausible_material(table, material, hints);
     for (const CaseWarning& hint : hints) {
