@@ -286,11 +286,14 @@ std::vector<TableSpec> declare() {
                        "them merged in order: tables merge key by key (a table of another type "
                        "replaces the base's), other values replace the base's")
             .or_computed("none"),
-        string("title", "shown in the log and stored in history.h5").or_computed("the file name"),
+        string("title", "shown in the log and stored in history.h5")
+            .or_computed("the file name")
+            .into(&CaseSpec::title),
         string("geometry", "\"axisymmetric\" (with the theta DOF; outputs per radian) or "
                            "\"plane_strain\" (outputs per metre)")
             .or_default(std::string("axisymmetric"))
-            .one_of({"axisymmetric", "plane_strain"}),
+            .one_of({"axisymmetric", "plane_strain"})
+            .choice_into(&CaseSpec::mode),
         table("grid", "the grid's zones along r and y; required unless [monopile] builds it"),
         named_tables("materials", "the materials, by name").needed(),
         tables("bodies", "the bodies; required unless [monopile] builds them"),
@@ -316,13 +319,15 @@ std::vector<TableSpec> declare() {
                "y of the sea's free surface, at or above the seabed (the K0 surface of the "
                "saturated bodies); the pore pressures and total stresses written are then "
                "relative to the atmosphere")
-            .or_computed("the seabed: no sea above it"),
+            .or_computed("the seabed: no sea above it")
+            .into(&WaterSpec::level),
         number("cavitation_stress", "Pa",
                "the tension, relative to the atmosphere, at which the pore water cavitates: its "
                "pressure rises no further (100e3: the atmosphere's pressure, water's vapour "
                "pressure neglected)")
             .at_least(0.0)
-            .or_computed("no cut-off")},
+            .or_computed("no cut-off")
+            .into(&PoreWater::cavitation_stress)},
        false});
   t.push_back({"grid",
                "The grid: zones of uniform cells along r (x in plane strain) and y, contiguous.",
@@ -500,13 +505,25 @@ std::vector<TableSpec> declare() {
         number("head_room", "m", "grid above the surface (the meshed pile top stays above heave)")
             .into(&MonopileParameters::head_room)
             .above(0.0),
-        string("soil_material", "the soil's [materials.<name>]").needed(),
-        string("pile_material", "the pile's [materials.<name>]; gives the density").needed(),
+        string("soil_material", "the soil's [materials.<name>]")
+            .needed()
+            .into(&MonopileSetup::soil_material),
+        string("pile_material", "the pile's [materials.<name>]; gives the density")
+            .needed()
+            .into(&MonopileSetup::pile_material),
         number("friction", "-", "contact mu = tan(delta) (0.4 = tan 21.8 deg)")
             .or_default(0.4)
-            .at_least(0.0),
-        number("adhesion", "Pa", "contact adhesion c_a").or_default(0.0).at_least(0.0),
-        integer("particles_per_cell", "per direction").or_default(2L).at_least(1).at_most(8),
+            .at_least(0.0)
+            .into(&ContactSpec::friction),
+        number("adhesion", "Pa", "contact adhesion c_a")
+            .or_default(0.0)
+            .at_least(0.0)
+            .into(&ContactSpec::adhesion),
+        integer("particles_per_cell", "per direction")
+            .or_default(2L)
+            .at_least(1)
+            .at_most(8)
+            .into(&MonopileSetup::particles_per_cell),
         number("fine_cell", "m", "cell size at the wall and in the band")
             .into(&MonopileParameters::fine_cell)
             .above(0.0),
@@ -539,12 +556,15 @@ std::vector<TableSpec> declare() {
                "for the cells it will then have)")
             .into(&MonopileParameters::travel)
             .above(0.0),
-        boolean("moving_mesh", "false: the grid stays fixed (for comparison)").or_default(true),
+        boolean("moving_mesh", "false: the grid stays fixed (for comparison)")
+            .or_default(true)
+            .into(&MonopileSetup::moving_mesh),
         strings("absorbing", "faces that let waves out, as in [boundaries]")
             .one_of({"r_min", "r_max", "y_min", "y_max"})
             .or_computed("none"),
         string("absorbing_phase", "the phase at whose start the absorbing faces switch on")
-            .or_computed(first_phase),
+            .or_computed(first_phase)
+            .into(&CaseSpec::Absorbing::phase),
         table("drive", "the pile's drives: the keys of [bodies.rigid] but mass and inertia")},
        false});
   {
@@ -607,7 +627,8 @@ std::vector<TableSpec> declare() {
                        .or_computed("none"));
     keys.push_back(string("absorbing_phase", "the phase at whose start the absorbing faces "
                                              "switch on")
-                       .or_computed(first_phase));
+                       .or_computed(first_phase)
+                       .into(&CaseSpec::Absorbing::phase));
     t.push_back({"boundaries", "Conditions on the grid's faces.", keys, false});
   }
   t.push_back({"solver", "Numerical choices.", solver_keys(), false});
@@ -729,28 +750,33 @@ std::vector<TableSpec> declare() {
                 "first reaches each value")
             .or_computed("none"),
         string("penetration_body", "the body whose penetration snapshot_penetrations counts")
-            .or_computed("the only rigid body"),
+            .or_computed("the only rigid body")
+            .into(&OutputSpec::penetration_body),
         table("cpt", "a cone penetration test's q_c, f_s and R_f in the history"),
         tables("monitor", "material points followed through the run")},
        false});
   t.push_back({"output.cpt",
                "A cone penetration test's /cpt/q_c, /cpt/f_s and /cpt/R_f (axisymmetric cases).",
                {string("body", "the contact structure that is the cone")
-                    .or_computed("the only structure with outline normals"),
+                    .or_computed("the only structure with outline normals")
+                    .into(&OutputSpec::Cpt::body),
                 string("cone", "its surface whose plan area q_c is quoted over")
                     .into(&OutputSpec::Cpt::cone),
                 string("sleeve", "its surface whose side area f_s is quoted over")
                     .into(&OutputSpec::Cpt::sleeve)},
                false});
-  t.push_back({"output.monitor",
-               "A material point followed through the run (/monitors/<name>/ in the history).",
-               {string("name", "letters, digits and underscores; unique").needed(),
-                numbers("position", "m",
-                        "[r, y]: the soil particle nearest this point at the "
-                        "start; or particle")
-                    .length(2),
-                integer("particle", "the particle with this id; or position").at_least(0)},
-               false});
+  t.push_back(
+      {"output.monitor",
+       "A material point followed through the run (/monitors/<name>/ in the history).",
+       {string("name", "letters, digits and underscores; unique").needed().into(&MonitorSpec::name),
+        numbers("position", "m",
+                "[r, y]: the soil particle nearest this point at the "
+                "start; or particle")
+            .length(2),
+        integer("particle", "the particle with this id; or position")
+            .at_least(0)
+            .into(&MonitorSpec::particle)},
+       false});
   return t;
 }
 

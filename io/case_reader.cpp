@@ -885,21 +885,25 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
       outlined.push_back(c.structure);
     }
   }
-  cpt.body = table.string_or("body", outlined.size() == 1 ? outlined[0] : "");
   table.read_into(cpt);
+  if (!table.has(&OutputSpec::Cpt::body)) {
+    cpt.body = outlined.size() == 1 ? outlined[0] : "";
+  }
   table.finish(); // a misspelt key is named before what its absence caused
   if (spec.mode != GeometryMode::axisymmetric) {
-    table.fail("cone", "a cone penetration test is axisymmetric: set geometry to "
-                       "\"axisymmetric\"");
+    table.fail(&OutputSpec::Cpt::cone, "a cone penetration test is axisymmetric: set geometry to "
+                                       "\"axisymmetric\"");
   }
   const auto contact = std::find_if(spec.contacts.begin(), spec.contacts.end(),
                                     [&](const ContactSpec& c) { return c.structure == cpt.body; });
   if (contact == spec.contacts.end() || !contact->outline) {
-    table.fail("body", "must name the contact structure that is the cone, with outline normals" +
-                           std::string(cpt.body.empty() ? "" : " (got '" + cpt.body + "')"));
+    table.fail(&OutputSpec::Cpt::body,
+               "must name the contact structure that is the cone, with outline normals" +
+                   std::string(cpt.body.empty() ? "" : " (got '" + cpt.body + "')"));
   }
   if (cpt.cone == cpt.sleeve) {
-    table.fail("sleeve", "must be another surface than the cone's ('" + cpt.cone + "')");
+    table.fail(&OutputSpec::Cpt::sleeve,
+               "must be another surface than the cone's ('" + cpt.cone + "')");
   }
   // Surface 0 is the cone, 1 the sleeve, -1 every other edge.
   std::vector<int> edges;
@@ -911,14 +915,16 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
   const std::vector<SurfaceAreas> areas =
       surface_areas(region_outline(body.region, spec.mode, edges), 2, spec.mode);
   if (!(areas[0].plan > 0.0)) {
-    table.fail("cone", "'" + cpt.cone + "' is no surface of '" + cpt.body +
-                           "' with a plan area (its horizontal projection, over which q_c is "
-                           "quoted)");
+    table.fail(&OutputSpec::Cpt::cone,
+               "'" + cpt.cone + "' is no surface of '" + cpt.body +
+                   "' with a plan area (its horizontal projection, over which q_c is "
+                   "quoted)");
   }
   if (!(areas[1].side > 0.0)) {
-    table.fail("sleeve", "'" + cpt.sleeve + "' is no surface of '" + cpt.body +
-                             "' with a side area (its vertical projection, over which f_s is "
-                             "quoted)");
+    table.fail(&OutputSpec::Cpt::sleeve,
+               "'" + cpt.sleeve + "' is no surface of '" + cpt.body +
+                   "' with a side area (its vertical projection, over which f_s is "
+                   "quoted)");
   }
   return cpt;
 }
@@ -926,42 +932,38 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
 MonitorSpec read_monitor(TomlTable& table, const Axes& axes,
                          const std::vector<MonitorSpec>& earlier) {
   MonitorSpec monitor;
-  monitor.name = table.string("name");
+  table.read_into(monitor); // its name and particle
   const bool dataset_safe =
       !monitor.name.empty() && std::all_of(monitor.name.begin(), monitor.name.end(), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
       });
   if (!dataset_safe) {
-    table.fail("name", "use letters, digits and underscores (it names /monitors/<name> in "
-                       "history.h5)");
+    table.fail(&MonitorSpec::name, "use letters, digits and underscores (it names "
+                                   "/monitors/<name> in history.h5)");
   }
   for (const MonitorSpec& other : earlier) {
     if (other.name == monitor.name) {
-      table.fail("name", "another monitor is named '" + monitor.name + "'");
+      table.fail(&MonitorSpec::name, "another monitor is named '" + monitor.name + "'");
     }
   }
-  if (table.has("position") == table.has("particle")) {
+  const std::string& particle = table.key_of(&MonitorSpec::particle);
+  if (table.has("position") == table.has(particle)) {
     table.fail("position", "give either position = [r, y] (the soil particle nearest it at the "
                            "start) or particle = <id>");
   }
-  if (table.has("position")) {
+  const std::string key = monitor.particle ? particle : "position";
+  if (!monitor.particle) {
     const std::vector<double> at = table.numbers("position", 2);
     if (!(at[0] >= axes.r.start() && at[0] <= axes.r.end() && at[1] >= axes.y.start() &&
           at[1] <= axes.y.end())) {
       table.fail("position", "lies outside the grid");
     }
     monitor.position = std::array<double, 2>{at[0], at[1]};
-    monitor.where = table.file_of("position") + ":" + std::to_string(table.line_of("position")) +
-                    ": " + table.key_path("position");
-  } else {
-    const long id = table.integer("particle");
-    if (id > std::numeric_limits<std::int32_t>::max()) {
-      table.fail("particle", "must be a particle id (0 or more), got " + std::to_string(id));
-    }
-    monitor.particle = id;
-    monitor.where = table.file_of("particle") + ":" + std::to_string(table.line_of("particle")) +
-                    ": " + table.key_path("particle");
+  } else if (*monitor.particle > std::numeric_limits<std::int32_t>::max()) {
+    table.fail(particle,
+               "must be a particle id (0 or more), got " + std::to_string(*monitor.particle));
   }
+  monitor.where = location(table, key) + ": " + table.key_path(key);
   table.finish();
   return monitor;
 }
@@ -994,10 +996,16 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
         rigid.push_back(body.name);
       }
     }
-    out.penetration_body = table->string_or("penetration_body", rigid.size() == 1 ? rigid[0] : "");
-    if (std::find(rigid.begin(), rigid.end(), out.penetration_body) == rigid.end()) {
-      table->fail("penetration_body", "must name the rigid body whose penetration counts");
+    if (!table->has(&OutputSpec::penetration_body)) {
+      out.penetration_body = rigid.size() == 1 ? rigid[0] : "";
     }
+    if (std::find(rigid.begin(), rigid.end(), out.penetration_body) == rigid.end()) {
+      table->fail(&OutputSpec::penetration_body,
+                  "must name the rigid body whose penetration counts");
+    }
+  } else if (table->has(&OutputSpec::penetration_body)) {
+    table->fail(&OutputSpec::penetration_body,
+                "given without snapshot_penetrations, the penetrations it counts");
   }
   if (std::optional<TomlTable> cpt = table->optional_table("cpt")) {
     out.cpt = read_cpt_output(*cpt, spec);
@@ -1143,9 +1151,10 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   CaseSpec spec;
   spec.file = file;
   spec.text = text;
-  spec.title = top.string_or("title", std::filesystem::path(file).stem().string());
-  spec.mode = top.string("geometry") == "axisymmetric" ? GeometryMode::axisymmetric
-                                                       : GeometryMode::plane_strain;
+  top.read_into(spec); // title and geometry
+  if (!top.has(&CaseSpec::title)) {
+    spec.title = std::filesystem::path(file).stem().string();
+  }
 
   // Either a [monopile] table builds grid, bodies, contact and boundaries, or the file gives them.
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;

@@ -159,6 +159,15 @@ struct OutputSpec {
   std::vector<MonitorSpec> monitors;
 };
 
+/// [monopile]'s keys beyond the geometry's (MonopileParameters) and its contact's (ContactSpec):
+/// the materials it builds the soil and the pile of, their particles, whether the band moves.
+struct MonopileSetup {
+  std::string soil_material;
+  std::string pile_material;
+  int particles_per_cell = 2;
+  bool moving_mesh = true;
+};
+
 /// y-lines between band_bottom and band_top (grid lines) move with a rigid body.
 struct MovingMeshSpec {
   std::string body;

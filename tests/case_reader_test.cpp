@@ -462,6 +462,10 @@ std::vector<BadInput> bad_contact_inputs() {
        "output.cpt.sleeve: must be another surface than the cone's ('tip')", "sleeve = "},
       {"misspelt CPT key", contact_case + "\n[output.cpt]\ncnoe = \"tip\"\n",
        "output.cpt.cnoe: unknown key", "cnoe = "},
+      // It was refused as an unknown key of [output], whose list of keys holds it.
+      {"penetration body without snapshot penetrations",
+       contact_case + "\n[output]\npenetration_body = \"pile\"\n",
+       "output.penetration_body: given without snapshot_penetrations", "penetration_body = "},
       {"prescribed motion on a rigid body",
        contact_case + "\n[[prescribed]]\nname = \"head\"\nbody = \"pile\"\nnodes = { y = 1.0 }\n"
                       "velocity_y = -0.01\n",
