@@ -421,25 +421,41 @@ std::vector<TableSpec> declare() {
                        "amplitude, frequency, phase, mean; pulse_train: amplitude, duration, "
                        "interval")
             .needed()
-            .one_of({"constant", "ramp", "table", "harmonic", "pulse_train"}),
-        number("value", "", "constant: the value; ramp: the value reached after duration"),
+            .one_of({"constant", "ramp", "table", "harmonic", "pulse_train"})
+            .into(&TimeFunctionKeys::type),
+        // No default: the types that take a key need it (TomlTable::read_members).
+        number("value", "", "constant: the value; ramp: the value reached after duration")
+            .or_computed("none")
+            .into(&TimeFunctionKeys::value),
         number("duration", "s", "ramp: its rise time; pulse_train: one half-sine pulse's length")
-            .above(0.0),
+            .above(0.0)
+            .or_computed("none")
+            .into(&TimeFunctionKeys::duration),
         any("points", "",
             "table: [[t0, v0], [t1, v1], ...], times strictly increasing; v0 "
             "before t0, the last value after the last time"),
         number("amplitude", "",
                "harmonic: mean + amplitude sin(2 pi frequency t + phase); "
-               "pulse_train: the pulses' peak"),
-        number("frequency", "Hz", "harmonic: its frequency").above(0.0),
-        number("phase", "rad", "harmonic: its phase angle").or_default(0.0),
+               "pulse_train: the pulses' peak")
+            .or_computed("none")
+            .into(&TimeFunctionKeys::amplitude),
+        number("frequency", "Hz", "harmonic: its frequency")
+            .above(0.0)
+            .or_computed("none")
+            .into(&TimeFunctionKeys::frequency),
+        number("phase", "rad", "harmonic: its phase angle")
+            .or_default(0.0)
+            .into(&TimeFunctionKeys::phase),
         number("mean", "",
                "harmonic: the value it oscillates about (a static load beside a vibration)")
-            .or_default(0.0),
+            .or_default(0.0)
+            .into(&TimeFunctionKeys::mean),
         number("interval", "s",
                "pulse_train: time from one pulse's start to the next's, at "
                "least duration")
-            .above(0.0)},
+            .above(0.0)
+            .or_computed("none")
+            .into(&TimeFunctionKeys::interval)},
        false});
   const ContactSpec contact;
   t.push_back(

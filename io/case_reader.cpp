@@ -79,14 +79,19 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
     return TimeFunction::constant(parent.number(key));
   }
   TomlTable f = parent.table(key);
-  const std::string type = f.string("type");
+  using Keys = TimeFunctionKeys;
+  Keys k;
+  f.read_members(k, {&Keys::type});
   TimeFunction result;
   try {
-    if (type == "constant") {
-      result = TimeFunction::constant(f.number("value"));
-    } else if (type == "ramp") {
-      result = TimeFunction::ramp(f.number("value"), f.number("duration"));
-    } else if (type == "table") {
+    // Each type reads its own keys; another type's is left unread and refused by finish().
+    if (k.type == "constant") {
+      f.read_members(k, {&Keys::value});
+      result = TimeFunction::constant(k.value);
+    } else if (k.type == "ramp") {
+      f.read_members(k, {&Keys::value, &Keys::duration});
+      result = TimeFunction::ramp(k.value, k.duration);
+    } else if (k.type == "table") {
       const TomlValue& points = f.raw("points");
       std::vector<std::pair<double, double>> table;
       bool ok = points.is_array() && !points.as_array().empty();
@@ -118,23 +123,18 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
       } catch (const std::invalid_argument& e) {
         f.fail("points", e.what());
       }
-    } else if (type == "harmonic") {
-      result = TimeFunction::harmonic(f.number("amplitude"), f.number("frequency"),
-                                      f.number("phase"), f.number("mean"));
-    } else if (type == "pulse_train") {
-      const double amplitude = f.number("amplitude");
-      const double duration = f.number("duration");
-      const double interval = f.number("interval");
-      if (interval < duration) {
-        f.fail("interval", "must not be shorter than the pulse duration");
+    } else if (k.type == "harmonic") {
+      f.read_members(k, {&Keys::amplitude, &Keys::frequency, &Keys::phase, &Keys::mean});
+      result = TimeFunction::harmonic(k.amplitude, k.frequency, k.phase, k.mean);
+    } else { // "pulse_train", the last of the declared types
+      f.read_members(k, {&Keys::amplitude, &Keys::duration, &Keys::interval});
+      if (k.interval < k.duration) {
+        f.fail(&Keys::interval, "must not be shorter than the pulse duration");
       }
-      result = TimeFunction::pulse_train(amplitude, duration, interval);
-    } else {
-      f.fail("type",
-             "unknown time function '" + type + "' (constant, ramp, table, harmonic, pulse_train)");
+      result = TimeFunction::pulse_train(k.amplitude, k.duration, k.interval);
     }
   } catch (const std::invalid_argument& e) {
-    f.fail("type", e.what());
+    f.fail(&Keys::type, e.what());
   }
   f.finish();
   return result;

@@ -159,6 +159,19 @@ struct OutputSpec {
   std::vector<MonitorSpec> monitors;
 };
 
+/// A time function's table as written: its type and the numbers that type takes (the reader reads
+/// those alone, TomlTable::read_members, so that another type's key is refused as unknown).
+struct TimeFunctionKeys {
+  std::string type;
+  double value = 0.0;
+  double duration = 0.0;
+  double amplitude = 0.0;
+  double frequency = 0.0;
+  double phase = 0.0;
+  double mean = 0.0;
+  double interval = 0.0;
+};
+
 /// [monopile]'s keys beyond the geometry's (MonopileParameters) and its contact's (ContactSpec):
 /// the materials it builds the soil and the pile of, their particles, whether the band moves.
 struct MonopileSetup {

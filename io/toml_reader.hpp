@@ -12,6 +12,7 @@
 #include <toml.hpp>
 
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <set>
@@ -56,6 +57,11 @@ public:
   /// holds; an absent one keeps the member's initialiser, its declared default, and an absent
   /// required one is refused.
   template <class Spec> void read_into(Spec& target);
+  /// Reads the keys bound to these members of Spec alone, as a table whose keys depend on another
+  /// key's value does (a time function's on its type): the others stay unread, for finish() to
+  /// refuse; a listed key that is absent and has no declared default is missing.
+  template <class Spec, class T>
+  void read_members(Spec& target, std::initializer_list<T Spec::*> members);
   /// The key bound to a member of Spec (KeySpec::into), as the declaration names it: a check
   /// between keys names it so, not by a second spelling. `Target` as for KeySpec::into.
   template <class Target = void, class T, class Owner>
@@ -127,6 +133,17 @@ template <class Spec> void TomlTable::read_into(Spec& target) {
         (has(key.name) || key.required || !std::holds_alternative<std::monostate>(key.fallback))) {
       key.store(*this, key.name, &target);
     }
+  }
+}
+
+template <class Spec, class T>
+void TomlTable::read_members(Spec& target, std::initializer_list<T Spec::*> members) {
+  for (T Spec::*member : members) {
+    const KeySpec& k = *spec_->key(key_of<Spec>(member));
+    if (!has(k.name) && std::holds_alternative<std::monostate>(k.fallback)) {
+      missing(k.name);
+    }
+    k.store(*this, k.name, &target);
   }
 }
 
