@@ -626,11 +626,17 @@ std::vector<TableSpec> declare() {
                false});
   {
     std::vector<KeySpec> keys;
-    for (const char* face : {"r_min", "r_max", "y_min", "y_max"}) {
+    const std::pair<const char*, FaceCondition FaceConditions::*> conditions[] = {
+        {"r_min", &FaceConditions::r_min},
+        {"r_max", &FaceConditions::r_max},
+        {"y_min", &FaceConditions::y_min},
+        {"y_max", &FaceConditions::y_max}};
+    for (const auto& [face, member] : conditions) {
       keys.push_back(string(face, std::string("the condition on the face ") + face +
                                       ": \"roller\" holds the normal velocity, \"fixed\" all")
                          .or_default(std::string("free"))
-                         .one_of(faces));
+                         .one_of(faces)
+                         .choice_into(member));
     }
     keys.push_back(strings("absorbing", "faces that let waves out (viscous dashpots from "
                                         "absorbing_phase on), each once")

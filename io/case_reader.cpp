@@ -215,20 +215,6 @@ NodeLineSpec read_node_line(TomlTable& owner, const Axes& axes) {
   return line;
 }
 
-FaceCondition read_face(TomlTable& table, const std::string& key) {
-  const std::string name = table.string(key);
-  if (name == "free") {
-    return FaceCondition::free;
-  }
-  if (name == "roller") {
-    return FaceCondition::roller;
-  }
-  if (name == "fixed") {
-    return FaceCondition::fixed;
-  }
-  table.fail(key, "must be \"free\", \"roller\" or \"fixed\", got \"" + name + "\"");
-}
-
 void read_materials(TomlTable& top, CaseSpec& spec) {
   for (auto& [name, table] : top.named_tables("materials")) {
     spec.materials.push_back(read_material_table(table, name));
@@ -1193,16 +1179,16 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     read_absorbing_faces(*boundaries, spec,
                          spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0);
     absorbing_table = *boundaries;
-    const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
-    for (std::size_t f = 0; f < 4; ++f) {
-      spec.faces[f] = read_face(*boundaries, keys[f]);
-    }
+    FaceConditions faces;
+    boundaries->read_into(faces);
+    spec.faces = {faces.r_min, faces.r_max, faces.y_min, faces.y_max};
+    const char* face_names[] = {"r_min", "r_max", "y_min", "y_max"}; // the drained list's
     if (boundaries->has("drained")) {
       spec.drained_faces = read_face_list(*boundaries, "drained");
       drained_table = *boundaries;
       for (const GridFace face : spec.drained_faces) {
         if (spec.faces[static_cast<std::size_t>(face)] == FaceCondition::free) {
-          boundaries->fail("drained", std::string("lists \"") + keys[static_cast<int>(face)] +
+          boundaries->fail("drained", std::string("lists \"") + face_names[static_cast<int>(face)] +
                                           "\", a free face: the water leaves a free face already");
         }
       }
@@ -1214,9 +1200,10 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
       }
     }
     if (spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0 &&
-        boundaries->has("r_min")) {
-      boundaries->fail("r_min", "the grid starts on the axis, which is constrained "
-                                "(u_r = u_theta = 0) automatically; remove this key");
+        boundaries->has(&FaceConditions::r_min)) {
+      boundaries->fail(&FaceConditions::r_min,
+                       "the grid starts on the axis, which is constrained "
+                       "(u_r = u_theta = 0) automatically; remove this key");
     }
     boundaries->finish();
   }

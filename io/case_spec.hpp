@@ -159,6 +159,14 @@ struct OutputSpec {
   std::vector<MonitorSpec> monitors;
 };
 
+/// [boundaries]' conditions by face as written (CaseSpec::faces holds them in GridFace order).
+struct FaceConditions {
+  FaceCondition r_min = FaceCondition::free;
+  FaceCondition r_max = FaceCondition::free;
+  FaceCondition y_min = FaceCondition::free;
+  FaceCondition y_max = FaceCondition::free;
+};
+
 /// A time function's table as written: its type and the numbers that type takes (the reader reads
 /// those alone, TomlTable::read_members, so that another type's key is refused as unknown).
 struct TimeFunctionKeys {
