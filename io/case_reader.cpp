@@ -12,6 +12,7 @@
 //   CaseSpec::end_time
 //   read_case_text, read_case_tree (the tables in order, [monopile] or the tables it builds, and
 //     the checks across tables), read_case_file (bases and --set overrides)
+#include "engine/monopile_geometry.hpp"
 #include "engine/particle_bins.hpp"
 #include "engine/structures/contact.hpp"
 #include "io/absorbing_reader.hpp"
@@ -56,7 +57,7 @@ std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key,
     AxisZone z;
     zone.read_into(z);
     if (!(z.end > z.start)) {
-      zone.fail("end", "must be greater than start (" + format_number(z.start) + ")");
+      zone.fail(&AxisZone::end, "must be greater than start (" + format_number(z.start) + ")");
     }
     warn_implausible_zone(zone, z.start, z.end, warnings);
     zone.finish();
@@ -674,14 +675,15 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     PhaseSpec phase;
     table.read_into(phase);
     if (!names.insert(phase.name).second) {
-      table.fail("name", "a phase named '" + phase.name + "' already exists");
+      table.fail<PhaseSpec>(&PhaseSpec::name, "a phase named '" + phase.name + "' already exists");
     }
     {
       // XPIC replaces the FLIP/PIC blend: the phase may not end up with both.
       const int order = phase.xpic_order.value_or(spec.solver.xpic_order);
       const double flip = phase.flip_fraction.value_or(spec.solver.flip_fraction);
       if (order > 0 && flip != 1.0) {
-        table.fail(phase.flip_fraction ? "flip_fraction" : "xpic_order",
+        table.fail(phase.flip_fraction ? table.key_of(&PhaseSpec::flip_fraction)
+                                       : table.key_of(&PhaseSpec::xpic_order),
                    "the phase would run XPIC(" + std::to_string(order) + ") with flip_fraction " +
                        format_number(flip) +
                        ": XPIC replaces the FLIP/PIC blend, so set xpic_order = 0 for a blend or "
@@ -845,7 +847,8 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
       << physical / 1e9 << " GB";
   if (grid_bytes >= particles_bytes || grid_bytes > physical) {
     if (top.has("monopile")) {
-      top.table("monopile").fail("fine_cell", why.str() + "; check the cell sizes and extents");
+      top.table("monopile")
+          .fail(&MonopileParameters::fine_cell, why.str() + "; check the cell sizes and extents");
     }
     const bool r_larger = axes.r.cell_count() >= axes.y.cell_count();
     top.table("grid").fail(r_larger ? "r" : "y", why.str() + "; check the zones' cells and ends");
@@ -858,7 +861,7 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
                                   "' takes the most: check its region, the cells there and "
                                   "particles_per_cell");
   }
-  top.table("monopile").fail("particles_per_cell", why.str());
+  top.table("monopile").fail(&MonopileSetup::particles_per_cell, why.str());
 }
 
 /// [output.cpt]: the cone and sleeve must be surfaces of a structure's outline with the areas
