@@ -13,7 +13,15 @@ namespace {
 
 void require(bool ok, const std::string& parameter, const std::string& reason) {
   if (!ok) {
-    throw std::invalid_argument(parameter + ": " + reason);
+    throw MonopileParameterError(parameter, {}, reason);
+  }
+}
+
+/// A check between parameters: `with` are the others it compares `parameter` with.
+void require(bool ok, const std::string& parameter, std::vector<std::string> with,
+             const std::string& reason) {
+  if (!ok) {
+    throw MonopileParameterError(parameter, std::move(with), reason);
   }
 }
 
@@ -132,15 +140,20 @@ std::vector<double> graded_nodes(double from, double to, double near, double uni
   return nodes;
 }
 
+MonopileParameterError::MonopileParameterError(std::string parameter_,
+                                               std::vector<std::string> compared, std::string why)
+    : std::invalid_argument(parameter_ + ": " + why), parameter(std::move(parameter_)),
+      with(std::move(compared)), reason(std::move(why)) {}
+
 MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
   require(p.diameter > 0.0, "diameter", "must be positive");
   require(p.wall_thickness > 0.0 && p.wall_thickness < p.diameter / 2.0, "wall_thickness",
-          "must be positive and less than the radius");
+          {"diameter"}, "must be positive and less than the radius");
   require(p.fine_cell > 0.0, "fine_cell", "must be positive");
   require(p.wall_cells >= 1 && p.wall_cells <= 16, "wall_cells", "must lie between 1 and 16");
   require(p.fine_width >= 0.0, "fine_width", "must not be negative");
-  require(p.coarse_cell >= p.fine_cell, "coarse_cell", "must be at least fine_cell");
-  require(p.shaft_cell >= p.fine_cell, "shaft_cell", "must be at least fine_cell");
+  require(p.coarse_cell >= p.fine_cell, "coarse_cell", {"fine_cell"}, "must be at least fine_cell");
+  require(p.shaft_cell >= p.fine_cell, "shaft_cell", {"fine_cell"}, "must be at least fine_cell");
   require(p.growth >= 1.0 && p.growth <= 2.0, "growth", "must lie in [1, 2]");
   require(p.head_room > 0.0, "head_room", "must be positive");
   require(p.band_below > 0.0, "band_below", "must be positive");
@@ -176,16 +189,18 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
   g.surface = p.soil_depth;
   g.tip = p.soil_depth - p.embedment;
   require(g.outer_radius + p.fine_width + p.fine_cell < p.soil_width, "soil_width",
+          {"diameter", "fine_width", "fine_cell"},
           "must exceed the pile's outer radius plus fine_width and a cell");
-  require(g.inner_radius > p.fine_cell, "diameter",
+  require(g.inner_radius > p.fine_cell, "diameter", {"wall_thickness", "fine_cell"},
           "the pile's inner radius must exceed fine_cell (room for the soil plug)");
   require(p.embedment > 0.0, "embedment", "must be positive");
-  require(p.embedment < p.pile_length, "embedment", "must be less than pile_length");
+  require(p.embedment < p.pile_length, "embedment", {"pile_length"},
+          "must be less than pile_length");
   if (!(p.embedment < p.soil_depth)) {
     std::ostringstream why;
     why << "must be less than soil_depth (" << p.soil_depth
         << " m): the tip would start below the soil";
-    require(false, "embedment", why.str());
+    require(false, "embedment", {"soil_depth"}, why.str());
   }
   g.band_bottom = g.tip - p.band_below;
   g.band_top = g.tip + p.band_above;
@@ -197,6 +212,7 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
     const double growing =
         std::abs(transition_nodes(g.tip, 0.0, near, p.fine_cell, p.growth).back() - g.tip);
     require(growing + p.fine_cell <= std::min(p.band_below, p.band_above), "wall_cells",
+            {"wall_thickness", "fine_cell", "growth", "band_below", "band_above"},
             "the cells growing from the tip's to fine_cell take " + std::to_string(growing) +
                 " m: band_below and band_above must exceed that by a fine cell");
     const auto rounded = [&](double extent) {
@@ -205,10 +221,10 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
     g.band_bottom = g.tip - rounded(p.band_below);
     g.band_top = g.tip + rounded(p.band_above);
   }
-  require(g.band_bottom > 2.0 * p.fine_cell, "band_below",
+  require(g.band_bottom > 2.0 * p.fine_cell, "band_below", {"embedment", "soil_depth", "fine_cell"},
           "the moving band reaches the bottom of the soil (soil_depth - embedment - band_below "
           "must leave room for cells below it)");
-  require(g.band_top < g.surface, "band_above",
+  require(g.band_top < g.surface, "band_above", {"embedment"},
           "the moving band reaches the soil surface (band_above must be less than embedment)");
 
   // r: graded from the axis to the fine zone inside the wall, the wall in wall_cells cells, then
@@ -224,6 +240,7 @@ MonopileGeometry build_monopile_geometry(const MonopileParameters& p) {
   // to the surface (at most shaft_cell along the shaft), then uniform to the top of the grid.
   require(p.travel > 0.0, "travel", "must be positive");
   require(g.band_bottom - p.travel > 2.0 * p.fine_cell, "travel",
+          {"embedment", "soil_depth", "band_below", "fine_cell"},
           "the band's travel reaches the bottom of the soil (make the soil deeper or the travel "
           "shorter)");
   append_zones(g.y_zones,

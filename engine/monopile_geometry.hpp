@@ -8,6 +8,8 @@
 #include "engine/graded_axis.hpp"
 #include "engine/particle_fill.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace mpile {
@@ -62,7 +64,17 @@ struct MonopileGeometry {
   double pile_polar_inertia(const MonopileParameters& p, double density) const;
 };
 
-/// Builds the geometry; throws std::invalid_argument naming the parameter that is inconsistent
+/// A parameter set the geometry refuses: `what()` is "parameter: reason", the parameter the check
+/// is about; `with` the other parameters it compares that one with (a reader blames whichever of
+/// them the case wrote, not always the first: a diameter in mm is refused by soil_width's check).
+struct MonopileParameterError : std::invalid_argument {
+  MonopileParameterError(std::string parameter, std::vector<std::string> compared, std::string why);
+  std::string parameter;
+  std::vector<std::string> with;
+  std::string reason;
+};
+
+/// Builds the geometry; throws MonopileParameterError naming the parameter that is inconsistent
 /// (a pile wider than the soil, an embedment deeper than the soil, a band that leaves no room).
 MonopileGeometry build_monopile_geometry(const MonopileParameters& p);
 

@@ -8,21 +8,22 @@ namespace mpile {
 
 void read_absorbing_faces(TomlTable& table, CaseSpec& spec, bool grid_starts_on_axis) {
   if (!table.has("absorbing")) {
-    if (table.has("absorbing_phase")) {
-      table.fail("absorbing_phase", "given without `absorbing`, the faces it switches on");
+    if (table.has(&CaseSpec::Absorbing::phase)) {
+      table.fail(&CaseSpec::Absorbing::phase,
+                 "given without `absorbing`, the faces it switches on");
     }
     return;
   }
   spec.absorbing.faces =
       read_face_list(table, "absorbing", grid_starts_on_axis ? "where no wave leaves" : "");
-  spec.absorbing.phase = table.string_or("absorbing_phase", "");
+  table.read_into(spec.absorbing);
 }
 
 void check_absorbing_phase(const TomlTable& table, const CaseSpec& spec) {
   const std::string& phase = spec.absorbing.phase;
   if (!phase.empty() && std::none_of(spec.phases.begin(), spec.phases.end(),
                                      [&](const PhaseSpec& p) { return p.name == phase; })) {
-    table.fail("absorbing_phase", "no phase named '" + phase + "' in [[phases]]");
+    table.fail(&CaseSpec::Absorbing::phase, "no phase named '" + phase + "' in [[phases]]");
   }
 }
 

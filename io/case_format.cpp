@@ -175,7 +175,10 @@ std::vector<KeySpec> node_line_keys() {
 /// A material's own keys: its model, its drainage and its pore water (PoreWater's declaration).
 std::vector<KeySpec> material_keys(const std::vector<std::string>& material_names) {
   std::vector<KeySpec> keys{
-      string("type", "the material model").needed().one_of(material_names),
+      string("type", "the material model")
+          .needed()
+          .one_of(material_names)
+          .into(&MaterialSpec::type),
       string("drainage",
              "how the pore water drains: \"drained\" (no water state: a dry or drained soil, "
              "`density` its density), \"undrained\" (saturated, no flow: the water's stiffness "
@@ -184,17 +187,18 @@ std::vector<KeySpec> material_keys(const std::vector<std::string>& material_name
              "`hydraulic_conductivity`); saturated, `density` is the dry density and the "
              "particles weigh the saturated density")
           .or_default(std::string("drained"))
-          .one_of(drainage_names())};
+          .one_of(drainage_names())
+          .choice_into(&PoreWater::drainage)};
   const PoreWater defaults;
   for (const PoreWaterParameter& w : pore_water_parameters()) {
     // The hydraulic conductivity has no default: a coupled material must give it.
     const bool conductivity = w.member == &PoreWater::hydraulic_conductivity;
     KeySpec key =
         conductivity
-            ? number(w.name, w.unit, w.meaning)
+            ? number(w.name, w.unit, w.meaning).or_computed("none")
             : number(w.name, w.unit, w.meaning + "; saturated only").or_default(defaults.*w.member);
     key.range = w.range;
-    keys.push_back(std::move(key));
+    keys.push_back(std::move(key).into(w.member));
   }
   return keys;
 }
@@ -205,14 +209,18 @@ KeySpec solver_key(const SolverParameter& p, const SolverSettings& defaults) {
   KeySpec key = std::visit(
       [&](auto member) {
         using Value = std::remove_cvref_t<decltype(defaults.*member)>;
+        // Bound to its member of SolverSettings ([[phases]] binds its own to PhaseSpec's).
         if constexpr (std::is_same_v<Value, bool>) {
-          return boolean(p.name, p.meaning).or_default(defaults.*member);
+          return boolean(p.name, p.meaning).or_default(defaults.*member).into(member);
         } else if constexpr (std::is_same_v<Value, int>) {
-          return integer(p.name, p.meaning).or_default(static_cast<long>(defaults.*member));
+          return integer(p.name, p.meaning)
+              .or_default(static_cast<long>(defaults.*member))
+              .into(member);
         } else {
           KeySpec k = number(p.name, p.unit, p.meaning);
-          return p.computed_default.empty() ? std::move(k).or_default(defaults.*member)
-                                            : std::move(k).or_computed(p.computed_default);
+          return (p.computed_default.empty() ? std::move(k).or_default(defaults.*member)
+                                             : std::move(k).or_computed(p.computed_default))
+              .into(member);
         }
       },
       p.member);
@@ -241,8 +249,8 @@ std::vector<KeySpec> solver_keys() {
     keys.push_back(solver_key(p, solver));
     if (p.name == "cell_mean_pore_pressure") {
       keys.push_back(string("scheme", "\"musl\" (strains from remapped velocities) or \"usl\"")
-                         .or_default(std::string(solver.musl ? "musl" : "usl"))
-                         .one_of({"musl", "usl"}));
+                         .one_of({"musl", "usl"})
+                         .choice_into(&SolverSettings::musl, "musl"));
     } else if (p.name == "mass_scaling") {
       keys.push_back(
           numbers("gravity", "m/s^2", "gravitational acceleration (r, y), e.g. [0, -9.81]")
@@ -252,7 +260,8 @@ std::vector<KeySpec> solver_keys() {
       keys.push_back(
           string("shape_functions", "\"linear\" or \"gimp\" (averaged over the particle's domain)")
               .one_of({"linear", "gimp"})
-              .or_computed("\"linear\", \"gimp\" with a moving mesh"));
+              .or_computed("\"linear\", \"gimp\" with a moving mesh")
+              .choice_into(&SolverSettings::shape_functions));
     }
   }
   return keys;
@@ -277,11 +286,14 @@ std::vector<TableSpec> declare() {
                        "them merged in order: tables merge key by key (a table of another type "
                        "replaces the base's), other values replace the base's")
             .or_computed("none"),
-        string("title", "shown in the log and stored in history.h5").or_computed("the file name"),
+        string("title", "shown in the log and stored in history.h5")
+            .or_computed("the file name")
+            .into(&CaseSpec::title),
         string("geometry", "\"axisymmetric\" (with the theta DOF; outputs per radian) or "
                            "\"plane_strain\" (outputs per metre)")
             .or_default(std::string("axisymmetric"))
-            .one_of({"axisymmetric", "plane_strain"}),
+            .one_of({"axisymmetric", "plane_strain"})
+            .choice_into(&CaseSpec::mode),
         table("grid", "the grid's zones along r and y; required unless [monopile] builds it"),
         named_tables("materials", "the materials, by name").needed(),
         tables("bodies", "the bodies; required unless [monopile] builds them"),
@@ -307,13 +319,15 @@ std::vector<TableSpec> declare() {
                "y of the sea's free surface, at or above the seabed (the K0 surface of the "
                "saturated bodies); the pore pressures and total stresses written are then "
                "relative to the atmosphere")
-            .or_computed("the seabed: no sea above it"),
+            .or_computed("the seabed: no sea above it")
+            .into(&WaterSpec::level),
         number("cavitation_stress", "Pa",
                "the tension, relative to the atmosphere, at which the pore water cavitates: its "
                "pressure rises no further (100e3: the atmosphere's pressure, water's vapour "
                "pressure neglected)")
             .at_least(0.0)
-            .or_computed("no cut-off")},
+            .or_computed("no cut-off")
+            .into(&PoreWater::cavitation_stress)},
        false});
   t.push_back({"grid",
                "The grid: zones of uniform cells along r (x in plane strain) and y, contiguous.",
@@ -340,7 +354,8 @@ std::vector<TableSpec> declare() {
                "\"centres\": a particle at each sub-cell centre in the region; \"cut_cells\": "
                "also the sub-cells the outline cuts, each a particle of the part inside")
             .or_default(std::string("centres"))
-            .one_of({"centres", "cut_cells"}),
+            .one_of({"centres", "cut_cells"})
+            .choice_into(&BodySpec::cut_cells),
         numbers("velocity", "m/s", "initial velocity (v_r, v_y, v_theta)")
             .length(3)
             .or_computed("[0, 0, 0]"),
@@ -367,15 +382,22 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"bodies.velocity_profile",
        "An initial velocity component as a function of position along r or y.",
-       {string("component", "the velocity component").needed().one_of({"r", "y", "theta"}),
-        string("along", "the coordinate the function's argument is").needed().one_of({"r", "y"}),
+       {string("component", "the velocity component")
+            .needed()
+            .one_of({"r", "y", "theta"})
+            .choice_into(&VelocityProfile::component),
+        string("along", "the coordinate the function's argument is")
+            .needed()
+            .one_of({"r", "y"})
+            .choice_into(&VelocityProfile::along_y),
         time_function("function", "m/s", "the velocity as a function of position (m)").needed()},
        false});
   {
     std::vector<KeySpec> keys{
         number("mass", "kg/rad", "the whole structure's mass (kg/m in plane strain)")
             .above(0.0)
-            .or_computed("from the particles"),
+            .or_computed("from the particles")
+            .into(&RigidSpec::mass),
         number("polar_inertia", "kg m^2/rad", "axisymmetric: the moment of inertia about the axis")
             .above(0.0)
             .or_computed("from the particles"),
@@ -387,7 +409,8 @@ std::vector<TableSpec> declare() {
     }
     keys.push_back(string("phase", "the phase in which the drives start (their functions count "
                                    "time from its start); before it every DOF is held at rest")
-                       .or_computed(first_phase));
+                       .or_computed(first_phase)
+                       .into(&RigidSpec::phase));
     t.push_back({"bodies.rigid", "A rigid body's mass, inertia and drives.", keys, false});
   }
   t.push_back(
@@ -398,32 +421,50 @@ std::vector<TableSpec> declare() {
                        "amplitude, frequency, phase, mean; pulse_train: amplitude, duration, "
                        "interval")
             .needed()
-            .one_of({"constant", "ramp", "table", "harmonic", "pulse_train"}),
-        number("value", "", "constant: the value; ramp: the value reached after duration"),
+            .one_of({"constant", "ramp", "table", "harmonic", "pulse_train"})
+            .into(&TimeFunctionKeys::type),
+        // No default: the types that take a key need it (TomlTable::read_members).
+        number("value", "", "constant: the value; ramp: the value reached after duration")
+            .or_computed("none")
+            .into(&TimeFunctionKeys::value),
         number("duration", "s", "ramp: its rise time; pulse_train: one half-sine pulse's length")
-            .above(0.0),
+            .above(0.0)
+            .or_computed("none")
+            .into(&TimeFunctionKeys::duration),
         any("points", "",
             "table: [[t0, v0], [t1, v1], ...], times strictly increasing; v0 "
             "before t0, the last value after the last time"),
         number("amplitude", "",
                "harmonic: mean + amplitude sin(2 pi frequency t + phase); "
-               "pulse_train: the pulses' peak"),
-        number("frequency", "Hz", "harmonic: its frequency").above(0.0),
-        number("phase", "rad", "harmonic: its phase angle").or_default(0.0),
+               "pulse_train: the pulses' peak")
+            .or_computed("none")
+            .into(&TimeFunctionKeys::amplitude),
+        number("frequency", "Hz", "harmonic: its frequency")
+            .above(0.0)
+            .or_computed("none")
+            .into(&TimeFunctionKeys::frequency),
+        number("phase", "rad", "harmonic: its phase angle")
+            .or_default(0.0)
+            .into(&TimeFunctionKeys::phase),
         number("mean", "",
                "harmonic: the value it oscillates about (a static load beside a vibration)")
-            .or_default(0.0),
+            .or_default(0.0)
+            .into(&TimeFunctionKeys::mean),
         number("interval", "s",
                "pulse_train: time from one pulse's start to the next's, at "
                "least duration")
-            .above(0.0)},
+            .above(0.0)
+            .or_computed("none")
+            .into(&TimeFunctionKeys::interval)},
        false});
   const ContactSpec contact;
   t.push_back(
       {"contact",
        "Contact between the soil and one structure body (Bardenhagen, Coulomb friction and "
        "adhesion).",
-       {string("structure", "a [[bodies]] name (rigid or deformable)").needed(),
+       {string("structure", "a [[bodies]] name (rigid or deformable)")
+            .needed()
+            .into(&ContactSpec::structure),
         number("friction", "-", "Coulomb coefficient mu = tan(delta)")
             .at_least(0.0)
             .into(&ContactSpec::friction),
@@ -431,13 +472,15 @@ std::vector<TableSpec> declare() {
         string("normals", "\"outline\": from the outline of the structure's region (a polygon must "
                           "be convex); \"mass_gradient\": from the structure's particles")
             .or_default(std::string("outline"))
-            .one_of({"outline", "mass_gradient"}),
+            .one_of({"outline", "mass_gradient"})
+            .choice_into(&ContactSpec::outline, "outline"),
         string("gap",
                "outline only: \"cells\": a node may be in contact once any soil particle of its "
                "cells touches the outline; \"surface\": on a straight run of one surface along r "
                "or y, once the soil's surface interpolated to the node does")
             .or_default(std::string("cells"))
-            .one_of({"cells", "surface"}),
+            .one_of({"cells", "surface"})
+            .choice_into(&ContactSpec::surface_gap),
         any("surfaces", "",
             "outline only: a rectangle's edges named in a table { bottom, right, top, left } (an "
             "edge left out is no contact surface); a polygon's, one name per edge in an array "
@@ -478,13 +521,25 @@ std::vector<TableSpec> declare() {
         number("head_room", "m", "grid above the surface (the meshed pile top stays above heave)")
             .into(&MonopileParameters::head_room)
             .above(0.0),
-        string("soil_material", "the soil's [materials.<name>]").needed(),
-        string("pile_material", "the pile's [materials.<name>]; gives the density").needed(),
+        string("soil_material", "the soil's [materials.<name>]")
+            .needed()
+            .into(&MonopileSetup::soil_material),
+        string("pile_material", "the pile's [materials.<name>]; gives the density")
+            .needed()
+            .into(&MonopileSetup::pile_material),
         number("friction", "-", "contact mu = tan(delta) (0.4 = tan 21.8 deg)")
             .or_default(0.4)
-            .at_least(0.0),
-        number("adhesion", "Pa", "contact adhesion c_a").or_default(0.0).at_least(0.0),
-        integer("particles_per_cell", "per direction").or_default(2L).at_least(1).at_most(8),
+            .at_least(0.0)
+            .into(&ContactSpec::friction),
+        number("adhesion", "Pa", "contact adhesion c_a")
+            .or_default(0.0)
+            .at_least(0.0)
+            .into(&ContactSpec::adhesion),
+        integer("particles_per_cell", "per direction")
+            .or_default(2L)
+            .at_least(1)
+            .at_most(8)
+            .into(&MonopileSetup::particles_per_cell),
         number("fine_cell", "m", "cell size at the wall and in the band")
             .into(&MonopileParameters::fine_cell)
             .above(0.0),
@@ -517,26 +572,33 @@ std::vector<TableSpec> declare() {
                "for the cells it will then have)")
             .into(&MonopileParameters::travel)
             .above(0.0),
-        boolean("moving_mesh", "false: the grid stays fixed (for comparison)").or_default(true),
+        boolean("moving_mesh", "false: the grid stays fixed (for comparison)")
+            .or_default(true)
+            .into(&MonopileSetup::moving_mesh),
         strings("absorbing", "faces that let waves out, as in [boundaries]")
             .one_of({"r_min", "r_max", "y_min", "y_max"})
             .or_computed("none"),
         string("absorbing_phase", "the phase at whose start the absorbing faces switch on")
-            .or_computed(first_phase),
+            .or_computed(first_phase)
+            .into(&CaseSpec::Absorbing::phase),
         table("drive", "the pile's drives: the keys of [bodies.rigid] but mass and inertia")},
        false});
   {
     std::vector<KeySpec> keys = drive_keys();
-    keys.push_back(number("mass", "kg/rad", "not allowed: follows from the parameters"));
+    keys.push_back(number("mass", "kg/rad", "not allowed: follows from the parameters")
+                       .or_computed("none")
+                       .into(&RigidSpec::mass));
     keys.push_back(
         number("polar_inertia", "kg m^2/rad", "not allowed: follows from the parameters"));
-    keys.push_back(string("phase", "the phase in which the drives start").or_computed(first_phase));
+    keys.push_back(string("phase", "the phase in which the drives start")
+                       .or_computed(first_phase)
+                       .into(&RigidSpec::phase));
     t.push_back({"monopile.drive", "The monopile's drives.", keys, false});
   }
   t.push_back(
       {"moving_mesh",
        "y-lines that translate with a rigid body; the lines beyond are squeezed and stretched.",
-       {string("body", "a rigid body (axisymmetric cases)").needed(),
+       {string("body", "a rigid body (axisymmetric cases)").needed().into(&MovingMeshSpec::body),
         numbers("band", "m",
                 "[y_bottom, y_top], grid lines strictly inside the grid: the lines "
                 "between them move with the body")
@@ -546,7 +608,8 @@ std::vector<TableSpec> declare() {
                "how far the band may move; the soil is seeded for the finest "
                "cells it will sit in")
             .above(0.0)
-            .or_computed("until a zone beside the band is squeezed to a tenth"),
+            .or_computed("until a zone beside the band is squeezed to a tenth")
+            .into(&MovingMeshSpec::travel),
         numbers("stretch", "m",
                 "[y_bottom, y_top], grid lines below and above the band: only "
                 "the lines between them and the band move")
@@ -563,11 +626,17 @@ std::vector<TableSpec> declare() {
                false});
   {
     std::vector<KeySpec> keys;
-    for (const char* face : {"r_min", "r_max", "y_min", "y_max"}) {
+    const std::pair<const char*, FaceCondition FaceConditions::*> conditions[] = {
+        {"r_min", &FaceConditions::r_min},
+        {"r_max", &FaceConditions::r_max},
+        {"y_min", &FaceConditions::y_min},
+        {"y_max", &FaceConditions::y_max}};
+    for (const auto& [face, member] : conditions) {
       keys.push_back(string(face, std::string("the condition on the face ") + face +
                                       ": \"roller\" holds the normal velocity, \"fixed\" all")
                          .or_default(std::string("free"))
-                         .one_of(faces));
+                         .one_of(faces)
+                         .choice_into(member));
     }
     keys.push_back(strings("absorbing", "faces that let waves out (viscous dashpots from "
                                         "absorbing_phase on), each once")
@@ -580,34 +649,42 @@ std::vector<TableSpec> declare() {
                        .or_computed("none"));
     keys.push_back(string("absorbing_phase", "the phase at whose start the absorbing faces "
                                              "switch on")
-                       .or_computed(first_phase));
+                       .or_computed(first_phase)
+                       .into(&CaseSpec::Absorbing::phase));
     t.push_back({"boundaries", "Conditions on the grid's faces.", keys, false});
   }
   t.push_back({"solver", "Numerical choices.", solver_keys(), false});
   t.push_back(
       {"prescribed",
        "Prescribed velocities on a grid line; the reaction goes to /boundaries/<name>/.",
-       {string("name", "unique").needed(), table("nodes", "the grid line").needed(),
+       {string("name", "unique").needed().into(&MotionSpec::name),
+        table("nodes", "the grid line").needed(),
         time_function("velocity_r", "m/s", "the radial velocity"),
         time_function("velocity_y", "m/s", "the vertical velocity"),
         time_function("velocity_theta", "m/s", "the circumferential velocity"),
         time_function("angular_velocity", "rad/s",
                       "instead of velocity_theta: v_theta = omega r (a rigid rotation)"),
         string("phase", "the phase in which the motion starts; before it the DOFs are held")
-            .or_computed(first_phase),
+            .or_computed(first_phase)
+            .into(&MotionSpec::phase),
         string("body", "a deformable contact structure whose field alone the motion acts on")
-            .or_computed("every field")},
+            .or_computed("every field")
+            .into(&MotionSpec::body)},
        false});
   t.push_back({"prescribed.nodes", "A grid line, or part of it.", node_line_keys(), false});
-  t.push_back(
-      {"loads",
-       "A distributed traction on a grid line, with consistent nodal weights.",
-       {string("name", "unique").needed(), table("nodes", "the grid line").needed(),
-        string("component", "the traction's direction").needed().one_of({"r", "y", "theta"}),
-        time_function("traction", "Pa", "positive along the component's axis").needed(),
-        string("phase", "the phase in which the load starts; zero before")
-            .or_computed(first_phase)},
-       false});
+  t.push_back({"loads",
+               "A distributed traction on a grid line, with consistent nodal weights.",
+               {string("name", "unique").needed().into(&LoadSpec::name),
+                table("nodes", "the grid line").needed(),
+                string("component", "the traction's direction")
+                    .needed()
+                    .one_of({"r", "y", "theta"})
+                    .choice_into(&LoadSpec::component),
+                time_function("traction", "Pa", "positive along the component's axis").needed(),
+                string("phase", "the phase in which the load starts; zero before")
+                    .or_computed(first_phase)
+                    .into(&LoadSpec::phase)},
+               false});
   t.push_back({"loads.nodes", "A grid line, or part of it.", node_line_keys(), false});
   t.push_back(
       {"phases",
@@ -647,15 +724,21 @@ std::vector<TableSpec> declare() {
   t.push_back(
       {"phases.stop_at",
        "End the phase once a rigid body has gone down far enough.",
-       {string("body", "a rigid body").needed(),
-        number("penetration", "m", "its total downward displacement; or settlement").above(0.0),
+       {string("body", "a rigid body").needed().into(&PenetrationStop::body),
+        number("penetration", "m", "its total downward displacement; or settlement")
+            .above(0.0)
+            .or_computed("none")
+            .into(&PenetrationStop::penetration),
         number("settlement", "m", "its downward displacement since the phase began (a load test)")
-            .above(0.0),
+            .above(0.0)
+            .or_computed("none")
+            .into(&PenetrationStop::settlement),
         boolean("at_rest", "also wait until the body has come to rest (below 1 mm/s)")
-            .or_default(false)},
+            .or_default(false)
+            .into(&PenetrationStop::at_rest)},
        false});
   {
-    std::vector<KeySpec> keys{string("body", "a rigid body").needed()};
+    std::vector<KeySpec> keys{string("body", "a rigid body").needed().into(&PhaseDrive::body)};
     for (KeySpec& k : drive_keys()) {
       keys.push_back(std::move(k));
     }
@@ -689,28 +772,33 @@ std::vector<TableSpec> declare() {
                 "first reaches each value")
             .or_computed("none"),
         string("penetration_body", "the body whose penetration snapshot_penetrations counts")
-            .or_computed("the only rigid body"),
+            .or_computed("the only rigid body")
+            .into(&OutputSpec::penetration_body),
         table("cpt", "a cone penetration test's q_c, f_s and R_f in the history"),
         tables("monitor", "material points followed through the run")},
        false});
   t.push_back({"output.cpt",
                "A cone penetration test's /cpt/q_c, /cpt/f_s and /cpt/R_f (axisymmetric cases).",
                {string("body", "the contact structure that is the cone")
-                    .or_computed("the only structure with outline normals"),
+                    .or_computed("the only structure with outline normals")
+                    .into(&OutputSpec::Cpt::body),
                 string("cone", "its surface whose plan area q_c is quoted over")
                     .into(&OutputSpec::Cpt::cone),
                 string("sleeve", "its surface whose side area f_s is quoted over")
                     .into(&OutputSpec::Cpt::sleeve)},
                false});
-  t.push_back({"output.monitor",
-               "A material point followed through the run (/monitors/<name>/ in the history).",
-               {string("name", "letters, digits and underscores; unique").needed(),
-                numbers("position", "m",
-                        "[r, y]: the soil particle nearest this point at the "
-                        "start; or particle")
-                    .length(2),
-                integer("particle", "the particle with this id; or position").at_least(0)},
-               false});
+  t.push_back(
+      {"output.monitor",
+       "A material point followed through the run (/monitors/<name>/ in the history).",
+       {string("name", "letters, digits and underscores; unique").needed().into(&MonitorSpec::name),
+        numbers("position", "m",
+                "[r, y]: the soil particle nearest this point at the "
+                "start; or particle")
+            .length(2),
+        integer("particle", "the particle with this id; or position")
+            .at_least(0)
+            .into(&MonitorSpec::particle)},
+       false});
   return t;
 }
 

@@ -9,9 +9,12 @@
 
 #include "engine/parameter_range.hpp"
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -47,6 +50,16 @@ void read_key(TomlTable& table, const std::string& key, bool& field);
 void read_key(TomlTable& table, const std::string& key, std::string& field);
 void read_key(TomlTable& table, const std::string& key, std::optional<double>& field);
 void read_key(TomlTable& table, const std::string& key, std::optional<int>& field);
+void read_key(TomlTable& table, const std::string& key, std::optional<long>& field);
+/// The index of a string key's value among its declared choices (KeySpec::choice_into).
+long read_choice(TomlTable& table, const std::string& key);
+
+/// Where a member lies in a default-constructed Spec: how a bound key is found by its member
+/// (TomlTable::key_of).
+template <class Spec, class T, class Owner> std::ptrdiff_t member_offset(T Owner::*member) {
+  static const Spec probe{};
+  return reinterpret_cast<const char*>(&(probe.*member)) - reinterpret_cast<const char*>(&probe);
+}
 
 struct KeySpec {
   std::string name;
@@ -73,10 +86,16 @@ struct KeySpec {
   /// initialiser is then its default unless the key is required or its default computed.
   /// `Target` names a struct that inherits the member (PhaseSpec's RunPhase::duration).
   template <class Target = void, class T, class Owner> KeySpec into(T Owner::*member) &&;
+  /// Binds a string key of choices to a member that takes the index of the choice: an enum whose
+  /// values are in the choices' order, an int, or a bool that is true for the choice `truth` (the
+  /// second of two when not given).
+  template <class Target = void, class T, class Owner>
+  KeySpec choice_into(T Owner::*member, const std::string& truth = "") &&;
 
-  /// The struct a bound key is read into (null: read by name), and how.
+  /// The struct a bound key is read into (null: read by name), how, and the member's place in it.
   const std::type_info* bound_to = nullptr;
   std::function<void(TomlTable&, const std::string&, void*)> store;
+  std::ptrdiff_t bound_offset = -1;
 
   /// "> 0", "in [0, 1)", "1 to 8", ... ; empty without bounds.
   std::string range_text() const { return range.text(kind == ValueKind::integer); }
@@ -89,11 +108,13 @@ template <class Target, class T, class Owner> KeySpec KeySpec::into(T Owner::*me
   using Spec = std::conditional_t<std::is_void_v<Target>, Owner, Target>;
   static_assert(std::is_base_of_v<Owner, Spec>);
   bound_to = &typeid(Spec);
+  bound_offset = member_offset<Spec>(member);
   store = [member](TomlTable& table, const std::string& key, void* target) {
     read_key(table, key, static_cast<Spec*>(target)->*member);
   };
-  constexpr bool optional =
-      std::is_same_v<T, std::optional<double>> || std::is_same_v<T, std::optional<int>>;
+  constexpr bool optional = std::is_same_v<T, std::optional<double>> ||
+                            std::is_same_v<T, std::optional<int>> ||
+                            std::is_same_v<T, std::optional<long>>;
   if constexpr (!optional) {
     if (!required && default_text.empty() && std::holds_alternative<std::monostate>(fallback)) {
       const T value = Spec{}.*member;
@@ -102,6 +123,41 @@ template <class Target, class T, class Owner> KeySpec KeySpec::into(T Owner::*me
       } else {
         fallback = value;
       }
+    }
+  }
+  return std::move(*this);
+}
+
+template <class Target, class T, class Owner>
+KeySpec KeySpec::choice_into(T Owner::*member, const std::string& truth) && {
+  using Spec = std::conditional_t<std::is_void_v<Target>, Owner, Target>;
+  static_assert(std::is_base_of_v<Owner, Spec>);
+  bound_to = &typeid(Spec);
+  bound_offset = member_offset<Spec>(member);
+  long true_index = 1;
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!truth.empty()) {
+      true_index =
+          static_cast<long>(std::find(choices.begin(), choices.end(), truth) - choices.begin());
+    }
+    if (choices.size() != 2 || true_index > 1) {
+      throw std::logic_error("a switch between two choices, one of them " + truth);
+    }
+  }
+  store = [member, true_index](TomlTable& table, const std::string& key, void* target) {
+    const long index = read_choice(table, key);
+    if constexpr (std::is_same_v<T, bool>) {
+      static_cast<Spec*>(target)->*member = index == true_index;
+    } else {
+      static_cast<Spec*>(target)->*member = static_cast<T>(index);
+    }
+  };
+  if (!required && default_text.empty() && std::holds_alternative<std::monostate>(fallback)) {
+    const T value = Spec{}.*member;
+    if constexpr (std::is_same_v<T, bool>) {
+      fallback = choices.at(static_cast<std::size_t>(value ? true_index : 1 - true_index));
+    } else {
+      fallback = choices.at(static_cast<std::size_t>(value));
     }
   }
   return std::move(*this);

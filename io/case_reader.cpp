@@ -12,6 +12,7 @@
 //   CaseSpec::end_time
 //   read_case_text, read_case_tree (the tables in order, [monopile] or the tables it builds, and
 //     the checks across tables), read_case_file (bases and --set overrides)
+#include "engine/monopile_geometry.hpp"
 #include "engine/particle_bins.hpp"
 #include "engine/structures/contact.hpp"
 #include "io/absorbing_reader.hpp"
@@ -56,7 +57,7 @@ std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key,
     AxisZone z;
     zone.read_into(z);
     if (!(z.end > z.start)) {
-      zone.fail("end", "must be greater than start (" + format_number(z.start) + ")");
+      zone.fail(&AxisZone::end, "must be greater than start (" + format_number(z.start) + ")");
     }
     warn_implausible_zone(zone, z.start, z.end, warnings);
     zone.finish();
@@ -79,14 +80,19 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
     return TimeFunction::constant(parent.number(key));
   }
   TomlTable f = parent.table(key);
-  const std::string type = f.string("type");
+  using Keys = TimeFunctionKeys;
+  Keys k;
+  f.read_members(k, {&Keys::type});
   TimeFunction result;
   try {
-    if (type == "constant") {
-      result = TimeFunction::constant(f.number("value"));
-    } else if (type == "ramp") {
-      result = TimeFunction::ramp(f.number("value"), f.number("duration"));
-    } else if (type == "table") {
+    // Each type reads its own keys; another type's is left unread and refused by finish().
+    if (k.type == "constant") {
+      f.read_members(k, {&Keys::value});
+      result = TimeFunction::constant(k.value);
+    } else if (k.type == "ramp") {
+      f.read_members(k, {&Keys::value, &Keys::duration});
+      result = TimeFunction::ramp(k.value, k.duration);
+    } else if (k.type == "table") {
       const TomlValue& points = f.raw("points");
       std::vector<std::pair<double, double>> table;
       bool ok = points.is_array() && !points.as_array().empty();
@@ -118,23 +124,18 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
       } catch (const std::invalid_argument& e) {
         f.fail("points", e.what());
       }
-    } else if (type == "harmonic") {
-      result = TimeFunction::harmonic(f.number("amplitude"), f.number("frequency"),
-                                      f.number("phase"), f.number("mean"));
-    } else if (type == "pulse_train") {
-      const double amplitude = f.number("amplitude");
-      const double duration = f.number("duration");
-      const double interval = f.number("interval");
-      if (interval < duration) {
-        f.fail("interval", "must not be shorter than the pulse duration");
+    } else if (k.type == "harmonic") {
+      f.read_members(k, {&Keys::amplitude, &Keys::frequency, &Keys::phase, &Keys::mean});
+      result = TimeFunction::harmonic(k.amplitude, k.frequency, k.phase, k.mean);
+    } else { // "pulse_train", the last of the declared types
+      f.read_members(k, {&Keys::amplitude, &Keys::duration, &Keys::interval});
+      if (k.interval < k.duration) {
+        f.fail(&Keys::interval, "must not be shorter than the pulse duration");
       }
-      result = TimeFunction::pulse_train(amplitude, duration, interval);
-    } else {
-      f.fail("type",
-             "unknown time function '" + type + "' (constant, ramp, table, harmonic, pulse_train)");
+      result = TimeFunction::pulse_train(k.amplitude, k.duration, k.interval);
     }
   } catch (const std::invalid_argument& e) {
-    f.fail("type", e.what());
+    f.fail(&Keys::type, e.what());
   }
   f.finish();
   return result;
@@ -215,34 +216,6 @@ NodeLineSpec read_node_line(TomlTable& owner, const Axes& axes) {
   return line;
 }
 
-int component_index(TomlTable& table, const std::string& key) {
-  const std::string name = table.string(key);
-  if (name == "r") {
-    return 0;
-  }
-  if (name == "y") {
-    return 1;
-  }
-  if (name == "theta") {
-    return 2;
-  }
-  table.fail(key, "must be \"r\", \"y\" or \"theta\", got \"" + name + "\"");
-}
-
-FaceCondition read_face(TomlTable& table, const std::string& key) {
-  const std::string name = table.string(key);
-  if (name == "free") {
-    return FaceCondition::free;
-  }
-  if (name == "roller") {
-    return FaceCondition::roller;
-  }
-  if (name == "fixed") {
-    return FaceCondition::fixed;
-  }
-  table.fail(key, "must be \"free\", \"roller\" or \"fixed\", got \"" + name + "\"");
-}
-
 void read_materials(TomlTable& top, CaseSpec& spec) {
   for (auto& [name, table] : top.named_tables("materials")) {
     spec.materials.push_back(read_material_table(table, name));
@@ -270,27 +243,26 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
     BodySpec body;
     table.read_into(body);
     if (!names.insert(body.name).second) {
-      table.fail("name", "a body named '" + body.name + "' already exists");
+      table.fail(&BodySpec::name, "a body named '" + body.name + "' already exists");
     }
-    if (const auto clash = groups.clash(body.name, location(table, "name"))) {
-      table.fail("name", *clash);
+    if (const auto clash =
+            groups.clash(body.name, location(table, table.key_of(&BodySpec::name)))) {
+      table.fail(&BodySpec::name, *clash);
     }
     const bool known = std::any_of(spec.materials.begin(), spec.materials.end(),
                                    [&](const MaterialSpec& m) { return m.name == body.material; });
     if (!known) {
-      table.fail("material", "no material named '" + body.material + "' in [materials]");
+      table.fail(&BodySpec::material, "no material named '" + body.material + "' in [materials]");
     }
     body.region = read_region(table, spec.mode, axes.r, axes.y);
     body.line = table.line_of("region");
     body.key = table.key_path("region");
-    body.cut_cells = table.string("seeding") == "cut_cells";
     if (std::optional<TomlTable> profile = table.optional_table("velocity_profile")) {
       VelocityProfile p;
-      p.component = component_index(*profile, "component");
+      profile->read_into(p);
       if (p.component == 2 && spec.mode == GeometryMode::plane_strain) {
-        profile->fail("component", "plane strain has no theta velocity");
+        profile->fail(&VelocityProfile::component, "plane strain has no theta velocity");
       }
-      p.along_y = profile->string("along") == "y";
       p.function = read_time_function(*profile, "function");
       profile->finish();
       body.velocity_profile = p;
@@ -309,7 +281,7 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
           std::find_if(spec.materials.begin(), spec.materials.end(),
                        [&](const MaterialSpec& m) { return m.name == body.material; });
       if (material->water.drainage != Drainage::drained) {
-        table.fail("material",
+        table.fail(&BodySpec::material,
                    "'" + body.material + "' is saturated (drainage = \"" +
                        drainage_names()[static_cast<std::size_t>(material->water.drainage)] +
                        "\"), but a rigid body has no pores: give it a dry material");
@@ -326,32 +298,31 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
   return rigid_tables;
 }
 
-/// The key `body`, which must name a rigid body.
 /// The names of the bodies a file declares rigid with a [bodies.rigid] table. Their drives are
 /// read after the phases (a drive names its phase), while the phases' stop criteria and the moving
 /// mesh name them first.
 using RigidNames = std::set<std::string>;
 
-std::string read_rigid_body_name(TomlTable& table, const CaseSpec& spec,
-                                 const RigidNames& declared_rigid, const std::string& why) {
-  std::string name = table.string("body");
+/// `name`, read under `key`, must name a rigid body.
+void check_rigid_body_name(const TomlTable& table, const std::string& key, const std::string& name,
+                           const CaseSpec& spec, const RigidNames& declared_rigid,
+                           const std::string& why) {
   const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
                                  [&](const BodySpec& b) { return b.name == name; });
   if (body == spec.bodies.end() || !(body->rigid || declared_rigid.contains(name))) {
-    table.fail("body", "no rigid body named '" + name + "'" + why);
+    table.fail(key, "no rigid body named '" + name + "'" + why);
   }
-  return name;
 }
 
-std::string read_phase_reference(TomlTable& table, const CaseSpec& spec) {
-  const std::string phase = table.string_or("phase", "");
+/// `phase`, read under `key`, must be empty (the first phase) or name a phase.
+void check_phase_reference(const TomlTable& table, const std::string& key, const std::string& phase,
+                           const CaseSpec& spec) {
   const bool known =
       phase.empty() || std::any_of(spec.phases.begin(), spec.phases.end(),
                                    [&](const PhaseSpec& p) { return p.name == phase; });
   if (!known) {
-    table.fail("phase", "no phase named '" + phase + "' in [[phases]]");
+    table.fail(key, "no phase named '" + phase + "' in [[phases]]");
   }
-  return phase;
 }
 
 /// The drive keys of a rigid body's table or a phase's `drive`: per DOF (RigidDof order) a velocity
@@ -393,21 +364,19 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec,
   RigidSpec rigid = body.rigid.value_or(RigidSpec{});
   const bool derived = body.rigid.has_value();
   const bool plane = spec.mode == GeometryMode::plane_strain;
-  const char* inertia_key = plane ? "inertia" : "polar_inertia";
-  for (const char* key : {"mass", inertia_key}) {
+  const std::string inertia_key = plane ? "inertia" : "polar_inertia";
+  for (const std::string& key : {table.key_of(&RigidSpec::mass), inertia_key}) {
     if (derived && table.has(key)) {
       table.fail(key, "the monopile's mass and polar inertia follow from pile_length, diameter, "
                       "wall_thickness and the pile material's density; remove this key");
     }
   }
-  if (table.has("mass")) {
-    rigid.mass = table.number("mass");
-  }
+  table.read_into(rigid);
   if (table.has(inertia_key)) {
     rigid.inertia = table.number(inertia_key);
   }
   rigid.drive = read_drives(table, spec, warnings);
-  rigid.phase = read_phase_reference(table, spec);
+  check_phase_reference(table, table.key_of(&RigidSpec::phase), rigid.phase, spec);
   table.finish();
   body.rigid = rigid;
 }
@@ -415,23 +384,23 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec,
 void read_contacts(TomlTable& top, CaseSpec& spec) {
   for (TomlTable& table : top.tables("contact")) {
     ContactSpec contact;
-    contact.structure = table.string("structure");
+    table.read_into(contact);
     const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
                                    [&](const BodySpec& b) { return b.name == contact.structure; });
     if (body == spec.bodies.end()) {
-      table.fail("structure", "no body named '" + contact.structure + "' in [[bodies]]");
+      table.fail(&ContactSpec::structure,
+                 "no body named '" + contact.structure + "' in [[bodies]]");
     }
     for (const ContactSpec& other : spec.contacts) {
       if (other.structure == contact.structure) {
-        table.fail("structure", "'" + contact.structure + "' already has a [[contact]] entry");
+        table.fail(&ContactSpec::structure,
+                   "'" + contact.structure + "' already has a [[contact]] entry");
       }
     }
-    table.read_into(contact);
-    warn_implausible_friction(table, "friction", contact.friction, spec.warnings);
-    contact.outline = table.string("normals") == "outline";
-    contact.surface_gap = table.string("gap") == "surface";
+    warn_implausible_friction(table, table.key_of(&ContactSpec::friction), contact.friction,
+                              spec.warnings);
     if (contact.surface_gap && !contact.outline) {
-      table.fail("gap", "the soil's surface gap needs the outline's normals");
+      table.fail(&ContactSpec::surface_gap, "the soil's surface gap needs the outline's normals");
     }
     if (contact.outline) {
       contact.surfaces = read_outline_surfaces(table, body->region, body->name);
@@ -477,10 +446,13 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
     return;
   }
   MovingMeshSpec mesh;
-  mesh.body = read_rigid_body_name(*table, spec, declared_rigid, " (the band moves with one)");
+  table->read_into(mesh);
+  check_rigid_body_name(*table, table->key_of(&MovingMeshSpec::body), mesh.body, spec,
+                        declared_rigid, " (the band moves with one)");
   if (spec.mode == GeometryMode::plane_strain) {
-    table->fail("body", "the moving mesh follows a body that only translates along y and spins "
-                        "about the axis: axisymmetric cases only");
+    table->fail(&MovingMeshSpec::body,
+                "the moving mesh follows a body that only translates along y and spins "
+                "about the axis: axisymmetric cases only");
   }
   const auto band = table->numbers("band", 2);
   if (!(band[1] > band[0]) || !on_grid_line(axes.y, band[0]) || !on_grid_line(axes.y, band[1])) {
@@ -489,9 +461,6 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
   if (!(band[0] > axes.y.start()) || !(band[1] < axes.y.end())) {
     table->fail("band", "must lie strictly inside the grid (the lines below and above it are "
                         "squeezed and stretched)");
-  }
-  if (table->has("travel")) {
-    mesh.travel = table->number("travel");
   }
   if (table->has("stretch")) {
     const auto stretch = table->numbers("stretch", 2);
@@ -511,7 +480,7 @@ void read_moving_mesh(TomlTable& top, CaseSpec& spec, const Axes& axes,
     try {
       moving_mesh_of(mesh, axes.y).lines_at(-mesh.travel);
     } catch (const std::runtime_error& e) {
-      table->fail("travel", e.what());
+      table->fail(&MovingMeshSpec::travel, e.what());
     }
   }
   spec.moving_mesh = mesh;
@@ -531,12 +500,10 @@ void read_affine_motion(TomlTable& top, CaseSpec& spec) {
 void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   const bool theta = has_theta(spec.mode);
   std::set<std::string> names;
-  auto unique_name = [&](TomlTable& table) {
-    std::string name = table.string("name");
+  auto unique_name = [&](const TomlTable& table, const std::string& key, const std::string& name) {
     if (!names.insert(name).second) {
-      table.fail("name", "a prescribed motion or load named '" + name + "' already exists");
+      table.fail(key, "a prescribed motion or load named '" + name + "' already exists");
     }
-    return name;
   };
   // A prescribed motion's reactions go to /boundaries/<name>, beside the constrained faces'.
   GroupNames boundaries("/boundaries");
@@ -551,9 +518,11 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
   for (TomlTable& table : top.tables("prescribed")) {
     MotionSpec motion;
-    motion.name = unique_name(table);
-    if (const auto clash = boundaries.clash(motion.name, location(table, "name"))) {
-      table.fail("name", *clash);
+    table.read_into(motion);
+    const std::string& name_key = table.key_of(&MotionSpec::name);
+    unique_name(table, name_key, motion.name);
+    if (const auto clash = boundaries.clash(motion.name, location(table, name_key))) {
+      table.fail(name_key, *clash);
     }
     motion.nodes = read_node_line(table, axes);
     const char* keys[] = {"velocity_r", "velocity_y", "velocity_theta"};
@@ -576,11 +545,10 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
       motion.theta_is_rotation = true;
     }
     if (!motion.velocity[0] && !motion.velocity[1] && !motion.velocity[2]) {
-      table.fail("name", "prescribes nothing: give velocity_r, velocity_y, velocity_theta or "
-                         "angular_velocity");
+      table.fail(name_key, "prescribes nothing: give velocity_r, velocity_y, velocity_theta or "
+                           "angular_velocity");
     }
-    motion.phase = read_phase_reference(table, spec);
-    motion.body = table.string_or("body", "");
+    check_phase_reference(table, table.key_of(&MotionSpec::phase), motion.phase, spec);
     if (!motion.body.empty()) {
       const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
                                      [&](const BodySpec& b) { return b.name == motion.body; });
@@ -588,12 +556,13 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
           std::any_of(spec.contacts.begin(), spec.contacts.end(),
                       [&](const ContactSpec& c) { return c.structure == motion.body; });
       if (body == spec.bodies.end() || !structure) {
-        table.fail("body",
+        table.fail(&MotionSpec::body,
                    "'" + motion.body +
                        "' is not a contact structure (only those have a field of their own)");
       }
       if (body->rigid) {
-        table.fail("body", "'" + motion.body + "' is rigid: drive it in its [bodies.rigid] table");
+        table.fail(&MotionSpec::body,
+                   "'" + motion.body + "' is rigid: drive it in its [bodies.rigid] table");
       }
     }
     table.finish();
@@ -601,18 +570,18 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
   for (TomlTable& table : top.tables("loads")) {
     LoadSpec load;
-    load.name = unique_name(table);
+    table.read_into(load);
+    unique_name(table, table.key_of(&LoadSpec::name), load.name);
     load.nodes = read_node_line(table, axes);
     if (spec.moving_mesh && load.nodes.along_y) {
       // Its nodal weights come from the y spacing, which the moving mesh changes.
       table.fail("nodes", "a load along an r-line cannot be combined with a moving mesh");
     }
-    load.component = component_index(table, "component");
     if (load.component == 2 && !theta) {
-      table.fail("component", "plane strain has no theta direction");
+      table.fail(&LoadSpec::component, "plane strain has no theta direction");
     }
     load.traction = read_time_function(table, "traction");
-    load.phase = read_phase_reference(table, spec);
+    check_phase_reference(table, table.key_of(&LoadSpec::phase), load.phase, spec);
     table.finish();
     spec.loads.push_back(std::move(load));
   }
@@ -624,65 +593,49 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   if (!table) {
     return;
   }
-  // Each declared setting through its declaration (solver/solver_settings.cpp), its range checked
-  // as it is read; an absent one keeps SolverSettings' default, which the declaration documents.
-  for (const SolverParameter& parameter : solver_parameters()) {
-    if (parameter.per_phase || !table->has(parameter.name)) {
-      continue;
-    }
-    std::visit(
-        [&](auto member) {
-          using Value = std::remove_cvref_t<decltype(s.*member)>;
-          if constexpr (std::is_same_v<Value, bool>) {
-            s.*member = table->boolean(parameter.name);
-          } else if constexpr (std::is_same_v<Value, int>) {
-            s.*member = static_cast<int>(table->integer(parameter.name));
-          } else {
-            s.*member = table->number(parameter.name);
-          }
-        },
-        parameter.member);
-  }
-  s.musl = table->string("scheme") == "musl";
+  // Each setting through its declaration (solver/solver_settings.cpp), bound to its member, its
+  // range checked as it is read; an absent one keeps SolverSettings' default, which the
+  // declaration documents.
+  table->read_into(s);
   if (table->has("gravity")) {
     const auto g = table->numbers("gravity", 2);
     s.gravity = {g[0], g[1]};
     warn_implausible_gravity(*table, {g[0], g[1]}, spec.mode == GeometryMode::axisymmetric,
                              spec.warnings);
   }
-  if (table->has("shape_functions")) {
-    const std::string shape = table->string("shape_functions");
-    s.shape_functions = shape == "gimp" ? ShapeFunctions::gimp : ShapeFunctions::linear;
-    if (s.shape_functions == ShapeFunctions::gimp &&
-        (axes.r.cell_count() < 2 || axes.y.cell_count() < 2)) {
-      table->fail("shape_functions", "GIMP needs at least 2 cells along r and along y (a "
-                                     "particle's domain may reach into the next cell)");
-    }
+  if (s.shape_functions == ShapeFunctions::gimp &&
+      (axes.r.cell_count() < 2 || axes.y.cell_count() < 2)) {
+    table->fail(&SolverSettings::shape_functions,
+                "GIMP needs at least 2 cells along r and along y (a particle's domain may reach "
+                "into the next cell)");
   }
   // The checks between keys; each key's own range was checked as it was read.
   if (s.xpic_order > 0 && s.flip_fraction != 1.0) {
-    table->fail("xpic_order", "XPIC(" + std::to_string(s.xpic_order) +
-                                  ") replaces the FLIP/PIC blend: leave flip_fraction at 1 (got " +
-                                  format_number(s.flip_fraction) + ")");
+    table->fail(&SolverSettings::xpic_order,
+                "XPIC(" + std::to_string(s.xpic_order) +
+                    ") replaces the FLIP/PIC blend: leave flip_fraction at 1 (got " +
+                    format_number(s.flip_fraction) + ")");
   }
   if (s.bbar_consistent_force && !s.bbar) {
-    table->fail("bbar_consistent_force", "is B-bar's transpose in the internal force: it needs "
-                                         "bbar = true");
+    table->fail(&SolverSettings::bbar_consistent_force,
+                "is B-bar's transpose in the internal force: it needs "
+                "bbar = true");
   }
   if (!(s.energy_residual_limit > s.energy_residual_warning)) {
-    table->fail("energy_residual_limit", "must exceed energy_residual_warning (" +
-                                             format_number(s.energy_residual_warning) + "), got " +
-                                             format_number(s.energy_residual_limit));
+    table->fail(&SolverSettings::energy_residual_limit,
+                "must exceed energy_residual_warning (" + format_number(s.energy_residual_warning) +
+                    "), got " + format_number(s.energy_residual_limit));
   }
   if (s.shape_functions == ShapeFunctions::gimp && s.block_cells < 3) {
-    table->fail("block_cells", "must be at least 3 with GIMP shape functions, got " +
-                                   std::to_string(s.block_cells));
+    table->fail(&SolverSettings::block_cells, "must be at least 3 with GIMP shape functions, got " +
+                                                  std::to_string(s.block_cells));
   }
   if (s.implicit_pore_pressure) {
     if (!s.musl) {
-      table->fail("implicit_pore_pressure", "the implicit pore pressure corrects the remapped "
-                                            "velocities the strains are taken from: it needs "
-                                            "scheme = \"musl\"");
+      table->fail(&SolverSettings::implicit_pore_pressure,
+                  "the implicit pore pressure corrects the remapped "
+                  "velocities the strains are taken from: it needs "
+                  "scheme = \"musl\"");
     }
     bool saturated = false;
     for (MaterialSpec& material : spec.materials) {
@@ -692,13 +645,14 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
       }
     }
     if (!saturated) {
-      table->fail("implicit_pore_pressure", "no material is undrained or coupled: there is no "
-                                            "pore pressure to solve for; remove it");
+      table->fail(&SolverSettings::implicit_pore_pressure,
+                  "no material is undrained or coupled: there is no "
+                  "pore pressure to solve for; remove it");
     }
     if (!spec.absorbing.faces.empty()) {
       // Their dashpots take the impedance of the stiffness the step follows, the skeleton's: a
       // saturated P pulse came back from them and 15 % of its energy went unbooked.
-      table->fail("implicit_pore_pressure",
+      table->fail(&SolverSettings::implicit_pore_pressure,
                   "absorbing faces are not built for the implicit pore pressure (their dashpots "
                   "would take the drained skeleton's impedance, not the undrained soil's): leave "
                   "it off with absorbing faces");
@@ -707,8 +661,9 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   if (s.cell_mean_pore_pressure &&
       std::none_of(spec.materials.begin(), spec.materials.end(),
                    [](const MaterialSpec& m) { return m.water.drainage != Drainage::drained; })) {
-    table->fail("cell_mean_pore_pressure", "no material is undrained or coupled: there is no "
-                                           "pore pressure to average; remove it");
+    table->fail(&SolverSettings::cell_mean_pore_pressure,
+                "no material is undrained or coupled: there is no "
+                "pore pressure to average; remove it");
   }
   s.validate(); // what the reader let through is valid; a failure here is the reader's fault
   table->finish();
@@ -720,14 +675,15 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     PhaseSpec phase;
     table.read_into(phase);
     if (!names.insert(phase.name).second) {
-      table.fail("name", "a phase named '" + phase.name + "' already exists");
+      table.fail<PhaseSpec>(&PhaseSpec::name, "a phase named '" + phase.name + "' already exists");
     }
     {
       // XPIC replaces the FLIP/PIC blend: the phase may not end up with both.
       const int order = phase.xpic_order.value_or(spec.solver.xpic_order);
       const double flip = phase.flip_fraction.value_or(spec.solver.flip_fraction);
       if (order > 0 && flip != 1.0) {
-        table.fail(phase.flip_fraction ? "flip_fraction" : "xpic_order",
+        table.fail(phase.flip_fraction ? table.key_of(&PhaseSpec::flip_fraction)
+                                       : table.key_of(&PhaseSpec::xpic_order),
                    "the phase would run XPIC(" + std::to_string(order) + ") with flip_fraction " +
                        format_number(flip) +
                        ": XPIC replaces the FLIP/PIC blend, so set xpic_order = 0 for a blend or "
@@ -760,14 +716,17 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     }
     if (std::optional<TomlTable> stop = table.optional_table("stop_at")) {
       PenetrationStop s;
-      s.body = read_rigid_body_name(*stop, spec, declared_rigid, "");
-      if (stop->has("settlement") == stop->has("penetration")) {
-        stop->fail("penetration", "give either penetration (the total downward displacement) or "
-                                  "settlement (the displacement since the phase started)");
+      stop->read_into(s);
+      check_rigid_body_name(*stop, stop->key_of(&PenetrationStop::body), s.body, spec,
+                            declared_rigid, "");
+      const std::string& penetration = stop->key_of(&PenetrationStop::penetration);
+      const std::string& settlement_key = stop->key_of(&PenetrationStop::settlement);
+      const bool settlement = stop->has(settlement_key);
+      if (settlement == stop->has(penetration)) {
+        stop->fail(penetration, "give either penetration (the total downward displacement) or "
+                                "settlement (the displacement since the phase started)");
       }
-      const bool settlement = stop->has("settlement");
       if (settlement) {
-        s.settlement = stop->number("settlement");
         // The deepest an earlier phase stops at, plus the settlement: how far the band must go
         // at least (an at-rest stop may overshoot; the run then ends the phase at the travel).
         double before = 0.0;
@@ -777,8 +736,6 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
           }
         }
         s.penetration = before + s.settlement;
-      } else {
-        s.penetration = stop->number("penetration");
       }
       if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
           s.penetration >= spec.moving_mesh->travel) {
@@ -795,15 +752,16 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
                  "the step that reaches it carries the band past it; stop short of it";
         }
         why << " or raise " << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
-        stop->fail(settlement ? "settlement" : "penetration", why.str());
+        stop->fail(settlement ? settlement_key : penetration, why.str());
       }
-      s.at_rest = stop->boolean("at_rest");
       stop->finish();
       phase.stop_at = s;
     }
     if (std::optional<TomlTable> drive = table.optional_table("drive")) {
       PhaseDrive d;
-      d.body = read_rigid_body_name(*drive, spec, declared_rigid, "");
+      drive->read_into(d);
+      check_rigid_body_name(*drive, drive->key_of(&PhaseDrive::body), d.body, spec, declared_rigid,
+                            "");
       d.drive = read_drives(*drive, spec, spec.warnings);
       drive->finish();
       phase.drive = d;
@@ -889,7 +847,8 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
       << physical / 1e9 << " GB";
   if (grid_bytes >= particles_bytes || grid_bytes > physical) {
     if (top.has("monopile")) {
-      top.table("monopile").fail("fine_cell", why.str() + "; check the cell sizes and extents");
+      top.table("monopile")
+          .fail(&MonopileParameters::fine_cell, why.str() + "; check the cell sizes and extents");
     }
     const bool r_larger = axes.r.cell_count() >= axes.y.cell_count();
     top.table("grid").fail(r_larger ? "r" : "y", why.str() + "; check the zones' cells and ends");
@@ -902,7 +861,7 @@ void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes&
                                   "' takes the most: check its region, the cells there and "
                                   "particles_per_cell");
   }
-  top.table("monopile").fail("particles_per_cell", why.str());
+  top.table("monopile").fail(&MonopileSetup::particles_per_cell, why.str());
 }
 
 /// [output.cpt]: the cone and sleeve must be surfaces of a structure's outline with the areas
@@ -915,21 +874,25 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
       outlined.push_back(c.structure);
     }
   }
-  cpt.body = table.string_or("body", outlined.size() == 1 ? outlined[0] : "");
   table.read_into(cpt);
+  if (!table.has(&OutputSpec::Cpt::body)) {
+    cpt.body = outlined.size() == 1 ? outlined[0] : "";
+  }
   table.finish(); // a misspelt key is named before what its absence caused
   if (spec.mode != GeometryMode::axisymmetric) {
-    table.fail("cone", "a cone penetration test is axisymmetric: set geometry to "
-                       "\"axisymmetric\"");
+    table.fail(&OutputSpec::Cpt::cone, "a cone penetration test is axisymmetric: set geometry to "
+                                       "\"axisymmetric\"");
   }
   const auto contact = std::find_if(spec.contacts.begin(), spec.contacts.end(),
                                     [&](const ContactSpec& c) { return c.structure == cpt.body; });
   if (contact == spec.contacts.end() || !contact->outline) {
-    table.fail("body", "must name the contact structure that is the cone, with outline normals" +
-                           std::string(cpt.body.empty() ? "" : " (got '" + cpt.body + "')"));
+    table.fail(&OutputSpec::Cpt::body,
+               "must name the contact structure that is the cone, with outline normals" +
+                   std::string(cpt.body.empty() ? "" : " (got '" + cpt.body + "')"));
   }
   if (cpt.cone == cpt.sleeve) {
-    table.fail("sleeve", "must be another surface than the cone's ('" + cpt.cone + "')");
+    table.fail(&OutputSpec::Cpt::sleeve,
+               "must be another surface than the cone's ('" + cpt.cone + "')");
   }
   // Surface 0 is the cone, 1 the sleeve, -1 every other edge.
   std::vector<int> edges;
@@ -941,14 +904,16 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
   const std::vector<SurfaceAreas> areas =
       surface_areas(region_outline(body.region, spec.mode, edges), 2, spec.mode);
   if (!(areas[0].plan > 0.0)) {
-    table.fail("cone", "'" + cpt.cone + "' is no surface of '" + cpt.body +
-                           "' with a plan area (its horizontal projection, over which q_c is "
-                           "quoted)");
+    table.fail(&OutputSpec::Cpt::cone,
+               "'" + cpt.cone + "' is no surface of '" + cpt.body +
+                   "' with a plan area (its horizontal projection, over which q_c is "
+                   "quoted)");
   }
   if (!(areas[1].side > 0.0)) {
-    table.fail("sleeve", "'" + cpt.sleeve + "' is no surface of '" + cpt.body +
-                             "' with a side area (its vertical projection, over which f_s is "
-                             "quoted)");
+    table.fail(&OutputSpec::Cpt::sleeve,
+               "'" + cpt.sleeve + "' is no surface of '" + cpt.body +
+                   "' with a side area (its vertical projection, over which f_s is "
+                   "quoted)");
   }
   return cpt;
 }
@@ -956,42 +921,38 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
 MonitorSpec read_monitor(TomlTable& table, const Axes& axes,
                          const std::vector<MonitorSpec>& earlier) {
   MonitorSpec monitor;
-  monitor.name = table.string("name");
+  table.read_into(monitor); // its name and particle
   const bool dataset_safe =
       !monitor.name.empty() && std::all_of(monitor.name.begin(), monitor.name.end(), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
       });
   if (!dataset_safe) {
-    table.fail("name", "use letters, digits and underscores (it names /monitors/<name> in "
-                       "history.h5)");
+    table.fail(&MonitorSpec::name, "use letters, digits and underscores (it names "
+                                   "/monitors/<name> in history.h5)");
   }
   for (const MonitorSpec& other : earlier) {
     if (other.name == monitor.name) {
-      table.fail("name", "another monitor is named '" + monitor.name + "'");
+      table.fail(&MonitorSpec::name, "another monitor is named '" + monitor.name + "'");
     }
   }
-  if (table.has("position") == table.has("particle")) {
+  const std::string& particle = table.key_of(&MonitorSpec::particle);
+  if (table.has("position") == table.has(particle)) {
     table.fail("position", "give either position = [r, y] (the soil particle nearest it at the "
                            "start) or particle = <id>");
   }
-  if (table.has("position")) {
+  const std::string key = monitor.particle ? particle : "position";
+  if (!monitor.particle) {
     const std::vector<double> at = table.numbers("position", 2);
     if (!(at[0] >= axes.r.start() && at[0] <= axes.r.end() && at[1] >= axes.y.start() &&
           at[1] <= axes.y.end())) {
       table.fail("position", "lies outside the grid");
     }
     monitor.position = std::array<double, 2>{at[0], at[1]};
-    monitor.where = table.file_of("position") + ":" + std::to_string(table.line_of("position")) +
-                    ": " + table.key_path("position");
-  } else {
-    const long id = table.integer("particle");
-    if (id > std::numeric_limits<std::int32_t>::max()) {
-      table.fail("particle", "must be a particle id (0 or more), got " + std::to_string(id));
-    }
-    monitor.particle = id;
-    monitor.where = table.file_of("particle") + ":" + std::to_string(table.line_of("particle")) +
-                    ": " + table.key_path("particle");
+  } else if (*monitor.particle > std::numeric_limits<std::int32_t>::max()) {
+    table.fail(particle,
+               "must be a particle id (0 or more), got " + std::to_string(*monitor.particle));
   }
+  monitor.where = location(table, key) + ": " + table.key_path(key);
   table.finish();
   return monitor;
 }
@@ -1024,10 +985,16 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
         rigid.push_back(body.name);
       }
     }
-    out.penetration_body = table->string_or("penetration_body", rigid.size() == 1 ? rigid[0] : "");
-    if (std::find(rigid.begin(), rigid.end(), out.penetration_body) == rigid.end()) {
-      table->fail("penetration_body", "must name the rigid body whose penetration counts");
+    if (!table->has(&OutputSpec::penetration_body)) {
+      out.penetration_body = rigid.size() == 1 ? rigid[0] : "";
     }
+    if (std::find(rigid.begin(), rigid.end(), out.penetration_body) == rigid.end()) {
+      table->fail(&OutputSpec::penetration_body,
+                  "must name the rigid body whose penetration counts");
+    }
+  } else if (table->has(&OutputSpec::penetration_body)) {
+    table->fail(&OutputSpec::penetration_body,
+                "given without snapshot_penetrations, the penetrations it counts");
   }
   if (std::optional<TomlTable> cpt = table->optional_table("cpt")) {
     out.cpt = read_cpt_output(*cpt, spec);
@@ -1041,17 +1008,8 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
 /// A material's drainage and its pore water's parameters, which only a saturated (undrained or
 /// coupled) material may give; the hydraulic conductivity only a coupled one, which must.
 void read_pore_water(TomlTable& table, MaterialSpec& material) {
-  std::string drainage = "drained";
-  if (table.has("drainage")) {
-    drainage = table.string("drainage");
-  }
-  const auto& names = drainage_names();
-  const auto named = std::find(names.begin(), names.end(), drainage);
-  if (named == names.end()) {
-    table.fail("drainage",
-               "'" + drainage + "' is not a drainage type: drained, undrained or coupled");
-  }
-  material.water.drainage = static_cast<Drainage>(named - names.begin());
+  // Drainage and the water's parameters, bound to PoreWater, each in its declared range.
+  table.read_into(material.water);
   for (const PoreWaterParameter& parameter : pore_water_parameters()) {
     const bool conductivity = parameter.member == &PoreWater::hydraulic_conductivity;
     if (!table.has(parameter.name)) {
@@ -1069,13 +1027,23 @@ void read_pore_water(TomlTable& table, MaterialSpec& material) {
       table.fail(parameter.name, "an undrained material's water does not flow: give k with "
                                  "drainage = \"coupled\", or remove it");
     }
-    const double x = table.number(parameter.name);
-    if (!parameter.range.contains(x)) {
-      table.fail(parameter.name, parameter.name + " must be " + parameter.range.text() + " " +
-                                     parameter.unit + ", got " + format_bound(x));
-    }
-    material.water.*parameter.member = x;
   }
+}
+
+/// Whether `text` names `key` as a word ("friction_angle" in "in [0, friction_angle]", not in
+/// "critical_friction_angle").
+bool mentions(const std::string& text, const std::string& key) {
+  const auto word = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+  };
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1)) {
+    const bool starts = at == 0 || !word(text[at - 1]);
+    const bool ends = at + key.size() == text.size() || !word(text[at + key.size()]);
+    if (starts && ends) {
+      return true;
+    }
+  }
+  return false;
 }
 
 } // namespace
@@ -1083,18 +1051,10 @@ void read_pore_water(TomlTable& table, MaterialSpec& material) {
 MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
   MaterialSpec material;
   material.name = name;
-  material.type = table.string("type");
-  const MaterialType* type = nullptr;
-  std::string known;
-  for (const MaterialType& t : material_types()) {
-    known += (known.empty() ? "" : ", ") + t.name;
-    if (t.name == material.type) {
-      type = &t;
-    }
-  }
-  if (type == nullptr) {
-    table.fail("type", "unknown material type '" + material.type + "' (known: " + known + ")");
-  }
+  table.read_into(material); // its type, one of the registry's (the declaration's choices)
+  const MaterialType* type =
+      &*std::find_if(material_types().begin(), material_types().end(),
+                     [&](const MaterialType& t) { return t.name == material.type; });
   read_pore_water(table, material);
   for (const MaterialParameterSpec& parameter : type->parameters) {
     if (table.has(parameter.name)) {
@@ -1130,15 +1090,29 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
                     [&](const PoreWaterParameter& p) { return p.name == first; });
     // A value of the wrong unit often makes the model's checks between parameters fail (a
     // friction angle in radians, E50 in kPa: no cap then fits): the key of the likely slip is
-    // blamed, with its hint.
+    // blamed, with its hint, before a named parameter that a base file gave.
+    const std::string blamed = named ? first : table.key_of(&MaterialSpec::type);
     std::vector<CaseWarning> hints;
     warn_implausible_material(table, material, hints);
     for (const CaseWarning& hint : hints) {
-      if (!named || hint.key == first) {
+      if (!named || hint.key == first || table.nearest_key(first, {hint.key}) == hint.key) {
         table.fail(hint.key, message + "; " + hint.message);
       }
     }
-    table.fail(named ? first : "type", message);
+    // Else the parameters the message compares: the one the case wrote is named.
+    std::vector<std::string> compared;
+    for (const MaterialParameterSpec& p : type->parameters) {
+      if (p.name != first && mentions(message.substr(prefix.size()), p.name)) {
+        compared.push_back(p.name);
+      }
+    }
+    const std::string nearest = table.nearest_key(blamed, compared);
+    if (nearest != blamed) {
+      table.fail(nearest,
+                 named ? message + " (" + blamed + " = " + table.value_and_place(blamed) + ")"
+                       : message);
+    }
+    table.fail(blamed, message);
   }
   return material;
 }
@@ -1166,9 +1140,10 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   CaseSpec spec;
   spec.file = file;
   spec.text = text;
-  spec.title = top.string_or("title", std::filesystem::path(file).stem().string());
-  spec.mode = top.string("geometry") == "axisymmetric" ? GeometryMode::axisymmetric
-                                                       : GeometryMode::plane_strain;
+  top.read_into(spec); // title and geometry
+  if (!top.has(&CaseSpec::title)) {
+    spec.title = std::filesystem::path(file).stem().string();
+  }
 
   // Either a [monopile] table builds grid, bodies, contact and boundaries, or the file gives them.
   std::vector<std::pair<std::size_t, TomlTable>> rigid_tables;
@@ -1207,16 +1182,16 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     read_absorbing_faces(*boundaries, spec,
                          spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0);
     absorbing_table = *boundaries;
-    const char* keys[] = {"r_min", "r_max", "y_min", "y_max"};
-    for (std::size_t f = 0; f < 4; ++f) {
-      spec.faces[f] = read_face(*boundaries, keys[f]);
-    }
+    FaceConditions faces;
+    boundaries->read_into(faces);
+    spec.faces = {faces.r_min, faces.r_max, faces.y_min, faces.y_max};
+    const char* face_names[] = {"r_min", "r_max", "y_min", "y_max"}; // the drained list's
     if (boundaries->has("drained")) {
       spec.drained_faces = read_face_list(*boundaries, "drained");
       drained_table = *boundaries;
       for (const GridFace face : spec.drained_faces) {
         if (spec.faces[static_cast<std::size_t>(face)] == FaceCondition::free) {
-          boundaries->fail("drained", std::string("lists \"") + keys[static_cast<int>(face)] +
+          boundaries->fail("drained", std::string("lists \"") + face_names[static_cast<int>(face)] +
                                           "\", a free face: the water leaves a free face already");
         }
       }
@@ -1228,9 +1203,10 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
       }
     }
     if (spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0 &&
-        boundaries->has("r_min")) {
-      boundaries->fail("r_min", "the grid starts on the axis, which is constrained "
-                                "(u_r = u_theta = 0) automatically; remove this key");
+        boundaries->has(&FaceConditions::r_min)) {
+      boundaries->fail(&FaceConditions::r_min,
+                       "the grid starts on the axis, which is constrained "
+                       "(u_r = u_theta = 0) automatically; remove this key");
     }
     boundaries->finish();
   }
@@ -1261,10 +1237,11 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
                               "cells there finer or raise particles_per_cell");
     }
   }
-  const bool shape_given = top.has("solver") && top.table("solver").has("shape_functions");
+  const bool shape_given =
+      top.has("solver") && top.table("solver").has(&SolverSettings::shape_functions);
   if (spec.moving_mesh && shape_given && spec.solver.shape_functions == ShapeFunctions::linear) {
     top.table("solver").fail(
-        "shape_functions",
+        &SolverSettings::shape_functions,
         "bilinear weights on a moving mesh shake the soil: every line moving under a particle "
         "jolts its nodal forces (soil at rest under a moving band: the base reaction swings by "
         "97 % of the weight; the quick jacked pile's base reaction 1.25 to 3.11 MN/rad against "
@@ -1276,8 +1253,9 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     // functions"), so a moving mesh takes GIMP unless the case says otherwise.
     spec.solver.shape_functions = ShapeFunctions::gimp;
     if (spec.solver.block_cells < 3) {
-      top.table("solver").fail("block_cells", "must be at least 3 with GIMP shape functions, "
-                                              "the default with a moving mesh");
+      top.table("solver").fail(&SolverSettings::block_cells,
+                               "must be at least 3 with GIMP shape functions, the default with a "
+                               "moving mesh");
     }
   }
   read_phases(top, spec, declared_rigid);

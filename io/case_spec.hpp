@@ -159,6 +159,36 @@ struct OutputSpec {
   std::vector<MonitorSpec> monitors;
 };
 
+/// [boundaries]' conditions by face as written (CaseSpec::faces holds them in GridFace order).
+struct FaceConditions {
+  FaceCondition r_min = FaceCondition::free;
+  FaceCondition r_max = FaceCondition::free;
+  FaceCondition y_min = FaceCondition::free;
+  FaceCondition y_max = FaceCondition::free;
+};
+
+/// A time function's table as written: its type and the numbers that type takes (the reader reads
+/// those alone, TomlTable::read_members, so that another type's key is refused as unknown).
+struct TimeFunctionKeys {
+  std::string type;
+  double value = 0.0;
+  double duration = 0.0;
+  double amplitude = 0.0;
+  double frequency = 0.0;
+  double phase = 0.0;
+  double mean = 0.0;
+  double interval = 0.0;
+};
+
+/// [monopile]'s keys beyond the geometry's (MonopileParameters) and its contact's (ContactSpec):
+/// the materials it builds the soil and the pile of, their particles, whether the band moves.
+struct MonopileSetup {
+  std::string soil_material;
+  std::string pile_material;
+  int particles_per_cell = 2;
+  bool moving_mesh = true;
+};
+
 /// y-lines between band_bottom and band_top (grid lines) move with a rigid body.
 struct MovingMeshSpec {
   std::string body;

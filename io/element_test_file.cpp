@@ -54,7 +54,10 @@ long count(TomlTable& table, const std::string& key, long fallback, long minimum
 }
 
 void read_material(TomlTable& top, ElementTestSpec& spec) {
-  TomlTable table = top.table("material");
+  // Read against a case's [materials.<name>] declaration: its model, drainage and pore water.
+  top.table("material"); // a table, or refused
+  TomlTable table(top.raw("material"), top.key_path("material"), top.file(),
+                  find_table_spec("materials.*"));
   const MaterialSpec material = read_material_table(table, "material");
   spec.material_type = material.type;
   spec.parameters = material.parameters;

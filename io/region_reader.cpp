@@ -1,6 +1,7 @@
 #include "io/region_reader.hpp"
 
 #include "engine/structures/contact.hpp"
+#include "io/case_spec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -195,7 +196,7 @@ std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region&
   const std::size_t n = region.vertices().size();
   if (!region.convex()) {
     const std::size_t vertex = region.given_vertex(region.first_reflex_vertex());
-    contact.fail("structure",
+    contact.fail(&ContactSpec::structure,
                  "body '" + name +
                      "' is a polygon that is not convex (it turns inwards at vertex " +
                      std::to_string(vertex) +

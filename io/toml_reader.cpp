@@ -300,6 +300,44 @@ std::string TomlTable::file_of(const std::string& key) const {
   return name.empty() || name == "unknown file" ? file_ : name;
 }
 
+namespace {
+
+/// How near the user a key's value was written: 0 on the command line (--set), 1 in the case file
+/// read, 2 in one of its bases, 3 not at all (a default).
+int source_rank(const TomlTable& table, const std::string& key) {
+  if (!table.has(key)) {
+    return 3;
+  }
+  const std::string file = table.file_of(key);
+  if (file.rfind("--set", 0) == 0) {
+    return 0;
+  }
+  return file == table.file() ? 1 : 2;
+}
+
+} // namespace
+
+std::string TomlTable::nearest_key(const std::string& key,
+                                   const std::vector<std::string>& with) const {
+  std::string nearest = key;
+  for (const std::string& other : with) {
+    if (source_rank(*this, other) < source_rank(*this, nearest)) {
+      nearest = other;
+    }
+  }
+  return nearest;
+}
+
+std::string TomlTable::value_and_place(const std::string& key) const {
+  if (!has(key)) {
+    const KeySpec* k = spec_ != nullptr ? spec_->key(key) : nullptr;
+    const bool given = k != nullptr && !std::holds_alternative<std::monostate>(k->fallback);
+    return given ? k->default_description() + ", its default" : "its default";
+  }
+  return toml::format(table_->as_table().at(key)) + " at " + file_of(key) + ":" +
+         std::to_string(line_of(key));
+}
+
 void TomlTable::fail(const std::string& key, const std::string& message) const {
   throw CaseError(file_of(key) + ":" + std::to_string(line_of(key)) + ": " + key_path(key) + ": " +
                   message);
@@ -538,6 +576,25 @@ void read_key(TomlTable& table, const std::string& key, std::optional<double>& f
 }
 void read_key(TomlTable& table, const std::string& key, std::optional<int>& field) {
   field = static_cast<int>(table.integer(key));
+}
+void read_key(TomlTable& table, const std::string& key, std::optional<long>& field) {
+  field = table.integer(key);
+}
+
+long read_choice(TomlTable& table, const std::string& key) {
+  const std::string x = table.string(key); // refused unless one of the choices
+  const std::vector<std::string>& choices = table.spec()->key(key)->choices;
+  return std::find(choices.begin(), choices.end(), x) - choices.begin();
+}
+
+const std::string& TomlTable::bound_key(const std::type_info& spec, std::ptrdiff_t offset) const {
+  for (const KeySpec& k : declared_keys()) {
+    if (k.bound_to != nullptr && *k.bound_to == spec && k.bound_offset == offset) {
+      return k.name;
+    }
+  }
+  throw std::logic_error("no key of " + (spec_ != nullptr ? table_heading(*spec_) : path_) +
+                         " is bound to that member of " + spec.name());
 }
 
 void TomlTable::finish() const {

@@ -12,6 +12,7 @@
 #include <toml.hpp>
 
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <set>
@@ -56,6 +57,22 @@ public:
   /// holds; an absent one keeps the member's initialiser, its declared default, and an absent
   /// required one is refused.
   template <class Spec> void read_into(Spec& target);
+  /// Reads the keys bound to these members of Spec alone, as a table whose keys depend on another
+  /// key's value does (a time function's on its type): the others stay unread, for finish() to
+  /// refuse; a listed key that is absent and has no declared default is missing.
+  template <class Spec, class T>
+  void read_members(Spec& target, std::initializer_list<T Spec::*> members);
+  /// The key bound to a member of Spec (KeySpec::into), as the declaration names it: a check
+  /// between keys names it so, not by a second spelling. `Target` as for KeySpec::into.
+  template <class Target = void, class T, class Owner>
+  const std::string& key_of(T Owner::*member) const;
+  template <class Target = void, class T, class Owner> bool has(T Owner::*member) const {
+    return has(key_of<Target>(member));
+  }
+  template <class Target = void, class T, class Owner>
+  [[noreturn]] void fail(T Owner::*member, const std::string& message) const {
+    fail(key_of<Target>(member), message);
+  }
 
   /// Throws for any key that was not read.
   void finish() const;
@@ -68,6 +85,14 @@ public:
   /// within two edits of it, that key is the error (a typo reported as the key it was meant to be
   /// would point at the wrong line); otherwise "missing (required)", followed by `what` when given.
   [[noreturn]] void missing(const std::string& key, const std::string& what = "") const;
+  /// Of a key a check between keys refuses and the keys it compares it with, the one to blame: the
+  /// one written nearest the user (a --set, then this case file, then a base file, then a default
+  /// left unwritten), `key` on a tie. A value in a base is rarely the slip: `diameter = 746` over a
+  /// base's soil_width is refused by soil_width's check, and is the key to name.
+  std::string nearest_key(const std::string& key, const std::vector<std::string>& with) const;
+  /// A key's value as a message quotes the other side of a check: "5.0 at base.toml:32", or
+  /// "0.2, its default" when the table does not hold it.
+  std::string value_and_place(const std::string& key) const;
   std::string key_path(const std::string& key) const;
   int line_of(const std::string& key) const;
   /// The file a key's value came from (a base case file, or "--set ..."), else this table's file.
@@ -80,6 +105,7 @@ public:
   double positive(const std::string& key);
 
 private:
+  const std::string& bound_key(const std::type_info& spec, std::ptrdiff_t offset) const;
   const TomlValue& value(const std::string& key);
   [[noreturn]] void type_error(const std::string& key, const std::string& expected) const;
   /// The key's declaration (nullptr for a table without one, or a material's parameter); throws
@@ -101,12 +127,30 @@ private:
 
 template <class Spec> void TomlTable::read_into(Spec& target) {
   for (const KeySpec& key : declared_keys()) {
-    // A required key is read absent too, to be refused as missing.
+    // A required key is read absent too, to be refused as missing; an absent key with a declared
+    // default takes it.
     if (key.bound_to != nullptr && *key.bound_to == typeid(Spec) &&
-        (has(key.name) || key.required)) {
+        (has(key.name) || key.required || !std::holds_alternative<std::monostate>(key.fallback))) {
       key.store(*this, key.name, &target);
     }
   }
+}
+
+template <class Spec, class T>
+void TomlTable::read_members(Spec& target, std::initializer_list<T Spec::*> members) {
+  for (T Spec::*member : members) {
+    const KeySpec& k = *spec_->key(key_of<Spec>(member));
+    if (!has(k.name) && std::holds_alternative<std::monostate>(k.fallback)) {
+      missing(k.name);
+    }
+    k.store(*this, k.name, &target);
+  }
+}
+
+template <class Target, class T, class Owner>
+const std::string& TomlTable::key_of(T Owner::*member) const {
+  using Spec = std::conditional_t<std::is_void_v<Target>, Owner, Target>;
+  return bound_key(typeid(Spec), member_offset<Spec>(member));
 }
 
 /// A number as a message quotes it (six significant digits).

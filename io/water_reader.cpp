@@ -29,7 +29,7 @@ const MaterialSpec& material_named(const CaseSpec& spec, const std::string& name
 
 /// The seabed: the K0 surface of the first K0 procedure each saturated body gets. Every saturated
 /// body must get one, on the same surface.
-double seabed_of(const TomlTable& table, const CaseSpec& spec) {
+double seabed_of(const TomlTable& table, const std::string& level, const CaseSpec& spec) {
   bool found = false;
   double seabed = 0.0;
   for (const BodySpec& body : spec.bodies) {
@@ -45,14 +45,14 @@ double seabed_of(const TomlTable& table, const CaseSpec& spec) {
       }
     }
     if (first == nullptr) {
-      table.fail("level", "body '" + body.name +
-                              "' holds pore water but no phase gives it a K0 procedure, whose "
-                              "surface is the seabed the sea stands on");
+      table.fail(level, "body '" + body.name +
+                            "' holds pore water but no phase gives it a K0 procedure, whose "
+                            "surface is the seabed the sea stands on");
     }
     if (found && first->surface != seabed) {
-      table.fail("level", "the saturated bodies' K0 surfaces differ (" + format_number(seabed) +
-                              " and " + format_number(first->surface) +
-                              " m): the sea stands on one horizontal seabed");
+      table.fail(level, "the saturated bodies' K0 surfaces differ (" + format_number(seabed) +
+                            " and " + format_number(first->surface) +
+                            " m): the sea stands on one horizontal seabed");
     }
     seabed = first->surface;
     found = true;
@@ -67,60 +67,60 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
   if (!table) {
     return;
   }
+  WaterSpec water;
+  table->read_into(water); // the level
+  PoreWater cavitation;
+  table->read_into(cavitation); // the cavitation stress
+  const std::string& level = table->key_of(&WaterSpec::level);
+  const std::string& cavitation_stress = table->key_of(&PoreWater::cavitation_stress);
+  const std::string& given = table->has(level) ? level : cavitation_stress;
   double water_density = 0.0;
   for (const MaterialSpec& m : spec.materials) {
     if (!saturated(m)) {
       continue;
     }
     if (water_density != 0.0 && m.water.density != water_density) {
-      table->fail(table->has("level") ? "level" : "cavitation_stress",
+      table->fail(given,
                   "the saturated materials' water_density differ: one sea fills their pores");
     }
     water_density = m.water.density;
   }
   if (water_density == 0.0) {
-    table->fail(table->has("level") ? "level" : "cavitation_stress",
-                "no material holds pore water (drainage = \"undrained\" or \"coupled\")");
+    table->fail(given, "no material holds pore water (drainage = \"undrained\" or \"coupled\")");
   }
   double column_pressure = 0.0;
-  if (table->has("level")) {
-    WaterSpec water;
-    water.level = table->number("level");
+  if (table->has(level)) {
     if (!(water.level >= grid_bottom)) {
-      table->fail("level", format_number(water.level) + " m lies below the grid (its bottom is " +
-                               format_number(grid_bottom) + " m)");
+      table->fail(level, format_number(water.level) + " m lies below the grid (its bottom is " +
+                             format_number(grid_bottom) + " m)");
     }
-    water.seabed = seabed_of(*table, spec);
+    water.seabed = seabed_of(*table, level, spec);
     if (water.level < water.seabed) {
-      table->fail("level", format_number(water.level) +
-                               " m lies below the seabed (the K0 surface, " +
-                               format_number(water.seabed) +
-                               " m): a phreatic level inside the soil, dry soil above it, is not "
-                               "modelled");
+      table->fail(level, format_number(water.level) + " m lies below the seabed (the K0 surface, " +
+                             format_number(water.seabed) +
+                             " m): a phreatic level inside the soil, dry soil above it, is not "
+                             "modelled");
     }
     const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
     water.column_pressure = water_density * g * (water.level - water.seabed);
     // The deepest ocean is 11 km: 1.1e8 Pa on its floor. A level of 1e308 m made the pressure
     // infinite, and the run wrote inf and NaN into every total stress it reported.
     if (!std::isfinite(water.column_pressure) || water.column_pressure > 2e8) {
-      table->fail("level", format_number(water.level) + " m puts " +
-                               format_number(water.level - water.seabed) +
-                               " m of water on the seabed, a pressure of " +
-                               format_number(water.column_pressure) +
-                               " Pa: above the 2e8 Pa of 20 km of water (a length in mm?)");
+      table->fail(level, format_number(water.level) + " m puts " +
+                             format_number(water.level - water.seabed) +
+                             " m of water on the seabed, a pressure of " +
+                             format_number(water.column_pressure) +
+                             " Pa: above the 2e8 Pa of 20 km of water (a length in mm?)");
     }
     column_pressure = water.column_pressure;
     spec.water = water;
   }
-  const std::optional<double> cavitation = table->has("cavitation_stress")
-                                               ? std::optional(table->number("cavitation_stress"))
-                                               : std::nullopt;
   table->finish();
   for (MaterialSpec& m : spec.materials) {
     if (saturated(m)) {
       m.water.column_pressure = column_pressure;
-      if (cavitation) {
-        m.water.cavitation_stress = *cavitation;
+      if (table->has(cavitation_stress)) {
+        m.water.cavitation_stress = cavitation.cavitation_stress;
       }
     }
   }

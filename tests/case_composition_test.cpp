@@ -132,6 +132,88 @@ TEST(CaseComposition, AnErrorInABaseValueNamesTheBaseFileAndLine) {
   EXPECT_EQ(error.substr(error.size() - suffix.size()), suffix) << error;
 }
 
+// A monopile over a base, as the shipped cases are written: the case overrides one key.
+const char* monopile_base = R"(geometry = "axisymmetric"
+[materials.sand]
+type = "mohr_coulomb"
+young_modulus = 20e6
+poisson_ratio = 0.3
+density = 1650.0
+cohesion = 1e3
+friction_angle = 30.0
+dilatancy_angle = 20.0
+[materials.steel]
+type = "linear_elastic"
+young_modulus = 210e9
+poisson_ratio = 0.3
+density = 7850.0
+[monopile]
+soil_width = 5.0
+soil_material = "sand"
+pile_material = "steel"
+[[phases]]
+name = "settle"
+duration = 0.1
+)";
+
+// A check between keys refuses the key the case wrote, not the one its base gave: a diameter in
+// mm is refused by soil_width's check (the pile wider than the soil), and was blamed on the base's
+// soil_width; a friction angle below the base's dilatancy angle was blamed on dilatancy_angle.
+TEST(CaseComposition, ACheckBetweenKeysNamesTheKeyTheCaseWrote) {
+  const auto error_with = [](const std::string& name, const std::string& top,
+                             const std::vector<std::string>& overrides = {}) {
+    const Files f = write_files(name, monopile_base, "base = \"shared/base.toml\"\n" + top);
+    return std::pair{error_of(f.case_file.string(), overrides), f};
+  };
+  {
+    const auto [error, f] = error_with("blame_diameter", "[monopile]\ndiameter = 746\n");
+    EXPECT_EQ(error.rfind(f.case_file.string() + ":3: monopile.diameter: soil_width must exceed "
+                                                 "the pile's outer radius",
+                          0),
+              0u)
+        << error;
+    // The other side of the check: its value and where the base wrote it.
+    EXPECT_NE(error.find("(soil_width = 5.0 at " + f.base.lexically_normal().string() + ":16)"),
+              std::string::npos)
+        << error;
+  }
+  {
+    const auto [error, f] = error_with("blame_diameter_set", "", {"monopile.diameter=746"});
+    EXPECT_EQ(
+        error.rfind("--set monopile.diameter:1: monopile.diameter: soil_width must exceed", 0), 0u)
+        << error;
+  }
+  {
+    // Both in the case: the check's own key, as before.
+    const auto [error, f] =
+        error_with("blame_soil_width", "[monopile]\ndiameter = 1.0\nsoil_width = 0.6\n");
+    EXPECT_EQ(error.rfind(f.case_file.string() + ":4: monopile.soil_width: must exceed", 0), 0u)
+        << error;
+  }
+  {
+    const auto [error, f] =
+        error_with("blame_friction_angle", "[materials.sand]\nfriction_angle = 10.0\n");
+    EXPECT_EQ(error.rfind(f.case_file.string() +
+                              ":3: materials.sand.friction_angle: mohr_coulomb: dilatancy_angle "
+                              "must lie between 0 and friction_angle",
+                          0),
+              0u)
+        << error;
+    EXPECT_NE(
+        error.find("(dilatancy_angle = 20.0 at " + f.base.lexically_normal().string() + ":9)"),
+        std::string::npos)
+        << error;
+  }
+  {
+    // An angle in radians: the key with its hint.
+    const auto [error, f] =
+        error_with("blame_radians", "[materials.sand]\nfriction_angle = 0.65\n");
+    EXPECT_EQ(error.rfind(f.case_file.string() + ":3: materials.sand.friction_angle: ", 0), 0u)
+        << error;
+    EXPECT_NE(error.find("did you mean 0.65 rad = 37.2 degrees?"), std::string::npos) << error;
+  }
+}
+
 TEST(CaseComposition, BadBasesAreRefusedWithTheLineThatNamesThem) {
   Files f = write_files("missing_base", base_text, replaced(case_text, "shared/base", "nowhere"));
   std::string error = error_of(f.case_file.string());

@@ -462,6 +462,10 @@ std::vector<BadInput> bad_contact_inputs() {
        "output.cpt.sleeve: must be another surface than the cone's ('tip')", "sleeve = "},
       {"misspelt CPT key", contact_case + "\n[output.cpt]\ncnoe = \"tip\"\n",
        "output.cpt.cnoe: unknown key", "cnoe = "},
+      // It was refused as an unknown key of [output], whose list of keys holds it.
+      {"penetration body without snapshot penetrations",
+       contact_case + "\n[output]\npenetration_body = \"pile\"\n",
+       "output.penetration_body: given without snapshot_penetrations", "penetration_body = "},
       {"prescribed motion on a rigid body",
        contact_case + "\n[[prescribed]]\nname = \"head\"\nbody = \"pile\"\nnodes = { y = 1.0 }\n"
                       "velocity_y = -0.01\n",
@@ -545,7 +549,10 @@ std::vector<BadInput> bad_monopile_inputs() {
       {"pile wider than the soil", monopile_edited("soil_width = 5.0", "soil_width = 0.3"),
        "monopile.soil_width: must exceed the pile's outer radius", "soil_width"},
       {"tip below the bottom", monopile_edited("embedment = 3.0", "embedment = 9.9"),
-       "monopile.band_below: the moving band reaches the bottom of the soil", ""},
+       "monopile.embedment: band_below: the moving band reaches the bottom of the soil "
+       "(soil_depth - embedment - band_below must leave room for cells below it) (band_below = "
+       "0.4, its default)",
+       "embedment = 9.9"},
       // A mistyped extent: billions of cells, refused before any node list is built (it took
       // minutes and gigabytes).
       {"soil width of billions of cells",

@@ -339,10 +339,11 @@ TEST(ElementTest, BadInputIsRejectedWithFileLineAndKey) {
       {"friction_angle = 30.0", "friction_angle = 95.0", "material.friction_angle",
        "friction_angle", "[0, 90)"},
       {"cohesion = 5e3", "cohesion = 5e3\ndilatancy_angle = 40.0", "material.dilatancy_angle",
-       "dilatancy_angle", "friction angle"},
+       "dilatancy_angle", "friction_angle"},
       {"cohesion = 5e3\n", "", "material.cohesion", "[material]", "missing (required)"},
       {"type = \"mohr_coulomb\"", "type = \"mohr_colomb\"", "material.type", "mohr_colomb",
-       "unknown material type"},
+       "must be \"linear_elastic\", \"mohr_coulomb\", \"hardening_soil\" or \"hypoplastic\", got "
+       "\"mohr_colomb\""},
       {"density = 1800.0", "density = 1800.0\ncolour = 1", "material.colour", "colour",
        "unknown key"},
       {"lateral = 50e3", "lateral = \"50e3\"", "initial_stress.lateral", "lateral",

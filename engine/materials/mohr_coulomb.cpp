@@ -90,9 +90,10 @@ MohrCoulomb::MohrCoulomb(double young_modulus, double poisson_ratio, double dens
   require_in_range("density", density_range, density);
   require_in_range("cohesion", cohesion_range, cohesion);
   require_in_range("friction_angle", mohr_coulomb_friction_range, friction_angle);
-  // The message avoids the other parameter's name so that a case file error points here.
+  // The message begins with the parameter it refuses and names the one it compares it with: a
+  // case file's error points at whichever of them the case wrote.
   if (!(dilatancy_angle >= 0.0 && dilatancy_angle <= friction_angle)) {
-    throw std::invalid_argument("dilatancy_angle must lie between 0 and the friction angle (" +
+    throw std::invalid_argument("dilatancy_angle must lie between 0 and friction_angle (" +
                                 std::to_string(friction_angle) + " degrees), got " +
                                 std::to_string(dilatancy_angle));
   }
