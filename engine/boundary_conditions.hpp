@@ -73,9 +73,24 @@ NodeConstraint axis_constraint(const Grid& grid);
 NodalLoad line_load(const Grid& grid, GeometryMode mode, const std::vector<int>& nodes,
                     int component, TimeFunction traction, std::string name);
 
+/// The far field's pore water beyond a drained face, at rest below the saturated soil's surface:
+/// its pressure p_b = rho_w g_y (surface - y) below the surface (tension positive, g_y < 0), zero
+/// above, acts on the face as the traction p_b n on the water and on the mixture. Without it a
+/// drained face is an open drain (p_b = 0), through which a hydrostatic column empties.
+struct DrainedFaceWater {
+  GridFace face = GridFace::y_min;
+  std::vector<int> nodes; // along the face, in order
+  double surface = 0.0;   // m: where the far field's pore pressure is zero
+  double density = 0.0;   // kg/m^3: its water's
+  /// The last step's force (r, y) on each node of `nodes` (solver/drained_face_water.cpp).
+  std::vector<std::array<double, 2>> force;
+};
+
 struct Boundaries {
   std::vector<NodeConstraint> constraints;
   std::vector<NodalLoad> loads;
+  /// Drained faces held at the far field's hydrostatic pressure ([boundaries] drained_pressure).
+  std::vector<DrainedFaceWater> drained_water;
   /// Faces whose support gives way to dashpots when they are switched on.
   std::vector<AbsorbingFace> absorbing;
 

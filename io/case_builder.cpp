@@ -353,6 +353,14 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
       boundaries.constraints.back().drained =
           std::find(spec.drained_faces.begin(), spec.drained_faces.end(), faces[f]) !=
           spec.drained_faces.end();
+      if (boundaries.constraints.back().drained && spec.drained_water) {
+        DrainedFaceWater water;
+        water.face = faces[f];
+        water.nodes = boundaries.constraints.back().nodes;
+        water.surface = spec.drained_water->surface;
+        water.density = spec.drained_water->density;
+        boundaries.drained_water.push_back(std::move(water));
+      }
     }
   }
   if (spec.mode == GeometryMode::axisymmetric && scene->grid.r_axis().start() == 0.0) {

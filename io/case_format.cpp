@@ -647,6 +647,14 @@ std::vector<TableSpec> declare() {
                                       "impermeable, a free face drains already")
                        .one_of({"r_min", "r_max", "y_min", "y_max"})
                        .or_computed("none"));
+    keys.push_back(string("drained_pressure",
+                          "the pore pressure beyond the drained faces: \"zero\" (an open drain: "
+                          "under gravity a column empties through it) or \"hydrostatic\" (the far "
+                          "field's water, at rest below the saturated soil's surface: [water] "
+                          "seabed or the saturated bodies' K0 surface)")
+                       .or_default(std::string("zero"))
+                       .one_of({"zero", "hydrostatic"})
+                       .choice_into(&FaceConditions::hydrostatic_drains, "hydrostatic"));
     keys.push_back(string("absorbing_phase", "the phase at whose start the absorbing faces "
                                              "switch on")
                        .or_computed(first_phase)

@@ -1178,6 +1178,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     rigid_tables = read_bodies(top, spec, axes, body_tables);
   }
   std::optional<TomlTable> drained_table; // for the note below, once gravity is known
+  bool hydrostatic_drains = false;        // ... and the far field's water, once phases are
   if (std::optional<TomlTable> boundaries = top.optional_table("boundaries")) {
     read_absorbing_faces(*boundaries, spec,
                          spec.mode == GeometryMode::axisymmetric && axes.r.start() == 0.0);
@@ -1186,6 +1187,12 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     boundaries->read_into(faces);
     spec.faces = {faces.r_min, faces.r_max, faces.y_min, faces.y_max};
     const char* face_names[] = {"r_min", "r_max", "y_min", "y_max"}; // the drained list's
+    hydrostatic_drains = faces.hydrostatic_drains;
+    if (faces.hydrostatic_drains && !boundaries->has("drained")) {
+      boundaries->fail(&FaceConditions::hydrostatic_drains,
+                       "no face is drained (give them with drained = [...]): there is no water "
+                       "beyond a face for the pressure to act through");
+    }
     if (boundaries->has("drained")) {
       spec.drained_faces = read_face_list(*boundaries, "drained");
       drained_table = *boundaries;
@@ -1211,7 +1218,8 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
     boundaries->finish();
   }
   read_solver(top, spec, axes);
-  if (drained_table && (spec.solver.gravity[0] != 0.0 || spec.solver.gravity[1] != 0.0)) {
+  if (drained_table && !hydrostatic_drains &&
+      (spec.solver.gravity[0] != 0.0 || spec.solver.gravity[1] != 0.0)) {
     note_drained_face_under_gravity(*drained_table, spec.warnings);
   }
   if (spec.solver.gravity[1] != 0.0) {
@@ -1260,6 +1268,9 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   }
   read_phases(top, spec, declared_rigid);
   read_water(top, spec, axes.y.start());
+  if (hydrostatic_drains) {
+    read_drained_water(*drained_table, spec);
+  }
   for (auto& [name, table] : top.named_tables("materials")) {
     const auto m = std::find_if(spec.materials.begin(), spec.materials.end(),
                                 [&](const MaterialSpec& x) { return x.name == name; });

@@ -165,6 +165,9 @@ struct FaceConditions {
   FaceCondition r_max = FaceCondition::free;
   FaceCondition y_min = FaceCondition::free;
   FaceCondition y_max = FaceCondition::free;
+  /// The pore pressure beyond the drained faces: zero (an open drain) or the far field's
+  /// hydrostatic pressure below the saturated soil's surface.
+  bool hydrostatic_drains = false;
 };
 
 /// A time function's table as written: its type and the numbers that type takes (the reader reads
@@ -235,6 +238,13 @@ struct CaseSpec {
   /// Held faces the pore water of coupled soil flows out through (p = 0 beyond them); every other
   /// held face is impermeable.
   std::vector<GridFace> drained_faces;
+  /// [boundaries] drained_pressure = "hydrostatic": where the far field's pore pressure is zero
+  /// (the saturated soil's surface) and its water's density (DrainedFaceWater).
+  struct DrainedWater {
+    double surface = 0.0;
+    double density = 0.0;
+  };
+  std::optional<DrainedWater> drained_water;
   /// Faces whose support gives way to dashpots (engine/absorbing_boundary.hpp) at the start of a
   /// phase (empty: the first).
   struct Absorbing {

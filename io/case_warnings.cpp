@@ -371,8 +371,8 @@ void note_drained_face_under_gravity(const TomlTable& boundaries,
   add(warnings, CaseWarning::Kind::resolution, boundaries, "drained",
       "a drained face has p = 0 beyond it (the atmosphere, or the sea's pressure on the seabed "
       "with [water]): under gravity the pore water flows out through it as from a column on an "
-      "open drain, not into a far field at hydrostatic pressure; leave the face impermeable for "
-      "that (docs/physics.md section 9b)");
+      "open drain; drained_pressure = \"hydrostatic\" drains it into a far field at "
+      "hydrostatic pressure instead (docs/physics.md section 9b)");
 }
 
 bool refused_when_strict(const std::vector<CaseWarning>& warnings) {

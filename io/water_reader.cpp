@@ -47,12 +47,13 @@ double seabed_of(const TomlTable& table, const std::string& level, const CaseSpe
     if (first == nullptr) {
       table.fail(level, "body '" + body.name +
                             "' holds pore water but no phase gives it a K0 procedure, whose "
-                            "surface is the seabed the sea stands on");
+                            "surface is the seabed: the water's surface, where its hydrostatic "
+                            "pressure starts");
     }
     if (found && first->surface != seabed) {
       table.fail(level, "the saturated bodies' K0 surfaces differ (" + format_number(seabed) +
                             " and " + format_number(first->surface) +
-                            " m): the sea stands on one horizontal seabed");
+                            " m): the water stands on one horizontal seabed");
     }
     seabed = first->surface;
     found = true;
@@ -124,6 +125,30 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
       }
     }
   }
+}
+
+void read_drained_water(TomlTable& boundaries, CaseSpec& spec) {
+  const std::string& key = boundaries.key_of(&FaceConditions::hydrostatic_drains);
+  if (spec.solver.gravity[0] != 0.0 || !(spec.solver.gravity[1] < 0.0)) {
+    boundaries.fail(key, "the far field's water is hydrostatic under gravity along -y; [solver] "
+                         "gravity is [" +
+                             format_number(spec.solver.gravity[0]) + ", " +
+                             format_number(spec.solver.gravity[1]) + "]");
+  }
+  CaseSpec::DrainedWater water;
+  for (const MaterialSpec& m : spec.materials) {
+    if (saturated(m)) {
+      if (water.density != 0.0 && m.water.density != water.density) {
+        boundaries.fail(key, "the saturated materials' water_density differ: the far field holds "
+                             "one water");
+      }
+      water.density = m.water.density;
+    }
+  }
+  // The pore pressure is kept relative to the sea's column (physics.md section 9c), so the far
+  // field's is zero on the seabed as the soil's is.
+  water.surface = spec.water ? spec.water->seabed : seabed_of(boundaries, key, spec);
+  spec.drained_water = water;
 }
 
 } // namespace mpile

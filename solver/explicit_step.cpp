@@ -106,6 +106,7 @@ template <GeometryMode mode, ShapeFunctions shape> void ExplicitSolver::map_wate
   }
   PassTimer timer(timings_.particle_to_grid);
   passes::map_water_to_grid<mode, shape>(scene_, bins_, liquid_phases_, settings_);
+  passes::apply_drained_face_water(scene_, liquid_phases_, settings_);
 }
 
 template <GeometryMode mode>
@@ -140,7 +141,9 @@ EnergyIncrement ExplicitSolver::update_water_velocities(const passes::StepParame
   // velocities: the predictor's drag and the correction's add to one drag implicit in the
   // corrected relative flow, and the pore pressure's work is booked on the same velocities
   // (docs/saturated.md, "The step's energy identity").
-  return {.external_work = water.support_work + water.drain_work,
+  const double far_field =
+      scene_.boundaries.drained_water.empty() ? 0.0 : passes::drained_face_water_work(scene_, step);
+  return {.external_work = water.support_work + water.drain_work + far_field,
           .drag = water.tied_drag + (settings_.implicit_pore_pressure ? 0.0 : water.drag)};
 }
 

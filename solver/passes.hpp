@@ -64,6 +64,12 @@ struct WaterVelocityResult {
 template <GeometryMode mode>
 WaterVelocityResult update_water_velocities(Scene& scene, const StepParameters& step,
                                             double mass_scaling);
+/// Drained faces held at the far field's hydrostatic pressure (Boundaries::drained_water): its
+/// traction on the face nodes' water and mixture, after map_water_to_grid; and the work it did on
+/// the water over the step, after update_water_velocities (solver/drained_face_water.cpp).
+void apply_drained_face_water(Scene& scene, const std::vector<const LiquidPhase*>& phases,
+                              const SolverSettings& settings);
+double drained_face_water_work(const Scene& scene, const StepParameters& step);
 /// With cell_mean_pore_pressure: each cell's saturated particles take their volume-weighted mean
 /// excess pore pressure (the total stress following, the effective stress kept); the stored energy
 /// this changes is the ledger's plastic term (solver/pore_pressure_to_grid.cpp).

@@ -372,6 +372,10 @@ TEST(CaseWarnings, ADrainedFaceUnderGravityIsNoted) {
     return found;
   };
   EXPECT_EQ(notes(replaced(column, "gravity = [0.0, -9.81]", "gravity = [0.0, 0.0]")), "");
+  // Drained into the far field's water, the face holds the column's water at rest: no note.
+  EXPECT_EQ(notes(replaced(column, "drained = [\"y_min\"]\n",
+                           "drained = [\"y_min\"]\ndrained_pressure = \"hydrostatic\"\n")),
+            "");
   const auto at = column.find("drained =");
   const auto line = 1 + std::count(column.begin(), column.begin() + static_cast<long>(at), '\n');
   EXPECT_EQ(notes(column).rfind("case.toml:" + std::to_string(line) + ": boundaries.drained: ", 0),

@@ -109,16 +109,22 @@ TEST(CoupledSoil, ResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
       0.02);
 }
 
-// A drained base (`[boundaries] drained`): the water leaves through the held base as through the
-// free top, so the column consolidates as two of half its height, each drained on one side
+// V10's column (terzaghi_consolidation.toml) drained at its base as well, `base` the base's keys
+// and `more` lines after its phase's duration: the water leaves through the held base as through
+// the free top, so the column consolidates as two of half its height, each drained on one side
 // (Terzaghi's closed form with H / 2). At T_v = c_v t / (H / 2)^2 = 0.3 the degree of
 // consolidation is 0.61, against 0.31 for the same time with the base impermeable.
-TEST(CoupledSoil, ADrainedBaseHalvesTheDrainagePath) {
+void expect_half_the_drainage_path(const std::string& base, const std::string& more) {
   const std::string text =
       replaced(replaced(read_text(source / "cases/verification/terzaghi_consolidation.toml"),
-                        "y_min = \"fixed\"", "y_min = \"fixed\"\ndrained = [\"y_min\"]"),
-               "duration = 0.505", "duration = 0.045");
+                        "y_min = \"fixed\"", "y_min = \"fixed\"\n" + base),
+               "duration = 0.505", "duration = 0.045\n" + more);
   CaseRun run(text);
+  if (!run.spec.phases[0].k0.empty()) {
+    apply_k0(*run.scene, run.spec, run.spec.phases[0]);
+    run.solver = std::make_unique<ExplicitSolver>(
+        *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+  }
   const double height = 1.0, q = 10e3, rise = 2.3962e-3, k = 1.9648e-3;
   const double oedometer = 10e6, bulk = 2.2e9, n = 1.0 - 1600.0 / 2650.0;
   const double c_v = k / (1000.0 * 9.80665 * (1.0 / oedometer + n / bulk));
@@ -180,6 +186,68 @@ TEST(CoupledSoil, ADrainedBaseHalvesTheDrainagePath) {
     }
   }
   EXPECT_LT(worst, 0.02 * q);
+}
+
+TEST(CoupledSoil, ADrainedBaseHalvesTheDrainagePath) {
+  expect_half_the_drainage_path("drained = [\"y_min\"]", "");
+}
+
+// The same under gravity from its K0 state, the base drained into the far field's hydrostatic
+// water ([boundaries] drained_pressure): the excess pore pressure consolidates as without gravity.
+// Drained into an open drain (p = 0 beyond the base) the column's own water runs out as well: its
+// excess pore pressure at T_v = 0.3 is then the load's and 10 kPa of the water's weight.
+TEST(CoupledSoil, ABaseDrainedIntoTheFarFieldsWaterHalvesTheDrainagePathUnderGravity) {
+  expect_half_the_drainage_path(
+      "drained = [\"y_min\"]\ndrained_pressure = \"hydrostatic\"\n[solver]\ngravity = [0.0, -9.81]",
+      "k0 = [{ body = \"column\", surface = 1.0, k0 = 0.4286 }]");
+}
+
+// A saturated column at rest in its K0 state on a base drained into the far field's hydrostatic
+// water: nothing moves. The water at the base meets the far field's pressure, integrated on the
+// particles' points as the water's own force is, so node by node the column is in equilibrium: the
+// water's velocity stays at round-off (an open drain, p = 0 beyond, empties the column at about
+// k = 1e-3 m/s), the pore pressure hydrostatic to round-off, and the base's support carries the
+// skeleton's buoyant weight alone, the far field's water the rest.
+TEST(CoupledSoil, ABaseDrainedIntoTheFarFieldsWaterHoldsAColumnAtRest) {
+  const std::string text = replaced(
+      saturated_column(5.0, 20, 0.5,
+                       "type = \"linear_elastic\"\nyoung_modulus = 50e6\npoisson_ratio = 0.3\n"
+                       "density = 1600.0\ndrainage = \"coupled\"\nhydraulic_conductivity = 1e-3\n"),
+      "y_min = \"fixed\"\n",
+      "y_min = \"fixed\"\ndrained = [\"y_min\"]\ndrained_pressure = \"hydrostatic\"\n");
+  CaseRun run(text);
+  apply_k0(*run.scene, run.spec, run.spec.phases[0]);
+  run.solver = std::make_unique<ExplicitSolver>(
+      *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+  run.solver->advance_to(0.5);
+  const Particles& p = run.scene->particles;
+  const Material& sand = *run.scene->materials.at(0);
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const auto pore = static_cast<std::size_t>(sand.pore_pressure_index());
+  const LiquidPhase* phase = sand.liquid_phase();
+  ASSERT_NE(phase, nullptr);
+  const auto water_velocity = static_cast<std::size_t>(phase->velocity_slot);
+  const double rho_w = 1000.0, g = 9.81, height = 5.0;
+  double fastest = 0.0, worst = 0.0, weight = 0.0, buoyancy = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double* state = p.state.data() + i * stride;
+    fastest =
+        std::max({fastest, std::abs(state[water_velocity]), std::abs(state[water_velocity + 1])});
+    worst = std::max(worst, std::abs(state[pore] + rho_w * g * (height - p.y[i])));
+    weight += p.mass[i] * g;
+  }
+  // The far field's water under the base: rho_w g H over the base's area per radian, R^2 / 2.
+  buoyancy = rho_w * g * height * 0.5 * 0.5 * 0.5;
+  double base = 0.0;
+  for (const NodeConstraint& c : run.scene->boundaries.constraints) {
+    if (c.name == "y_min") {
+      base = c.reaction[1];
+    }
+  }
+  EXPECT_LT(fastest, 1e-9) << "m/s; k = 1e-3 m/s";
+  EXPECT_LT(worst, 1e-6 * rho_w * g * height) << "Pa from hydrostatic";
+  EXPECT_NEAR(base / (weight - buoyancy), 1.0, 1e-4)
+      << "base " << base << " N/rad, weight " << weight << ", the far field's water " << buoyancy;
 }
 
 // A drained well and a rigid plate's underside, where the water flows along the wall past the
@@ -340,6 +408,46 @@ TEST(CoupledSoil, SettingsWithoutPoreWaterToActOnAreRefusedAtTheirKey) {
                        "rigid body has no pores"),
             std::string::npos)
       << error;
+}
+
+// The far field's water is refused, at drained_pressure's line, where it has nothing to act
+// through (no drained face), no hydrostatic state (gravity along r) or no surface to stand on (no
+// K0 procedure gives the saturated body one).
+TEST(CoupledSoil, AFarFieldWithoutADrainGravityOrASurfaceIsRefusedAtItsKey) {
+  const std::string column =
+      saturated_column(5.0, 20, 0.01,
+                       "type = \"linear_elastic\"\nyoung_modulus = 50e6\npoisson_ratio = 0.3\n"
+                       "density = 1600.0\ndrainage = \"coupled\"\nhydraulic_conductivity = 1e-3\n");
+  const auto error_of = [](const std::string& text) {
+    try {
+      CaseRun run(text);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string hydrostatic = "drained_pressure = \"hydrostatic\"\n";
+  const std::string drained = "drained = [\"y_min\"]\n" + hydrostatic;
+  // The key's line: the column's [boundaries] table, after its faces (and the drained list).
+  const std::string key = ": boundaries.drained_pressure: ";
+  std::string error =
+      error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + hydrostatic));
+  EXPECT_EQ(error.rfind("test.toml:19" + key + "no face is drained", 0), 0u) << error;
+  const std::string at = "test.toml:20" + key;
+  error =
+      error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
+                        "gravity = [0.0, -9.81]", "gravity = [-9.81, 0.0]"));
+  EXPECT_NE(error.find(at + "the far field's water is hydrostatic under gravity along -y"),
+            std::string::npos)
+      << error;
+  error =
+      error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
+                        "k0 = [{ body = \"column\", surface = 5, k0 = 0.5 }]\n", ""));
+  EXPECT_NE(error.find(at + "body 'column' holds pore water but no phase gives it a K0 procedure"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained)),
+            "accepted");
 }
 
 // A body given an initial velocity moves whole, its pore water with its grains: a saturated block
