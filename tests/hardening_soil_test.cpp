@@ -479,8 +479,8 @@ TEST(HardeningSoil, TheLastActiveSetGivesTheOrderedSearchsState) {
             << worst_cap << " (relative)\n";
   // Both solve the same surfaces to 1e-10 of the stress level, so where two active sets meet
   // within that their states may differ by the tolerance over the return's conditioning: up to
-  // 1e-8 was measured on the quick GDP scene (docs/performance.md), 1.5e-15 on this walk. Without
-  // the rule that a corner variant counts only at its corner the walk differs by 4e-2.
+  // 1e-8 was measured on the quick GDP scene (docs/hardening-soil.md), 1.5e-15 on this walk.
+  // Without the rule that a corner variant counts only at its corner the walk differs by 4e-2.
   EXPECT_GT(kept, 10000);
   EXPECT_LE(worst_stress, 1e-8);
   EXPECT_LE(worst_gamma, 1e-8);

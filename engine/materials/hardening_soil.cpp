@@ -950,7 +950,7 @@ ReturnState return_to_surfaces(const HardeningSoilReturn& returner, const Return
   if (last_active_set >= 1 && last_active_set <= 9 && tried((last_active_set - 1) / 3)) {
     // A particle loaded on, it tends to stay on the same surfaces: on the quick GDP scene the
     // last active set holds for 96 % of plastic substeps, where the ordered search tries three
-    // variants on average (docs/performance.md). A corner variant's flow (the corner's cap
+    // variants on average (docs/hardening-soil.md). A corner variant's flow (the corner's cap
     // direction, the split shear) belongs only to a state at its corner, so a corner variant whose
     // split clamped it off the corner does not count: the search decides there. What the last set
     // gives is then the ordered search's state to the tolerance of the surfaces
