@@ -296,6 +296,44 @@ TEST(HardeningSoil, YieldDeviatorSlopesAreItsDerivatives) {
   EXPECT_NEAR(low.yield_deviator_slopes(gamma, sigma_3).by_sigma, by_sigma, 1e-6 * by_sigma);
 }
 
+TEST(HardeningSoil, TheStiffnessFactorsSeriesIsThePowerLawToRounding) {
+  // Near a remembered ratio the update takes ratio^m from a binomial series to x^8 (x the relative
+  // distance, |x| <= 2^-6) instead of std::pow. The series' remainder is below 7e-18 of the factor
+  // (stiffness_factor's comment); Horner's rule, the quotient x and the last product round at
+  // about an ulp, and std::pow is within one: 4 ulps (8.9e-16 relative) is the bound asked. A wrong
+  // coefficient or sign shows by orders of magnitude, and so would the series used out to 2^-4
+  // (its next term alone is about 1e-13 there).
+  std::mt19937 random(68);
+  for (const double power : {0.1, 0.47, 0.5, 0.75, 0.99}) {
+    HardeningSoilParameters parameters = seed_parameters();
+    parameters.power = power;
+    const HardeningSoil model(parameters);
+    // Offsets to four times the series' range, so that a series used too far would show too.
+    std::uniform_real_distribution<double> anchor(0.01, 20.0), offset(-0x1p-4, 0x1p-4);
+    const double edge = (1.0 - 1e-9) * 0x1p-6; // just inside the range (rounding of the ratio)
+    for (int k = 0; k < 4000; ++k) {
+      HardeningSoil::StiffnessFactorMemo memo;
+      const double remembered = anchor(random);
+      // The first evaluation is the power law itself, and the same ratio gives it again.
+      ASSERT_EQ(model.stiffness_factor(remembered, memo), std::pow(remembered, power));
+      ASSERT_EQ(model.stiffness_factor(remembered, memo), std::pow(remembered, power));
+      const double x = k % 100 == 0 ? (k % 200 == 0 ? edge : -edge) : offset(random);
+      const double ratio = remembered * (1.0 + x);
+      const double exact = std::pow(ratio, power);
+      ASSERT_NEAR(model.stiffness_factor(ratio, memo), exact, 8.9e-16 * exact)
+          << "m = " << power << ", ratio " << remembered << " * (1 + " << x << ")";
+      if (std::abs(x) <= edge) {
+        ASSERT_EQ(memo.ratio, remembered); // the series does not move what it is anchored at
+      }
+    }
+    // Farther away the power law is evaluated and remembered.
+    HardeningSoil::StiffnessFactorMemo memo;
+    model.stiffness_factor(1.0, memo);
+    EXPECT_EQ(model.stiffness_factor(1.1, memo), std::pow(1.1, power));
+    EXPECT_EQ(memo.ratio, 1.1);
+  }
+}
+
 TEST(HardeningSoil, IsotropicCompressionTangentOnTheCap) {
   const HardeningSoil model(seed_parameters());
   const double p = 100 * kPa;
@@ -441,8 +479,8 @@ TEST(HardeningSoil, TheLastActiveSetGivesTheOrderedSearchsState) {
             << worst_cap << " (relative)\n";
   // Both solve the same surfaces to 1e-10 of the stress level, so where two active sets meet
   // within that their states may differ by the tolerance over the return's conditioning: up to
-  // 1e-8 was measured on the quick GDP scene (docs/performance.md), 1.5e-15 on this walk. Without
-  // the rule that a corner variant counts only at its corner the walk differs by 4e-2.
+  // 1e-8 was measured on the quick GDP scene (docs/hardening-soil.md), 1.5e-15 on this walk.
+  // Without the rule that a corner variant counts only at its corner the walk differs by 4e-2.
   EXPECT_GT(kept, 10000);
   EXPECT_LE(worst_stress, 1e-8);
   EXPECT_LE(worst_gamma, 1e-8);

@@ -151,6 +151,31 @@ TEST(PrincipalStress, ValuesAloneAgreeWithTheDecompositionWithinTheirUncertainty
   }
 }
 
+TEST(PrincipalStress, TheMinorValueAloneIsTheValuesSmallestToTheBit) {
+  // principal_compression_minor serves the stiffness at the start of a Hardening Soil update in
+  // place of principal_compression_values: it must give the very same number, with and without
+  // theta shears, at repeated values and at the isotropic state.
+  std::mt19937 random(68);
+  std::uniform_real_distribution<double> value(-1e5, 1e5);
+  std::vector<Stress> cases{{-50e3, -100e3, -50e3, 0.0, 0.0, 0.0},
+                            {-50e3, -100e3, -50e3, 0.0, 1e-3, 0.0},
+                            {-70e3, -70e3, -70e3, 0.0, 0.0, 0.0},
+                            {-70e3, -70e3, -70e3, 0.0, 0.0, 1e-200},
+                            {-20e3, -60e3, -80e3, 0.0, 0.0, 0.0}};
+  for (int k = 0; k < 1000; ++k) {
+    Stress s;
+    for (double& c : s) {
+      c = value(random);
+    }
+    cases.push_back(s);
+    s[RT] = s[YT] = 0.0;
+    cases.push_back(s);
+  }
+  for (const Stress& s : cases) {
+    ASSERT_EQ(principal_compression_minor(s), principal_compression_values(s).values[2]);
+  }
+}
+
 TEST(PrincipalStress, EngineeringShearStrainConvertsBothWays) {
   const StrainIncrement de{1e-4, -2e-4, 3e-5, 4e-4, -6e-5, 8e-5};
   const Eigen::Matrix3d m = to_matrix(de, true);

@@ -5,7 +5,8 @@
 //   helpers: root finders (decreasing_root, root_from_zero), surface_tolerance, the elastic
 //     constants of a (sub)step, the mechanisms (three shear planes and the cap), ReturnState
 //   HardeningSoil: the constructor (parameters checked), moduli and surfaces (stress ratio, E_ur,
-//     E_50, E_oed, q_f, the yield hyperbola and its slopes, the hardening function, the cap),
+//     E_50, E_oed, q_f, the stiffness factor's memo, the yield hyperbola and its slopes, the
+//     hardening function, the cap),
 //     derive_cap, the state's start, the elastic moduli and energy, update_stress (a batch)
 //   HardeningSoilReturn: one implicit return with frozen moduli and directions: residuals, shear
 //     multipliers split over planes and corners, linearised states, Newton's method on a shear
@@ -173,12 +174,25 @@ HardeningSoil::HardeningSoil(const HardeningSoilParameters& p) : parameters_(p) 
   // The hyperbola needs Eur > Ei = 2 E50 / (2 - Rf); otherwise f-bar is not monotonic.
   require(p.eur_ref > 2.0 * p.e50_ref / (2.0 - p.failure_ratio),
           "eur_ref must exceed 2 e50_ref / (2 - failure_ratio)");
+  // Reciprocals and coefficients of the laws evaluated at every iteration of a return: products
+  // where the return would divide (each division costs several multiplications' time).
+  inverse_ratio_denominator_ = 1.0 / (p.cohesion * cos_phi_ + p.p_ref * sin_phi_);
+  qf_coefficient_ = 2.0 * sin_phi_ / (1.0 - sin_phi_);
+  inverse_failure_ratio_ = 1.0 / p.failure_ratio;
+  a_coefficient_ = (2.0 - p.failure_ratio) / p.e50_ref;
+  b_coefficient_ = 2.0 / p.eur_ref;
   derive_cap();
+  inverse_alpha2_ = 1.0 / (alpha_ * alpha_);
+  double binomial = 1.0; // binomial(m, k), k = 1 .. 8: the stiffness factor's series
+  for (std::size_t k = 1; k <= binomial_.size(); ++k) {
+    binomial *= (p.power - static_cast<double>(k - 1)) / static_cast<double>(k);
+    binomial_[k - 1] = binomial;
+  }
 }
 
 double HardeningSoil::stress_ratio(double sigma) const {
-  const double c_cos = parameters_.cohesion * cos_phi_;
-  const double ratio = (c_cos + sigma * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
+  const double ratio =
+      (parameters_.cohesion * cos_phi_ + sigma * sin_phi_) * inverse_ratio_denominator_;
   return std::max(ratio, parameters_.stiffness_floor);
 }
 
@@ -195,51 +209,85 @@ double HardeningSoil::oedometer_modulus(double sigma_1) const {
 }
 
 double HardeningSoil::failure_deviator(double sigma_3) const {
-  return 2.0 * sin_phi_ * std::max(sigma_3 + a_, 0.0) / (1.0 - sin_phi_);
+  return qf_coefficient_ * std::max(sigma_3 + a_, 0.0);
 }
 
-HardeningSoil::YieldHyperbola HardeningSoil::yield_hyperbola(double qf, double sigma_3) const {
-  // E50 and Eur share the stress factor, so the power law is evaluated once: it dominates the cost
-  // of the return, which needs the yield deviator at every iteration.
+double HardeningSoil::unloading_modulus(double sigma_3, StiffnessFactorMemo& memo) const {
+  return parameters_.eur_ref * stiffness_factor(stress_ratio(sigma_3), memo);
+}
+
+double HardeningSoil::stiffness_factor(double ratio, StiffnessFactorMemo& memo) const {
+  // Within 2^-6 of the remembered ratio, (1 + x)^m is its binomial series to x^8: the remainder,
+  // binomial(m, 9) x^9 (1 + xi)^(m - 9) with |binomial(m, 9)| <= m / 9 < 1/9 for m in [0, 1), is
+  // below 0.13 * 2^-54 = 7e-18 of the factor, a thirtieth of an ulp. With Horner's rounding the
+  // factor is the power law's to about an ulp, and exactly it at the remembered ratio (x = 0; the
+  // difference of two ratios within a factor two of each other is exact).
+  if (memo.ratio > 0.0) {
+    const double x = (ratio - memo.ratio) / memo.ratio;
+    if (std::abs(x) <= 0x1p-6) {
+      double series = 0.0;
+      for (auto c = binomial_.rbegin(); c != binomial_.rend(); ++c) {
+        series = x * (*c + series);
+      }
+      return memo.factor * (1.0 + series);
+    }
+  }
+  memo = {ratio, std::pow(ratio, parameters_.power)};
+  return memo.factor;
+}
+
+HardeningSoil::YieldHyperbola HardeningSoil::yield_hyperbola(double qf, double sigma_3,
+                                                             StiffnessFactorMemo& memo) const {
+  // E50 and Eur share the stress factor, so the power law is evaluated once, and near the memo's
+  // ratio not at all: it dominated the cost of the return, which needs the yield deviator at every
+  // iteration. A = 2 / E_i with E_i = 2 E50 / (2 - Rf), and B = 2 / Eur: coefficients over it.
   YieldHyperbola h;
-  const double c_cos = parameters_.cohesion * cos_phi_;
-  h.raw_ratio = (c_cos + sigma_3 * sin_phi_) / (c_cos + parameters_.p_ref * sin_phi_);
+  h.raw_ratio = (parameters_.cohesion * cos_phi_ + sigma_3 * sin_phi_) * inverse_ratio_denominator_;
   h.ratio = std::max(h.raw_ratio, parameters_.stiffness_floor);
-  const double factor = std::pow(h.ratio, parameters_.power);
-  const double initial = 2.0 * parameters_.e50_ref * factor / (2.0 - parameters_.failure_ratio);
-  h.A = 2.0 / initial;
-  h.B = 2.0 / (parameters_.eur_ref * factor);
-  h.qa = qf / parameters_.failure_ratio;
+  const double inverse_factor = 1.0 / stiffness_factor(h.ratio, memo);
+  h.A = a_coefficient_ * inverse_factor;
+  h.B = b_coefficient_ * inverse_factor;
+  h.qa = qf * inverse_failure_ratio_;
   return h;
 }
 
 double HardeningSoil::yield_deviator(double gamma_p, double sigma_3) const {
+  StiffnessFactorMemo none;
+  return yield_deviator(gamma_p, sigma_3, none);
+}
+
+YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_3) const {
+  StiffnessFactorMemo none;
+  return yield_deviator_slopes(gamma_p, sigma_3, none);
+}
+
+double HardeningSoil::yield_deviator(double gamma_p, double sigma_3,
+                                     StiffnessFactorMemo& memo) const {
   // The value alone (the residual checks of every candidate state need no slopes), by the same
   // operations as yield_deviator_slopes, so the two agree to the bit.
   const double qf = failure_deviator(sigma_3);
   if (qf <= 0.0 || gamma_p <= 0.0) {
     return 0.0;
   }
-  const YieldHyperbola h = yield_hyperbola(qf, sigma_3);
+  const YieldHyperbola h = yield_hyperbola(qf, sigma_3, memo);
   const double b = (h.A - h.B) * h.qa + gamma_p;
   const double root = std::sqrt(b * b + 4.0 * h.B * gamma_p * h.qa);
-  return std::min(2.0 * gamma_p * h.qa / (b + root), qf);
+  return std::min(2.0 * gamma_p * h.qa * (1.0 / (b + root)), qf);
 }
 
-YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_3) const {
+YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_3,
+                                                   StiffnessFactorMemo& memo) const {
   const double qf = failure_deviator(sigma_3);
   if (qf <= 0.0) {
     return {};
   }
   // q_y inverts f-bar(q) = gamma without the 1/(qa - q) singularity (hardening_soil.md 1.3). The
   // slopes are exact derivatives of the same closed form and cost no further power law.
-  const double qf_slope = 2.0 * sin_phi_ / (1.0 - sin_phi_);
-  const YieldHyperbola h = yield_hyperbola(qf, sigma_3);
+  const double qf_slope = qf_coefficient_;
+  const YieldHyperbola h = yield_hyperbola(qf, sigma_3, memo);
   const double ratio = h.ratio;
   const double ratio_slope =
-      h.raw_ratio > parameters_.stiffness_floor
-          ? sin_phi_ / (parameters_.cohesion * cos_phi_ + parameters_.p_ref * sin_phi_)
-          : 0.0;
+      h.raw_ratio > parameters_.stiffness_floor ? sin_phi_ * inverse_ratio_denominator_ : 0.0;
   const double A = h.A;
   const double B = h.B;
   const double qa = h.qa;
@@ -249,22 +297,24 @@ YieldDeviator HardeningSoil::yield_deviator_slopes(double gamma_p, double sigma_
   }
   const double b = (A - B) * qa + gamma_p;
   const double root = std::sqrt(b * b + 4.0 * B * gamma_p * qa);
-  const double denominator = b + root;
-  const double q_y = 2.0 * gamma_p * qa / denominator;
+  const double inverse_denominator = 1.0 / (b + root);
+  const double q_y = 2.0 * gamma_p * qa * inverse_denominator; // as yield_deviator has it
   if (q_y >= qf) {
     return {qf, 0.0, qf_slope};
   }
   // d/d sigma_3 through qa and the stiffness factor (A and B scale with 1 / factor).
   const double factor_slope = parameters_.power * ratio_slope / ratio; // (d factor / factor)
-  const double qa_slope = qf_slope / parameters_.failure_ratio;
+  const double qa_slope = qf_slope * inverse_failure_ratio_;
   const double b_by_sigma = -(A - B) * factor_slope * qa + (A - B) * qa_slope;
   const double bq_by_sigma = -B * factor_slope * qa + B * qa_slope; // d(B qa)
-  const double root_by_sigma = (b * b_by_sigma + 2.0 * gamma_p * bq_by_sigma) / root;
-  const double root_by_gamma = (b + 2.0 * B * qa) / root;
+  const double inverse_root = 1.0 / root;
+  const double root_by_sigma = (b * b_by_sigma + 2.0 * gamma_p * bq_by_sigma) * inverse_root;
+  const double root_by_gamma = (b + 2.0 * B * qa) * inverse_root;
   YieldDeviator y;
   y.value = q_y;
-  y.by_gamma = (2.0 * qa - q_y * (1.0 + root_by_gamma)) / denominator;
-  y.by_sigma = (2.0 * gamma_p * qa_slope - q_y * (b_by_sigma + root_by_sigma)) / denominator;
+  y.by_gamma = (2.0 * qa - q_y * (1.0 + root_by_gamma)) * inverse_denominator;
+  y.by_sigma =
+      (2.0 * gamma_p * qa_slope - q_y * (b_by_sigma + root_by_sigma)) * inverse_denominator;
   return y;
 }
 
@@ -287,7 +337,7 @@ double HardeningSoil::cap_deviator(const Principal& s) const {
 double HardeningSoil::cap_surface(const Principal& s, double p_p) const {
   const double q = cap_deviator(s);
   const double p = mean(s);
-  return std::sqrt(q * q / (alpha_ * alpha_) + p * p) - p_p;
+  return std::sqrt(q * q * inverse_alpha2_ + p * p) - p_p;
 }
 
 void HardeningSoil::derive_cap() {
@@ -375,23 +425,27 @@ public:
   HardeningSoilReturn(const HardeningSoil& model, const HardeningSoilParameters& parameters,
                       const Elasticity& elastic, double sin_psi_mobilised, double delta,
                       double alpha, double cap_modulus_now, const Principal& trial, double gamma,
-                      double cap_pressure)
+                      double cap_pressure, HardeningSoil::StiffnessFactorMemo& memo)
       : model_(model), elastic_(elastic), sin_psi_(sin_psi_mobilised), delta_(delta), alpha_(alpha),
-        cap_modulus_(cap_modulus_now), trial_(trial), gamma_n_(gamma), cap_n_(cap_pressure) {
+        cap_modulus_(cap_modulus_now), trial_(trial), gamma_n_(gamma), cap_n_(cap_pressure),
+        memo_(memo) {
+    inverse_alpha2_ = 1.0 / (alpha_ * alpha_);
+    p_trial_ = mean(trial_); // every map of the multipliers starts from it
+    sin_psi_third_ = sin_psi_ / 3.0;
     tolerance_ = surface_tolerance(trial, parameters.p_ref);
     // Every return starts from zero multipliers, where each map gives the trial's mean plus its
     // deviator: the same numbers for every plane, corner and mechanism. The yield deviator and its
     // slopes there are evaluated once, for the trial's residual and every Newton iteration's first.
-    const double p = mean(trial_);
+    const double p = p_trial_;
     at_zero_sigma_3_ = p + (trial_[2] - p);
-    at_zero_ = model_.yield_deviator_slopes(gamma_n_, at_zero_sigma_3_);
+    at_zero_ = model_.yield_deviator_slopes(gamma_n_, at_zero_sigma_3_, memo_);
   }
 
   double tolerance() const { return tolerance_; }
 
   /// The shear residual at zero multipliers (the trial's, at the state every return starts from).
   double shear_residual_at_zero() const {
-    const double p = mean(trial_);
+    const double p = p_trial_;
     return (p + (trial_[0] - p)) - at_zero_sigma_3_ - at_zero_.value;
   }
 
@@ -399,7 +453,7 @@ public:
   /// so this plane speaks for both.
   double shear_residual(const ReturnState& r) const {
     const Principal& s = r.stress;
-    return s[0] - s[2] - model_.yield_deviator(r.gamma, s[2]);
+    return s[0] - s[2] - model_.yield_deviator(r.gamma, s[2], memo_);
   }
 
   double cap_residual(const ReturnState& r) const {
@@ -461,13 +515,13 @@ public:
     const Principal g12{(1.0 - s) / 2.0, -(1.0 + s) / 2.0, 0.0};
     const Principal g23{0.0, (1.0 - s) / 2.0, -(1.0 + s) / 2.0};
     const double G = elastic_.shear;
-    const double p_trial = mean(trial_);
+    const double p_trial = p_trial_;
     ShearedDeviator out;
     for (std::size_t k = 0; k < 3; ++k) {
       const double shear_flow =
-          m[S13] * g13[k] + m[S12] * g12[k] + m[S23] * g23[k] + s * shear_sum / 3.0;
+          m[S13] * g13[k] + m[S12] * g12[k] + m[S23] * g23[k] + sin_psi_third_ * shear_sum;
       const double flow_slope = shear.slope[S13] * g13[k] + shear.slope[S12] * g12[k] +
-                                shear.slope[S23] * g23[k] + s / 3.0;
+                                shear.slope[S23] * g23[k] + sin_psi_third_;
       out.value[k] = trial_[k] - p_trial - 2.0 * G * shear_flow;
       out.by_shear[k] = -2.0 * G * flow_slope;
     }
@@ -490,24 +544,24 @@ public:
     const std::array<double, 3>& m = shear.multiplier;
     const double shear_sum = m[S13] + m[S12] + m[S23];
     const double K = elastic_.bulk, G = elastic_.shear;
-    const double volumetric = 1.0 + 2.0 * K * lambda_c;
-    const double p = (mean(trial_) + K * s * shear_sum) / volumetric;
-    const double p_by_shear = K * s / volumetric; // the slopes of a split sum to one
-    const double p_by_cap = -2.0 * K * p / volumetric;
+    const double inverse_volumetric = 1.0 / (1.0 + 2.0 * K * lambda_c);
+    const double p = (p_trial_ + K * s * shear_sum) * inverse_volumetric;
+    const double p_by_shear = K * s * inverse_volumetric; // the slopes of a split sum to one
+    const double p_by_cap = -2.0 * K * p * inverse_volumetric;
     const ShearedDeviator sheared = sheared_deviator(shear);
     const Principal& a = sheared.value;
     const Principal& a_by_shear = sheared.by_shear;
     const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const double cap_stiffness = 4.0 * G * n2 / (alpha_ * alpha_);
-    const double deviatoric = 1.0 + 4.0 * G * lambda_c * n2 / (alpha_ * alpha_);
-    const double q_cap = (n[0] * a[0] + n[1] * a[1] + n[2] * a[2]) / deviatoric;
+    const double flow = 4.0 * G * inverse_alpha2_;
+    const double cap_stiffness = flow * n2;
+    const double inverse_deviatoric = 1.0 / (1.0 + cap_stiffness * lambda_c);
+    const double q_cap = (n[0] * a[0] + n[1] * a[1] + n[2] * a[2]) * inverse_deviatoric;
     const double q_cap_by_shear =
-        (n[0] * a_by_shear[0] + n[1] * a_by_shear[1] + n[2] * a_by_shear[2]) / deviatoric;
-    const double q_cap_by_cap = -cap_stiffness * q_cap / deviatoric;
-    const double flow = 4.0 * G / (alpha_ * alpha_);
+        (n[0] * a_by_shear[0] + n[1] * a_by_shear[1] + n[2] * a_by_shear[2]) * inverse_deviatoric;
+    const double q_cap_by_cap = -cap_stiffness * q_cap * inverse_deviatoric;
     Linearised l;
     for (std::size_t k = 0; k < 3; ++k) {
-      l.state.stress[k] = p + a[k] - 2.0 * G * lambda_c * 2.0 * q_cap / (alpha_ * alpha_) * n[k];
+      l.state.stress[k] = p + a[k] - flow * lambda_c * q_cap * n[k];
       l.stress_by_shear[k] = p_by_shear + a_by_shear[k] - flow * lambda_c * q_cap_by_shear * n[k];
       l.stress_by_cap[k] = p_by_cap - flow * (q_cap + lambda_c * q_cap_by_cap) * n[k];
     }
@@ -531,7 +585,7 @@ public:
     const std::array<double, 3>& m = shear.multiplier;
     const double shear_sum = m[S13] + m[S12] + m[S23];
     const double K = elastic_.bulk;
-    const double p = mean(trial_) + K * sin_psi_ * shear_sum;
+    const double p = p_trial_ + K * sin_psi_ * shear_sum;
     const double p_by_shear = K * sin_psi_;
     const ShearedDeviator sheared = sheared_deviator(shear);
     ShearLinearised l;
@@ -583,7 +637,7 @@ public:
       const ShearLinearised l = shear_linearised(split(corner, total));
       const Principal& st = l.state.stress;
       const YieldDeviator y =
-          iteration == 0 ? at_zero_ : model_.yield_deviator_slopes(l.state.gamma, st[2]);
+          iteration == 0 ? at_zero_ : model_.yield_deviator_slopes(l.state.gamma, st[2], memo_);
       double residual = st[0] - st[2] - y.value;
       double slope = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
                      y.by_sigma * l.stress_by_shear[2];
@@ -627,18 +681,19 @@ public:
       const Principal& st = l.state.stress;
       // Rows of the residuals and their derivatives (j: d/d shear sum, d/d cap multiplier).
       const YieldDeviator y =
-          iteration == 0 ? at_zero_ : model_.yield_deviator_slopes(l.state.gamma, st[2]);
+          iteration == 0 ? at_zero_ : model_.yield_deviator_slopes(l.state.gamma, st[2], memo_);
       double r1 = st[0] - st[2] - y.value;
       double j11 = l.stress_by_shear[0] - l.stress_by_shear[2] - y.by_gamma -
                    y.by_sigma * l.stress_by_shear[2];
       double j12 = l.stress_by_cap[0] - l.stress_by_cap[2] - y.by_sigma * l.stress_by_cap[2];
       const double q = model_.cap_deviator(st);
       const double p = mean(st);
-      const double norm = std::sqrt(q * q / (alpha_ * alpha_) + p * p);
+      const double norm = std::sqrt(q * q * inverse_alpha2_ + p * p);
+      const double inverse_norm = norm > 0.0 ? 1.0 / norm : 0.0;
       auto cap_slope = [&](const Principal& ds, double d_cap_pressure) {
         const double dq = model_.cap_deviator(ds);
         const double dp = mean(ds);
-        return (norm > 0.0 ? (q * dq / (alpha_ * alpha_) + p * dp) / norm : 0.0) - d_cap_pressure;
+        return (q * dq * inverse_alpha2_ + p * dp) * inverse_norm - d_cap_pressure;
       };
       double r2 = norm - l.state.cap_pressure;
       double j21 = cap_slope(l.stress_by_shear, l.cap_pressure_by_shear);
@@ -690,7 +745,7 @@ public:
   std::optional<ReturnState> cap_newton(int corner) const {
     const Principal n = cap_direction(corner);
     const double K = elastic_.bulk, G = elastic_.shear;
-    const double p_trial = mean(trial_);
+    const double p_trial = p_trial_;
     const Principal a{trial_[0] - p_trial, trial_[1] - p_trial, trial_[2] - p_trial};
     const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
     const double inverse_alpha2 = 1.0 / (alpha_ * alpha_);
@@ -781,6 +836,9 @@ private:
   double sin_psi_;
   double delta_;
   double alpha_;
+  double inverse_alpha2_ = 0.0;
+  double p_trial_ = 0.0;
+  double sin_psi_third_ = 0.0; // a shear plane's flow has trace -sin psi: a third on each axis
   double cap_modulus_;
   Principal trial_;
   double gamma_n_;
@@ -788,6 +846,9 @@ private:
   double tolerance_ = 0.0;
   double at_zero_sigma_3_ = 0.0;
   YieldDeviator at_zero_;
+  // The power law of the stiffnesses where it was last evaluated: the trial's residual, the
+  // iterations near convergence and the check of a result evaluate it at nearly the same sigma_3.
+  HardeningSoil::StiffnessFactorMemo& memo_;
 };
 
 /// Whether a shear return without the cap, on any plane or corner, can end inside the cap. With
@@ -850,6 +911,21 @@ double mobilised_dilatancy(const Principal& s, double a, double sin_phi, double 
   return 0.0;
 }
 
+/// What a substep needs of the stress it starts from: sigma_3 (the stiffness) and the mobilised
+/// dilatancy. With psi = 0 the latter is zero whatever the stress, and sigma_3 alone costs a cosine
+/// less than the three principal values.
+struct SubstepStart {
+  double sigma_3, sin_psi;
+};
+
+SubstepStart substep_start(const Stress& stress, double a, double sin_phi, double sin_psi) {
+  if (sin_psi > 0.0) {
+    const PrincipalValues now = principal_compression_values(stress);
+    return {now.values[2], mobilised_dilatancy(now.values, a, sin_phi, sin_psi)};
+  }
+  return {principal_compression_minor(stress), 0.0};
+}
+
 /// The return of a trial outside the surfaces: the active set the particle's last return kept,
 /// if it holds; else active sets in the order shear, cap, shear + cap, each with its corner
 /// variants, keeping the first that satisfies every surface and the principal order; failing all,
@@ -874,7 +950,7 @@ ReturnState return_to_surfaces(const HardeningSoilReturn& returner, const Return
   if (last_active_set >= 1 && last_active_set <= 9 && tried((last_active_set - 1) / 3)) {
     // A particle loaded on, it tends to stay on the same surfaces: on the quick GDP scene the
     // last active set holds for 96 % of plastic substeps, where the ordered search tries three
-    // variants on average (docs/performance.md). A corner variant's flow (the corner's cap
+    // variants on average (docs/hardening-soil.md). A corner variant's flow (the corner's cap
     // direction, the split shear) belongs only to a state at its corner, so a corner variant whose
     // split clamped it off the corner does not count: the search decides there. What the last set
     // gives is then the ordered search's state to the tolerance of the surfaces
@@ -968,10 +1044,13 @@ ReturnState return_to_surfaces(const HardeningSoilReturn& returner, const Return
 double HardeningSoil::update_point(Stress& stress, double* state,
                                    const StrainIncrement& strain) const {
   const HardeningSoilParameters& P = parameters_;
-  PrincipalValues now = principal_compression_values(stress);
-  const double e_start = unloading_modulus(now.values[2]);
+  SubstepStart now = substep_start(stress, a_, sin_phi_, sin_psi_);
+  // One memo for the point's update: the stiffness at the start, the trial's and the return's
+  // evaluations lie close together in sigma_3 (stiffness_factor).
+  StiffnessFactorMemo memo;
+  const double e_start = unloading_modulus(now.sigma_3, memo);
   const int substeps =
-      substep_count(strain, e_start, P.poisson_ur, now.values[2], a_ + P.stiffness_floor * P.p_ref);
+      substep_count(strain, e_start, P.poisson_ur, now.sigma_3, a_ + P.stiffness_floor * P.p_ref);
   StrainIncrement part = strain;
   for (double& c : part) {
     c /= substeps;
@@ -979,17 +1058,16 @@ double HardeningSoil::update_point(Stress& stress, double* state,
   double modulus = 0.0;
   for (int step = 0; step < substeps; ++step) {
     if (step > 0) {
-      now = principal_compression_values(stress);
+      now = substep_start(stress, a_, sin_phi_, sin_psi_);
     }
-    const double e = step == 0 ? e_start : unloading_modulus(now.values[2]);
-    modulus =
-        substep(stress, state, part, e, mobilised_dilatancy(now.values, a_, sin_phi_, sin_psi_));
+    const double e = step == 0 ? e_start : unloading_modulus(now.sigma_3, memo);
+    modulus = substep(stress, state, part, e, now.sin_psi, memo);
   }
   return modulus;
 }
 
 double HardeningSoil::substep(Stress& stress, double* state, const StrainIncrement& part,
-                              double young, double sin_psi) const {
+                              double young, double sin_psi, StiffnessFactorMemo& memo) const {
   const HardeningSoilParameters& P = parameters_;
   const double nu = P.poisson_ur;
   const Elasticity elastic{young / (3.0 * (1.0 - 2.0 * nu)), young / (2.0 * (1.0 + nu)),
@@ -1014,7 +1092,8 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
   const Principal& t = trial_values.values;
   const double margin = surface_tolerance(t, P.p_ref) -
                         10.0 * trial_values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
-  if (t[0] - t[2] - yield_deviator(gamma_n, t[2]) <= margin && cap_surface(t, cap_n) <= margin) {
+  if (t[0] - t[2] - yield_deviator(gamma_n, t[2], memo) <= margin &&
+      cap_surface(t, cap_n) <= margin) {
     state[P_P] = cap_n;
     stress = trial_stress;
     return modulus;
@@ -1024,7 +1103,7 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
   const double cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
   auto returner_at = [&](const ReturnState& from) {
     return HardeningSoilReturn(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening,
-                               from.stress, from.gamma, from.cap_pressure);
+                               from.stress, from.gamma, from.cap_pressure, memo);
   };
   const ReturnState trial_state{trial.values, gamma_n, cap_n};
   const HardeningSoilReturn returner = returner_at(trial_state);

@@ -86,6 +86,20 @@ public:
   double failure_deviator(double sigma_3) const;               // qf
   double yield_deviator(double gamma_p, double sigma_3) const; // min(q_y, qf)
   YieldDeviator yield_deviator_slopes(double gamma_p, double sigma_3) const;
+
+  /// The stiffness laws' power of the stress ratio, ratio^m, where it was last evaluated. A point's
+  /// update evaluates it again and again at nearly the same sigma_3 (the start's stiffness, the
+  /// trial's yield deviator, each Newton iterate, the check of the result); near the remembered
+  /// ratio a series replaces the power law, equal to it to rounding (stiffness_factor). One memo
+  /// serves one point's update: it is never shared between threads.
+  struct StiffnessFactorMemo {
+    double ratio = 0.0, factor = 0.0;
+  };
+  double yield_deviator(double gamma_p, double sigma_3, StiffnessFactorMemo& memo) const;
+  YieldDeviator yield_deviator_slopes(double gamma_p, double sigma_3,
+                                      StiffnessFactorMemo& memo) const;
+  /// ratio^m: from the memo's series within 2^-6 of its ratio, else the power law, remembered.
+  double stiffness_factor(double ratio, StiffnessFactorMemo& memo) const;
   double hardening_function(double q, double sigma_3) const;         // f-bar
   double cap_deviator(const std::array<double, 3>& principal) const; // q-tilde
   double cap_surface(const std::array<double, 3>& principal, double p_p) const;
@@ -99,19 +113,25 @@ private:
   /// One substep of update_point at Young's modulus `young` and mobilised dilatancy sin_psi: the
   /// elastic trial and, outside the surfaces, the return. Returns the constrained modulus.
   double substep(Stress& stress, double* state, const StrainIncrement& part, double young,
-                 double sin_psi) const;
+                 double sin_psi, StiffnessFactorMemo& memo) const;
+  double unloading_modulus(double sigma_3, StiffnessFactorMemo& memo) const;
   double stress_ratio(double sigma) const;
   /// The yield deviator's hyperbola at sigma_3 (with qf > 0): the stiffnesses' stress ratio (raw
   /// and floored), A = 2 / E_i, B = 2 / Eur and the asymptote qa.
   struct YieldHyperbola {
     double raw_ratio, ratio, A, B, qa;
   };
-  YieldHyperbola yield_hyperbola(double qf, double sigma_3) const;
+  YieldHyperbola yield_hyperbola(double qf, double sigma_3, StiffnessFactorMemo& memo) const;
   void derive_cap();
 
   HardeningSoilParameters parameters_;
   std::vector<std::string> names_{"gamma_p", "p_p", "last_active_set"};
   double sin_phi_, cos_phi_, sin_psi_, a_, delta_, alpha_ = 1.0, cap_modulus_ = 0.0;
+  std::array<double, 8> binomial_{}; // binomial(power, k), k = 1 .. 8 (stiffness_factor)
+  // 1 / (c cos phi + p_ref sin phi), 2 sin phi / (1 - sin phi), 1 / Rf, (2 - Rf) / E50_ref,
+  // 2 / Eur_ref and 1 / alpha^2: the laws' constants, as products (see the constructor).
+  double inverse_ratio_denominator_ = 0.0, qf_coefficient_ = 0.0, inverse_failure_ratio_ = 0.0;
+  double a_coefficient_ = 0.0, b_coefficient_ = 0.0, inverse_alpha2_ = 0.0;
 };
 
 } // namespace mpile

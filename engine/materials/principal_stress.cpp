@@ -45,7 +45,9 @@ BlockPair block_pair(double a11, double a22, double a12) {
   if (radius > 0.0) {
     const double x = half_difference >= 0.0 ? half_difference + radius : a12;
     const double y = half_difference >= 0.0 ? a12 : radius - half_difference;
-    const double length = std::hypot(x, y);
+    // x^2 + y^2 = 2 radius (radius + |half_difference|): no cancellation, and a square root
+    // where std::hypot costs many times that.
+    const double length = std::sqrt(2.0 * radius * (radius + std::abs(half_difference)));
     c = x / length;
     s = y / length;
   }
@@ -144,16 +146,58 @@ PrincipalStress principal_compression(const Stress& stress, const PrincipalValue
   return full_compression(stress, value_apart(values.values));
 }
 
+namespace {
+
+/// The characteristic cubic of the deviator B = A - q I (A = -sigma) in trigonometric form: the
+/// roots are q + 2 s cos(phi + 2 pi k / 3), phi = acos(det(B) / (2 s^3)) / 3, which lies in
+/// [0, pi/3] and so orders them. s = 0 (theta shears so small that their squares underflow) means
+/// isotropic.
+struct TrigonometricCubic {
+  double q, s, phi;
+};
+
+TrigonometricCubic trigonometric_cubic(const Stress& stress) {
+  const double q = -(stress[RR] + stress[YY] + stress[TT]) / 3.0;
+  const double b11 = -stress[RR] - q, b22 = -stress[YY] - q, b33 = -stress[TT] - q;
+  const double b12 = -stress[RY], b23 = -stress[YT], b13 = -stress[RT];
+  const double off = b12 * b12 + b23 * b23 + b13 * b13;
+  const double s2 = (b11 * b11 + b22 * b22 + b33 * b33 + 2.0 * off) / 6.0;
+  if (!(s2 > 0.0)) {
+    return {q, 0.0, 0.0};
+  }
+  const double s = std::sqrt(s2);
+  const double determinant =
+      b11 * (b22 * b33 - b23 * b23) - b12 * (b12 * b33 - b23 * b13) + b13 * (b12 * b23 - b22 * b13);
+  const double r = std::clamp(determinant / (2.0 * s2 * s), -1.0, 1.0);
+  return {q, s, std::acos(r) / 3.0};
+}
+
+/// The smallest root of the cubic (k = 2).
+double minor_root(const TrigonometricCubic& c) {
+  return c.s > 0.0 ? c.q + 2.0 * c.s * std::cos(c.phi + 2.0 * std::numbers::pi / 3.0) : c.q;
+}
+
+/// The r-y block's pair from the half-difference and the shear, without cancellation (centre +-
+/// radius, compression positive).
+struct BlockValues {
+  double centre, radius;
+};
+
+BlockValues block_values(const Stress& stress) {
+  const double centre = -0.5 * (stress[RR] + stress[YY]);
+  const double half_difference = 0.5 * (stress[RR] - stress[YY]);
+  return {centre, std::sqrt(half_difference * half_difference + stress[RY] * stress[RY])};
+}
+
+} // namespace
+
 PrincipalValues principal_compression_values(const Stress& stress) {
   PrincipalValues p;
   std::array<double, 3>& v = p.values;
   if (stress[RT] == 0.0 && stress[YT] == 0.0) {
-    // An r-y block and the out-of-plane value: the block's pair from the half-difference and the
-    // shear, without cancellation.
-    const double centre = -0.5 * (stress[RR] + stress[YY]);
-    const double half_difference = 0.5 * (stress[RR] - stress[YY]);
-    const double radius = std::sqrt(half_difference * half_difference + stress[RY] * stress[RY]);
-    v = {centre + radius, centre - radius, -stress[TT]};
+    // An r-y block and the out-of-plane value.
+    const BlockValues block = block_values(stress);
+    v = {block.centre + block.radius, block.centre - block.radius, -stress[TT]};
     if (v[2] > v[1]) {
       std::swap(v[1], v[2]);
       if (v[1] > v[0]) {
@@ -162,36 +206,38 @@ PrincipalValues principal_compression_values(const Stress& stress) {
     }
     return p;
   }
-  // Trigonometric roots of the characteristic cubic of the deviator B = A - q I (A = -sigma):
-  // with s = |B| / sqrt(6), the roots are q + 2 s cos(phi + 2 pi k / 3), phi = acos(det(B) /
-  // (2 s^3)) / 3, which lies in [0, pi/3] and so orders them.
-  const double q = -(stress[RR] + stress[YY] + stress[TT]) / 3.0;
-  const double b11 = -stress[RR] - q, b22 = -stress[YY] - q, b33 = -stress[TT] - q;
-  const double b12 = -stress[RY], b23 = -stress[YT], b13 = -stress[RT];
-  const double off = b12 * b12 + b23 * b23 + b13 * b13;
-  const double s2 = (b11 * b11 + b22 * b22 + b33 * b33 + 2.0 * off) / 6.0;
-  if (!(s2 > 0.0)) { // theta shears so small that their squares underflow: isotropic
-    v = {q, q, q};
+  const TrigonometricCubic cubic = trigonometric_cubic(stress);
+  if (!(cubic.s > 0.0)) {
+    v = {cubic.q, cubic.q, cubic.q};
     return p;
   }
-  const double s = std::sqrt(s2);
-  const double determinant =
-      b11 * (b22 * b33 - b23 * b23) - b12 * (b12 * b33 - b23 * b13) + b13 * (b12 * b23 - b22 * b13);
-  const double r = std::clamp(determinant / (2.0 * s2 * s), -1.0, 1.0);
-  const double phi = std::acos(r) / 3.0;
-  v[0] = q + 2.0 * s * std::cos(phi);
-  v[2] = q + 2.0 * s * std::cos(phi + 2.0 * std::numbers::pi / 3.0);
-  v[1] = std::clamp(3.0 * q - v[0] - v[2], v[2], v[0]); // ordered despite rounding
+  v[0] = cubic.q + 2.0 * cubic.s * std::cos(cubic.phi);
+  v[2] = minor_root(cubic);
+  v[1] = std::clamp(3.0 * cubic.q - v[0] - v[2], v[2], v[0]); // ordered despite rounding
   // An error of a few ulps in r moves phi by sqrt(ulps) near r = +-1: about 3e-8 s.
-  p.uncertainty = 1e-6 * s;
+  p.uncertainty = 1e-6 * cubic.s;
   return p;
+}
+
+double principal_compression_minor(const Stress& stress) {
+  if (stress[RT] == 0.0 && stress[YT] == 0.0) {
+    const BlockValues block = block_values(stress);
+    const double minor = block.centre - block.radius;
+    return -stress[TT] > minor ? minor : -stress[TT]; // as the values' sort picks it
+  }
+  return minor_root(trigonometric_cubic(stress));
 }
 
 Stress compose_from_principal(const std::array<double, 3>& compression,
                               const Eigen::Matrix3d& directions) {
-  const Eigen::Vector3d values(compression[0], compression[1], compression[2]);
-  const Eigen::Matrix3d m = directions * values.asDiagonal() * directions.transpose();
-  return from_matrix(-m);
+  // sigma = -sum_k c_k d_k d_k^T over the directions d_k (columns): its six distinct entries
+  // alone, where the matrix product would form all nine and average the shear pairs.
+  const Eigen::Matrix3d& d = directions;
+  auto entry = [&](int i, int j) {
+    return -(compression[0] * d(i, 0) * d(j, 0) + compression[1] * d(i, 1) * d(j, 1) +
+             compression[2] * d(i, 2) * d(j, 2));
+  };
+  return {entry(0, 0), entry(1, 1), entry(2, 2), entry(0, 1), entry(1, 2), entry(0, 2)};
 }
 
 } // namespace mpile
