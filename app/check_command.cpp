@@ -135,6 +135,11 @@ void print_sea(std::ostream& out, const CaseSpec& spec, const Scene& scene) {
   if (!spec.water) {
     return;
   }
+  if (spec.water->phreatic) {
+    out << std::defaultfloat << std::setprecision(4) << "water table: at " << spec.water->table
+        << " m, the soil dry above it and its pores' water hydrostatic from it below\n";
+    return;
+  }
   out << std::defaultfloat << std::setprecision(4) << "sea: level " << spec.water->level
       << " m over the seabed at " << spec.water->seabed << " m, its pressure there "
       << spec.water->column_pressure << " Pa (outputs add it to the pore pressures)";

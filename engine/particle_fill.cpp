@@ -209,4 +209,27 @@ void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surf
   }
 }
 
+void initialise_layered_geostatic_stress(Scene& scene, std::uint16_t body,
+                                         const std::function<double(double, double)>& overburden,
+                                         double water_table, double gravity, double k0) {
+  Particles& p = scene.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] != body) {
+      continue;
+    }
+    const Material& material = *scene.materials[p.material[i]];
+    double* state = p.state.data() + i * static_cast<std::size_t>(p.state_stride);
+    const auto* saturated = dynamic_cast<const UndrainedSoil*>(&material);
+    const double pore =
+        saturated ? -saturated->water_density() * gravity * (water_table - p.y[i]) : 0.0;
+    const double vertical = -overburden(p.r[i], p.y[i]) - pore; // effective
+    p.stress[i] =
+        Stress{k0 * vertical + pore, vertical + pore, k0 * vertical + pore, 0.0, 0.0, 0.0};
+    if (saturated) {
+      state[saturated->pore_pressure_index()] = pore;
+    }
+    material.initialise_state(p.stress[i], state);
+  }
+}
+
 } // namespace mpile

@@ -4,6 +4,7 @@
 #include "engine/scene.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 
 namespace mpile {
@@ -40,5 +41,14 @@ std::size_t count_region_seeds(const GradedAxis& r_axis, const GradedAxis& y_axi
 /// skeleton carries the rest (K0 on the effective stress), and sigma = sigma' + p 1.
 void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surface,
                                  double unit_weight, double k0, double surcharge = 0.0);
+
+/// Geostatic stress in layered ground with a water table inside it: `overburden(r, y)` is the
+/// total vertical stress's magnitude at a point (a surcharge and the weight of every layer above
+/// it, dry above the table, saturated below), sigma_yy = -overburden. A saturated particle's pore
+/// water is hydrostatic from the table, p = -rho_w g (water_table - y); K0 acts on the effective
+/// stress sigma' = sigma - p 1, as above. A dry particle carries it all.
+void initialise_layered_geostatic_stress(Scene& scene, std::uint16_t body,
+                                         const std::function<double(double, double)>& overburden,
+                                         double water_table, double gravity, double k0);
 
 } // namespace mpile

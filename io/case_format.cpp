@@ -321,6 +321,13 @@ std::vector<TableSpec> declare() {
                "relative to the atmosphere")
             .or_computed("the seabed: no sea above it")
             .into(&WaterSpec::level),
+        number("table", "m",
+               "y of a water table inside the soil, instead of a sea: the saturated bodies lie "
+               "below it, dry (or moist) ones above; the K0 procedure weighs every layer above "
+               "a point (its bodies' K0 surface the ground's) and takes the pore water "
+               "hydrostatic from the table")
+            .or_computed("none")
+            .into(&WaterSpec::table),
         number("cavitation_stress", "Pa",
                "the tension, relative to the atmosphere, at which the pore water cavitates: its "
                "pressure rises no further (100e3: the atmosphere's pressure, water's vapour "

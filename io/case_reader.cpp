@@ -1222,9 +1222,6 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
       (spec.solver.gravity[0] != 0.0 || spec.solver.gravity[1] != 0.0)) {
     note_drained_face_under_gravity(*drained_table, spec.warnings);
   }
-  if (spec.solver.gravity[1] != 0.0) {
-    note_dry_soil_over_saturated(spec, body_tables, spec.warnings);
-  }
   RigidNames declared_rigid;
   for (const auto& [index, table] : rigid_tables) {
     declared_rigid.insert(spec.bodies[index].name);
@@ -1268,6 +1265,9 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   }
   read_phases(top, spec, declared_rigid);
   read_water(top, spec, axes.y.start());
+  if (spec.solver.gravity[1] != 0.0 && !(spec.water && spec.water->phreatic)) {
+    note_dry_soil_over_saturated(spec, body_tables, spec.warnings);
+  }
   if (hydrostatic_drains) {
     read_drained_water(*drained_table, spec);
   }

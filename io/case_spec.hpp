@@ -214,11 +214,14 @@ struct CaseWarning {
   std::string message; // what is implausible and the likely slip, without the location
 };
 
-/// [water]: the sea's free surface above a horizontal seabed (physics.md section 9c).
+/// [water]: the sea's free surface above a horizontal seabed, or a water table inside the soil
+/// (physics.md section 9c).
 struct WaterSpec {
   double level = 0.0;           // m: y of the sea's free surface
-  double seabed = 0.0;          // m: the saturated bodies' K0 surface
+  double seabed = 0.0;          // m: the saturated bodies' K0 surface (the table, with one)
   double column_pressure = 0.0; // Pa: rho_w g (level - seabed)
+  double table = 0.0;           // m: y of the phreatic level inside the soil ...
+  bool phreatic = false;        // ... when one is given (then level = seabed = table)
 };
 
 struct CaseSpec {

@@ -355,12 +355,11 @@ void note_dry_soil_over_saturated(const CaseSpec& spec, const std::vector<TomlTa
       add(warnings, CaseWarning::Kind::resolution, body_tables[d], "material",
           "dry '" + dry.material + "' rests on saturated '" + wet.material + "' (body '" +
               wet.name +
-              "'): a water table inside the soil is not modelled yet; the K0 procedure takes the "
-              "saturated body's water hydrostatic, and its vertical stress, from that body's own "
-              "k0 surface, without the dry layer's weight above it (or with it at the saturated "
-              "unit weight, if the surface is the ground's), so its effective stress starts "
-              "wrong; make the whole depth saturated, or check the K0 state (docs/physics.md "
-              "section 9)");
+              "'): without [water] table the K0 procedure takes the saturated body's water "
+              "hydrostatic, and its vertical stress, from that body's own k0 surface, without the "
+              "dry layer's weight above it (or with it at the saturated unit weight, if the "
+              "surface is the ground's), so its effective stress starts wrong; give the water "
+              "table's level as [water] table (docs/physics.md section 9c)");
       break;
     }
   }

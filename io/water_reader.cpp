@@ -7,6 +7,7 @@
 
 #include "io/case_error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -61,6 +62,51 @@ double seabed_of(const TomlTable& table, const std::string& level, const CaseSpe
   return seabed;
 }
 
+/// A water table inside the soil ([water] table): one sea level or the other; gravity along -y;
+/// the saturated bodies below the table and the dry ones above it.
+void read_water_table(const TomlTable& table, CaseSpec& spec, WaterSpec water, double grid_bottom) {
+  const std::string& key = table.key_of(&WaterSpec::table);
+  if (table.has(table.key_of(&WaterSpec::level))) {
+    table.fail(key, "a water table inside the soil and a sea's level above it exclude each other: "
+                    "give one");
+  }
+  if (spec.solver.gravity[0] != 0.0 || !(spec.solver.gravity[1] < 0.0)) {
+    table.fail(key, "a water table is hydrostatic under gravity along -y; [solver] gravity is [" +
+                        format_number(spec.solver.gravity[0]) + ", " +
+                        format_number(spec.solver.gravity[1]) + "]");
+  }
+  if (!(water.table >= grid_bottom)) {
+    table.fail(key, format_number(water.table) + " m lies below the grid (its bottom is " +
+                        format_number(grid_bottom) + " m)");
+  }
+  const double touch = 1e-9 * std::max(1.0, std::abs(water.table));
+  for (const BodySpec& body : spec.bodies) {
+    if (body.rigid) {
+      continue;
+    }
+    const Rectangle& bounds = body.region.bounds();
+    if (saturated(material_named(spec, body.material)) && bounds.y_max > water.table + touch) {
+      table.fail(key, "body '" + body.name +
+                          "' is saturated but reaches y = " + format_number(bounds.y_max) +
+                          " m, above the table at " + format_number(water.table) +
+                          " m: split it at the table, dry (drainage = \"drained\") above");
+    }
+    if (!saturated(material_named(spec, body.material)) && bounds.y_min < water.table - touch) {
+      table.fail(key, "body '" + body.name +
+                          "' is dry but reaches y = " + format_number(bounds.y_min) +
+                          " m, below the table at " + format_number(water.table) +
+                          " m: its pores there hold water; split it at the table, saturated "
+                          "(drainage = \"undrained\" or \"coupled\") below");
+    }
+  }
+  // The pore pressure is zero at the table, as on a seabed without a sea above it.
+  water.level = water.table;
+  water.seabed = water.table;
+  water.column_pressure = 0.0;
+  water.phreatic = true;
+  spec.water = water;
+}
+
 } // namespace
 
 void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
@@ -74,7 +120,10 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
   table->read_into(cavitation); // the cavitation stress
   const std::string& level = table->key_of(&WaterSpec::level);
   const std::string& cavitation_stress = table->key_of(&PoreWater::cavitation_stress);
-  const std::string& given = table->has(level) ? level : cavitation_stress;
+  const std::string& phreatic = table->key_of(&WaterSpec::table);
+  const std::string& given = table->has(level)      ? level
+                             : table->has(phreatic) ? phreatic
+                                                    : cavitation_stress;
   double water_density = 0.0;
   for (const MaterialSpec& m : spec.materials) {
     if (!saturated(m)) {
@@ -99,8 +148,8 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
     if (water.level < water.seabed) {
       table->fail(level, format_number(water.level) + " m lies below the seabed (the K0 surface, " +
                              format_number(water.seabed) +
-                             " m): a phreatic level inside the soil, dry soil above it, is not "
-                             "modelled");
+                             " m): a water table inside the soil, dry soil above it, is given "
+                             "as table");
     }
     const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
     water.column_pressure = water_density * g * (water.level - water.seabed);
@@ -115,6 +164,9 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
     }
     column_pressure = water.column_pressure;
     spec.water = water;
+  }
+  if (table->has(phreatic)) {
+    read_water_table(*table, spec, water, grid_bottom);
   }
   table->finish();
   for (MaterialSpec& m : spec.materials) {

@@ -383,11 +383,12 @@ TEST(CaseWarnings, ADrainedFaceUnderGravityIsNoted) {
       << notes(column);
 }
 
-// Dry sand resting on saturated sand (a water table inside the soil) is not modelled: the K0
+// Dry sand resting on saturated sand (a water table inside the soil) without [water] table: the K0
 // procedure would start the saturated body's water and vertical stress from its own k0 surface
 // without the dry layer's weight. The same column split at 3 m into a dry top and a saturated
-// bottom is noted at the dry body's material; the column saturated whole, or dry whole, is not.
-TEST(CaseWarnings, DrySoilOnSaturatedSoilIsNotedAsAWaterTableNotModelled) {
+// bottom is noted at the dry body's material; the column saturated whole, or dry whole, is not,
+// nor the split column with the table given (Sea.AWaterTableInsideTheSoil... checks its start).
+TEST(CaseWarnings, DrySoilOnSaturatedSoilWithoutAWaterTableIsNoted) {
   const std::string saturated =
       "type = \"linear_elastic\"\nyoung_modulus = 50e6\npoisson_ratio = 0.3\n"
       "density = 1600.0\ndrainage = \"coupled\"\nhydraulic_conductivity = 1e-3\n";
@@ -405,7 +406,7 @@ TEST(CaseWarnings, DrySoilOnSaturatedSoilIsNotedAsAWaterTableNotModelled) {
   const auto notes = [](const std::string& text) {
     std::string found;
     for (const CaseWarning& w : read_case_text(text, "case.toml").warnings) {
-      if (w.text.find("a water table inside the soil is not modelled") != std::string::npos) {
+      if (w.text.find("without [water] table the K0 procedure") != std::string::npos) {
         found += w.text + "\n";
       }
     }
@@ -417,6 +418,7 @@ TEST(CaseWarnings, DrySoilOnSaturatedSoilIsNotedAsAWaterTableNotModelled) {
       << noted;
   EXPECT_EQ(notes(column), "");
   EXPECT_EQ(notes(replaced(split, "material = \"dry\"", "material = \"sand\"")), "");
+  EXPECT_EQ(notes(split + "[water]\ntable = 3.0\n"), "");
 }
 
 } // namespace

@@ -167,6 +167,63 @@ TEST(Sea, CheckPrintsTheSeasPressureAndTheCutOff) {
   EXPECT_NE(out.str().find("cavitates at 1e+05 Pa of tension"), std::string::npos) << out.str();
 }
 
+// A water table inside the soil ([water] table): 2 m of dry sand (1600 kg/m^3) over 3 m of the same
+// sand saturated (n = 1 - 1600 / 2650, rho_sat = 1996 kg/m^3), coupled, the table at the
+// boundary. The K0 procedure weighs both layers: sigma_yy = -(rho_d g 2 m + rho_sat g (3 m - y))
+// below the table, the pore water -rho_w g (3 m - y), and nothing in the dry layer's pores. Both
+// to rounding (the closed form's sums are the procedure's). The column then stays at rest (its
+// velocities and its water's at rounding). Without the table the saturated layer took its water
+// hydrostatic from its own K0 surface, the ground's, 2 m too high: 19.6 kPa more pressure at
+// every depth, which the table's start must not carry.
+TEST(Sea, AWaterTableInsideTheSoilStartsLayeredAndTheColumnStaysAtRest) {
+  const std::string layer =
+      "type = \"linear_elastic\"\nyoung_modulus = 50e6\npoisson_ratio = 0.3\ndensity = 1600.0\n";
+  const std::string text = std::string("title = \"water table\"\n[grid]\n") +
+                           "r = [{ start = 0.0, end = 0.5, cells = 2 }]\n"
+                           "y = [{ start = 0.0, end = 5.0, cells = 20 }]\n"
+                           "[materials.dry]\n" +
+                           layer + "[materials.wet]\n" + layer +
+                           "drainage = \"coupled\"\nhydraulic_conductivity = 1e-3\n"
+                           "[[bodies]]\nname = \"above\"\nmaterial = \"dry\"\n"
+                           "region = { r = [0.0, 0.5], y = [3.0, 5.0] }\n"
+                           "[[bodies]]\nname = \"below\"\nmaterial = \"wet\"\n"
+                           "region = { r = [0.0, 0.5], y = [0.0, 3.0] }\n"
+                           "[boundaries]\nr_max = \"roller\"\ny_min = \"fixed\"\n"
+                           "[solver]\ngravity = [0.0, -9.81]\n[water]\ntable = 3.0\n"
+                           "[[phases]]\nname = \"rest\"\nduration = 0.5\n"
+                           "k0 = [{ body = \"above\", surface = 5.0, k0 = 0.5 }, "
+                           "{ body = \"below\", surface = 5.0, k0 = 0.5 }]\n";
+  auto run = column_at_rest(text, 0.0);
+  const Particles& p = run->scene->particles;
+  const double g = 9.81, rho_d = 1600.0, rho_w = 1000.0;
+  const double rho_sat = rho_d + (1.0 - rho_d / 2650.0) * rho_w;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  double worst_stress = 0.0, worst_pore = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool below = p.y[i] < 3.0;
+    const double vertical =
+        below ? -(rho_d * g * 2.0 + rho_sat * g * (3.0 - p.y[i])) : -rho_d * g * (5.0 - p.y[i]);
+    worst_stress = std::max(worst_stress, std::abs(p.stress[i][YY] - vertical));
+    if (below) {
+      const Material& wet = *run->scene->materials[p.material[i]];
+      const double pore = p.state[i * stride + static_cast<std::size_t>(wet.pore_pressure_index())];
+      worst_pore = std::max(worst_pore, std::abs(pore + rho_w * g * (3.0 - p.y[i])));
+    }
+  }
+  EXPECT_LT(worst_stress, 1e-9 * rho_sat * g * 5.0) << "Pa";
+  EXPECT_LT(worst_pore, 1e-9 * rho_w * g * 3.0) << "Pa";
+  run->solver->advance_to(0.5);
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    fastest = std::max({fastest, std::abs(p.v_r[i]), std::abs(p.v_y[i])});
+  }
+  EXPECT_LT(fastest, 1e-12) << "m/s after 0.5 s at rest";
+  // No note of dry soil over saturated soil: the table says where the water stands.
+  for (const CaseWarning& w : run->spec.warnings) {
+    EXPECT_EQ(w.text.find("rests on saturated"), std::string::npos) << w.text;
+  }
+}
+
 // Each refusal names the file, the line and the key.
 TEST(Sea, BadWaterTableIsRefusedAtItsLine) {
   const std::string column = saturated_column(10.0, 20, 0.01, undrained_sand);
@@ -189,6 +246,14 @@ TEST(Sea, BadWaterTableIsRefusedAtItsLine) {
       {"no saturated soil",
        replaced(column, "drainage = \"undrained\"\n", "") + "[water]\nlevel = 12.0\n",
        "no material holds pore water", "level ="},
+      {"a table and a sea", column + "[water]\nlevel = 12.0\ntable = 8.0\n",
+       "a water table inside the soil and a sea's level above it exclude each other", "table ="},
+      {"saturated above the table", column + "[water]\ntable = 8.0\n",
+       "body 'column' is saturated but reaches y = 10 m, above the table at 8 m", "table ="},
+      {"dry below the table",
+       replaced(column, "drainage = \"undrained\"\n", "") + "[materials.wet]\n" + undrained_sand +
+           "[water]\ntable = 12.0\n",
+       "body 'column' is dry but reaches y = 0 m, below the table at 12 m", "table ="},
       {"no K0 procedure",
        replaced(column, "k0 = [{ body = \"column\", surface = 10, k0 = 0.5 }]\n", "") +
            "[water]\nlevel = 12.0\n",
