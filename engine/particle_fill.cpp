@@ -183,6 +183,23 @@ std::size_t count_region_seeds(const GradedAxis& r_axis, const GradedAxis& y_axi
   return count;
 }
 
+namespace {
+
+/// A particle at rest under its effective vertical stress `vertical` with K0 beside it and its
+/// pore water at `pore` (saturated; 0 for dry soil): sigma = sigma' + p 1, and the material's
+/// state made consistent with it.
+void set_geostatic_state(Particles& p, std::size_t i, const Material& material,
+                         const UndrainedSoil* saturated, double vertical, double pore, double k0) {
+  double* state = p.state.data() + i * static_cast<std::size_t>(p.state_stride);
+  p.stress[i] = Stress{k0 * vertical + pore, vertical + pore, k0 * vertical + pore, 0.0, 0.0, 0.0};
+  if (saturated) {
+    state[saturated->pore_pressure_index()] = pore;
+  }
+  material.initialise_state(p.stress[i], state);
+}
+
+} // namespace
+
 void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surface,
                                  double unit_weight, double k0, double surcharge) {
   Particles& p = scene.particles;
@@ -191,7 +208,6 @@ void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surf
       continue;
     }
     const Material& material = *scene.materials[p.material[i]];
-    double* state = p.state.data() + i * static_cast<std::size_t>(p.state_stride);
     const double depth = y_surface - p.y[i];
     // A saturated soil: its water is hydrostatic from the surface down and carries its own
     // weight; the skeleton carries the buoyant weight, and K0 acts on the effective stress.
@@ -200,12 +216,7 @@ void initialise_geostatic_stress(Scene& scene, std::uint16_t body, double y_surf
         saturated ? unit_weight * saturated->water_density() / saturated->density() : 0.0;
     const double pore = -water_weight * depth;
     const double vertical = -surcharge - (unit_weight - water_weight) * depth;
-    p.stress[i] =
-        Stress{k0 * vertical + pore, vertical + pore, k0 * vertical + pore, 0.0, 0.0, 0.0};
-    if (saturated) {
-      state[saturated->pore_pressure_index()] = pore;
-    }
-    material.initialise_state(p.stress[i], state);
+    set_geostatic_state(p, i, material, saturated, vertical, pore, k0);
   }
 }
 
@@ -218,17 +229,11 @@ void initialise_layered_geostatic_stress(Scene& scene, std::uint16_t body,
       continue;
     }
     const Material& material = *scene.materials[p.material[i]];
-    double* state = p.state.data() + i * static_cast<std::size_t>(p.state_stride);
     const auto* saturated = dynamic_cast<const UndrainedSoil*>(&material);
     const double pore =
         saturated ? -saturated->water_density() * gravity * (water_table - p.y[i]) : 0.0;
     const double vertical = -overburden(p.r[i], p.y[i]) - pore; // effective
-    p.stress[i] =
-        Stress{k0 * vertical + pore, vertical + pore, k0 * vertical + pore, 0.0, 0.0, 0.0};
-    if (saturated) {
-      state[saturated->pore_pressure_index()] = pore;
-    }
-    material.initialise_state(p.stress[i], state);
+    set_geostatic_state(p, i, material, saturated, vertical, pore, k0);
   }
 }
 

@@ -383,18 +383,20 @@ TEST(CoupledSoil, AnImpermeableBaseCarriesTheWholeWeightOfAColumnAtRest) {
   EXPECT_NEAR(base / weight, 1.0, 1e-4) << "base " << base << " N/rad, weight " << weight;
 }
 
+/// The reader's refusal of a case ("accepted" if it builds).
+std::string error_of(const std::string& text) {
+  try {
+    CaseRun run(text);
+  } catch (const CaseError& e) {
+    return std::string(e.what());
+  }
+  return std::string("accepted");
+}
+
 // Settings that would be read and then ignored are refused at their key: one excess pore pressure
 // per cell in a scene without pore water, and a saturated material on a rigid body (whose
 // particles carry neither stress nor water).
 TEST(CoupledSoil, SettingsWithoutPoreWaterToActOnAreRefusedAtTheirKey) {
-  const auto error_of = [](const std::string& text) {
-    try {
-      CaseRun run(text);
-    } catch (const CaseError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
   std::string error =
       error_of(saturated_wave_column("") + "[solver]\ncell_mean_pore_pressure = true\n");
   EXPECT_NE(error.find(": solver.cell_mean_pore_pressure: no material is undrained or coupled"),
@@ -418,14 +420,6 @@ TEST(CoupledSoil, AFarFieldWithoutADrainGravityOrASurfaceIsRefusedAtItsKey) {
       saturated_column(5.0, 20, 0.01,
                        "type = \"linear_elastic\"\nyoung_modulus = 50e6\npoisson_ratio = 0.3\n"
                        "density = 1600.0\ndrainage = \"coupled\"\nhydraulic_conductivity = 1e-3\n");
-  const auto error_of = [](const std::string& text) {
-    try {
-      CaseRun run(text);
-    } catch (const CaseError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
   const std::string hydrostatic = "drained_pressure = \"hydrostatic\"\n";
   const std::string drained = "drained = [\"y_min\"]\n" + hydrostatic;
   // The key's line: the column's [boundaries] table, after its faces (and the drained list).

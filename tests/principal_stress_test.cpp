@@ -31,6 +31,20 @@ void expect_as_the_iterative_solver(const std::vector<Stress>& cases) {
   }
 }
 
+/// 1000 random stresses and each with its theta shears zeroed (the r-y block alone).
+void add_random_stresses(std::vector<Stress>& cases, std::mt19937& random,
+                         std::uniform_real_distribution<double>& value) {
+  for (int k = 0; k < 1000; ++k) {
+    Stress s;
+    for (double& c : s) {
+      c = value(random);
+    }
+    cases.push_back(s);
+    s[RT] = s[YT] = 0.0;
+    cases.push_back(s);
+  }
+}
+
 TEST(PrincipalStress, DecomposesAndRecomposesTheFullTensor) {
   std::mt19937 random(3);
   std::uniform_real_distribution<double> value(-1e5, 1e5);
@@ -122,15 +136,7 @@ TEST(PrincipalStress, ValuesAloneAgreeWithTheDecompositionWithinTheirUncertainty
   std::mt19937 random(5);
   std::uniform_real_distribution<double> value(-1e5, 1e5);
   std::vector<Stress> cases;
-  for (int k = 0; k < 1000; ++k) {
-    Stress s;
-    for (double& c : s) {
-      c = value(random);
-    }
-    cases.push_back(s);
-    s[RT] = s[YT] = 0.0;
-    cases.push_back(s);
-  }
+  add_random_stresses(cases, random, value);
   for (const double tiny : {1e-3, 1e-1, 1e1}) {
     cases.push_back({-50e3, -100e3, -50e3, 0.0, tiny, 0.0});
     cases.push_back({-50e3, -100e3, -50e3, tiny, 0.0, tiny});
@@ -162,15 +168,7 @@ TEST(PrincipalStress, TheMinorValueAloneIsTheValuesSmallestToTheBit) {
                             {-70e3, -70e3, -70e3, 0.0, 0.0, 0.0},
                             {-70e3, -70e3, -70e3, 0.0, 0.0, 1e-200},
                             {-20e3, -60e3, -80e3, 0.0, 0.0, 0.0}};
-  for (int k = 0; k < 1000; ++k) {
-    Stress s;
-    for (double& c : s) {
-      c = value(random);
-    }
-    cases.push_back(s);
-    s[RT] = s[YT] = 0.0;
-    cases.push_back(s);
-  }
+  add_random_stresses(cases, random, value);
   for (const Stress& s : cases) {
     ASSERT_EQ(principal_compression_minor(s), principal_compression_values(s).values[2]);
   }
