@@ -81,6 +81,7 @@ private:
     double coefficient[16][2];
     double storage;  // sum V n / K_w
     double headroom; // sum V n / K_w (limit - p): the storage the cut-off leaves (infinite: none)
+    double flowing;  // sum V over its coupled soil's particles (their water flows)
   };
 
   /// Solves again with the held cells' increments fixed: their rows and columns become their

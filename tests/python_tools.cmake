@@ -171,6 +171,29 @@ foreach(water undrained coupled)
                        FIXTURES_REQUIRED cpt_coarse_${water} LABELS study)
 endforeach()
 
+# The coarse chamber undrained and dilative (psi = 7.5 degrees) with the water cavitating at 100
+# kPa, pushed 1.5 cm (about 30 s; docs/saturated.md, "The cut-off with the implicit pore
+# pressure"). Its water cavitates in the cone's wall cells: capped only after a solve that left
+# them free, the velocities took the suction the stress did not keep and the run went unstable at
+# 1.0 cm (ledger 52 %, q_c 4.44 MPa at 1 cm and rising). The ledger must close within 2 % (held in
+# the solve: 0.19 % at the end, 0.46 % peak, to 3 cm) and q_c at 1 cm lie in [3.1, 3.7] MPa: the
+# three consistent treatments tried (held, held where in contact, clamped after the solve) gave
+# 3.35 to 3.43, and the band leaves out the unstable run's 4.44.
+set(cpt_cavitating_output ${CMAKE_CURRENT_BINARY_DIR}/cpt_coarse_cavitating)
+add_test(NAME CptTool.RunTheDilativeUndrainedChamberCavitating
+         COMMAND mpile run ${PROJECT_SOURCE_DIR}/cases/cpt/cpt_coarse.toml --threads 1
+                 --out ${cpt_cavitating_output} ${cpt_saturated}
+                 --set phases.1.stop_at.penetration=0.015 --set materials.sand.drainage="undrained"
+                 --set materials.sand.dilatancy_angle=7.5 --set water.cavitation_stress=100e3)
+set_tests_properties(CptTool.RunTheDilativeUndrainedChamberCavitating PROPERTIES
+  FIXTURES_SETUP cpt_coarse_cavitating LABELS study
+  PASS_REGULAR_EXPRESSION "done: [^\n]*energy residual [01]\\.[0-9]+ % at the end, peak [01]\\.[0-9]+ %")
+add_test(NAME CptTool.DilativeUndrainedConeResistanceAtOneCentimetre
+         COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/cpt.py
+                 ${cpt_cavitating_output}/history.h5 --step 0.005 --expect-qc 0.01 3.1 3.7)
+set_tests_properties(CptTool.DilativeUndrainedConeResistanceAtOneCentimetre PROPERTIES
+                     FIXTURES_REQUIRED cpt_coarse_cavitating LABELS study)
+
 # tools/cpt_rate.py on those runs and the dry chamber's (mass-scaled: 1.88 MPa at 1 cm, a drained
 # limit for the arithmetic): V = v d / (k E_oed / gamma_w) = 0.5 x 0.0357 / (1e-5 x 31.9e6 / 9810) =
 # 0.549, q_c / q_c,d = 0.751 / 1.88 = 0.40, (0.751 - 0.369) / (1.88 - 0.369) = 0.25.
