@@ -224,6 +224,20 @@ TEST(Sea, AWaterTableInsideTheSoilStartsLayeredAndTheColumnStaysAtRest) {
   }
 }
 
+// `mpile check` says where a water table stands instead of a sea.
+TEST(Sea, CheckPrintsTheWaterTable) {
+  const auto directory = fresh_directory("water_table_check");
+  const auto path = directory / "case.toml";
+  std::ofstream(path) << saturated_column(2.0, 8, 0.01, undrained_sand) << "[water]\ntable = 2.0\n";
+  RunOptions options;
+  options.case_path = path.string();
+  std::ostringstream out, err;
+  ASSERT_EQ(check_case(options, out, err), 0) << err.str();
+  EXPECT_NE(out.str().find("water table: at 2 m, the soil dry above it"), std::string::npos)
+      << out.str();
+  EXPECT_EQ(out.str().find("sea: level"), std::string::npos) << out.str();
+}
+
 // Each refusal names the file, the line and the key.
 TEST(Sea, BadWaterTableIsRefusedAtItsLine) {
   const std::string column = saturated_column(10.0, 20, 0.01, undrained_sand);
