@@ -19,7 +19,9 @@
 
 namespace mpile::passes {
 
-namespace {
+// Named, not anonymous: the pass's lambdas capture these types, and a unity build that puts this
+// file beside others would make an anonymous one a subobject of another linkage.
+namespace stress_pass {
 
 /// Per-thread work arrays of one block, kept between steps to avoid allocation in the loop.
 struct BlockScratch {
@@ -303,7 +305,9 @@ StressPassResult reduce(const ParticleBins& bins, const std::vector<BlockResult>
   return result;
 }
 
-} // namespace
+} // namespace stress_pass
+
+using namespace stress_pass;
 
 template <GeometryMode mode, bool contact, ShapeFunctions shape>
 StressPassResult

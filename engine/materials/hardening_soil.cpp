@@ -16,6 +16,7 @@
 //   HardeningSoil::update_point and substep: one point's update, split into substeps
 #include "engine/materials/hardening_soil.hpp"
 
+#include "engine/angles.hpp"
 #include "engine/materials/principal_stress.hpp"
 
 #include <algorithm>
@@ -27,10 +28,6 @@
 namespace mpile {
 
 namespace {
-
-double radians(double degrees) {
-  return degrees * std::numbers::pi / 180.0;
-}
 
 using Principal = std::array<double, 3>;
 

@@ -3,6 +3,7 @@
 // integration over a strain increment by Heun's method in error-controlled substeps.
 #include "engine/materials/hypoplastic.hpp"
 
+#include "engine/angles.hpp"
 #include "engine/materials/principal_stress.hpp"
 
 #include <algorithm>
@@ -15,10 +16,6 @@
 namespace mpile {
 
 namespace {
-
-double radians(double degrees) {
-  return degrees * std::numbers::pi / 180.0;
-}
 
 /// A : B of two symmetric tensors stored as (rr, yy, thth, ry, ytheta, rtheta), tensor shear.
 double contract(const Stress& a, const Stress& b) {

@@ -1,5 +1,6 @@
 #include "engine/materials/mohr_coulomb.hpp"
 
+#include "engine/angles.hpp"
 #include "engine/materials/principal_stress.hpp"
 
 #include <algorithm>
@@ -104,8 +105,8 @@ MohrCoulomb::MohrCoulomb(double young_modulus, double poisson_ratio, double dens
   }
   mu_ = young_ / (2.0 * (1.0 + poisson_));
   lambda_ = young_ * poisson_ / ((1.0 + poisson_) * (1.0 - 2.0 * poisson_));
-  const double phi = friction_angle * std::numbers::pi / 180.0;
-  const double psi = dilatancy_angle * std::numbers::pi / 180.0;
+  const double phi = radians(friction_angle);
+  const double psi = radians(dilatancy_angle);
   n_phi_ = (1.0 + std::sin(phi)) / (1.0 - std::sin(phi));
   n_psi_ = (1.0 + std::sin(psi)) / (1.0 - std::sin(psi));
   strength_ = 2.0 * cohesion * std::sqrt(n_phi_);
