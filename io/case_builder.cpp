@@ -482,33 +482,45 @@ void switch_on_absorbing_faces(ExplicitSolver& solver, const CaseSpec& spec,
 
 namespace {
 
-/// With a water table: the total vertical stress's magnitude at (r, y) under the ground of the
-/// phase's K0 bodies, from `surface` down, plus the surcharge: each body's unit weight over the
-/// part of the vertical through (r, y) its region holds (its bounds' edges split the vertical;
-/// a part no body holds weighs nothing).
-double layered_overburden(const Scene& scene, const CaseSpec& spec, const PhaseSpec& phase,
-                          const K0Spec& k0, double g, double r, double y) {
-  std::vector<double> edges{y, k0.surface};
-  std::vector<std::pair<const Region*, double>> layers; // region, unit weight
-  for (const K0Spec& other : phase.k0) {
+/// With a water table: the ground of a phase's K0 bodies as layers, each body's region and unit
+/// weight, and the heights where one may end (its bounds' edges), gathered once per phase.
+struct Layers {
+  std::vector<std::pair<const Region*, double>> weight; // region, unit weight
+  std::vector<double> edges;
+};
+
+Layers k0_layers(const Scene& scene, const CaseSpec& spec, const PhaseSpec& phase, double g) {
+  Layers layers;
+  for (const K0Spec& k0 : phase.k0) {
     for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
-      if (spec.bodies[b].name == other.body) {
+      if (spec.bodies[b].name == k0.body) {
         const Rectangle& bounds = spec.bodies[b].region.bounds();
-        for (const double edge : {bounds.y_min, bounds.y_max}) {
-          if (edge > y && edge < k0.surface) {
-            edges.push_back(edge);
-          }
-        }
-        layers.emplace_back(&spec.bodies[b].region,
-                            scene.materials[material_of(spec, spec.bodies[b])]->density() * g);
+        layers.edges.push_back(bounds.y_min);
+        layers.edges.push_back(bounds.y_max);
+        layers.weight.emplace_back(&spec.bodies[b].region,
+                                   scene.materials[material_of(spec, spec.bodies[b])]->density() *
+                                       g);
       }
+    }
+  }
+  return layers;
+}
+
+/// The total vertical stress's magnitude at (r, y) from `k0`'s surface down, plus its surcharge:
+/// each layer's unit weight over the part of the vertical through (r, y) its region holds (the
+/// layers' edges split the vertical; a part no body holds weighs nothing).
+double layered_overburden(const Layers& layers, const K0Spec& k0, double r, double y) {
+  std::vector<double> edges{y, k0.surface};
+  for (const double edge : layers.edges) {
+    if (edge > y && edge < k0.surface) {
+      edges.push_back(edge);
     }
   }
   std::sort(edges.begin(), edges.end());
   double weight = k0.surcharge;
   for (std::size_t e = 1; e < edges.size(); ++e) {
     const double middle = 0.5 * (edges[e - 1] + edges[e]);
-    for (const auto& [region, unit_weight] : layers) {
+    for (const auto& [region, unit_weight] : layers.weight) {
       if (region->contains(r, middle)) {
         weight += unit_weight * (edges[e] - edges[e - 1]);
         break;
@@ -523,14 +535,13 @@ double layered_overburden(const Scene& scene, const CaseSpec& spec, const PhaseS
 void apply_k0(Scene& scene, const CaseSpec& spec, const PhaseSpec& phase) {
   const double g = std::hypot(spec.solver.gravity[0], spec.solver.gravity[1]);
   if (spec.water && spec.water->phreatic) {
+    const Layers layers = k0_layers(scene, spec, phase, g);
     for (const K0Spec& k0 : phase.k0) {
       for (std::size_t b = 0; b < spec.bodies.size(); ++b) {
         if (spec.bodies[b].name == k0.body) {
           initialise_layered_geostatic_stress(
               scene, static_cast<std::uint16_t>(b),
-              [&](double r, double y) {
-                return layered_overburden(scene, spec, phase, k0, g, r, y);
-              },
+              [&](double r, double y) { return layered_overburden(layers, k0, r, y); },
               spec.water->table, g, k0.k0);
         }
       }

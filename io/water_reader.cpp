@@ -62,6 +62,16 @@ double seabed_of(const TomlTable& table, const std::string& level, const CaseSpe
   return seabed;
 }
 
+/// Water at rest is hydrostatic only under gravity along -y: `what` is refused at `key` otherwise.
+void require_gravity_down(const TomlTable& table, const std::string& key, const CaseSpec& spec,
+                          const std::string& what) {
+  if (spec.solver.gravity[0] != 0.0 || !(spec.solver.gravity[1] < 0.0)) {
+    table.fail(key, what + " is hydrostatic under gravity along -y; [solver] gravity is [" +
+                        format_number(spec.solver.gravity[0]) + ", " +
+                        format_number(spec.solver.gravity[1]) + "]");
+  }
+}
+
 /// A water table inside the soil ([water] table): one sea level or the other; gravity along -y;
 /// the saturated bodies below the table and the dry ones above it.
 void read_water_table(const TomlTable& table, CaseSpec& spec, WaterSpec water, double grid_bottom) {
@@ -70,11 +80,7 @@ void read_water_table(const TomlTable& table, CaseSpec& spec, WaterSpec water, d
     table.fail(key, "a water table inside the soil and a sea's level above it exclude each other: "
                     "give one");
   }
-  if (spec.solver.gravity[0] != 0.0 || !(spec.solver.gravity[1] < 0.0)) {
-    table.fail(key, "a water table is hydrostatic under gravity along -y; [solver] gravity is [" +
-                        format_number(spec.solver.gravity[0]) + ", " +
-                        format_number(spec.solver.gravity[1]) + "]");
-  }
+  require_gravity_down(table, key, spec, "a water table");
   if (!(water.table >= grid_bottom)) {
     table.fail(key, format_number(water.table) + " m lies below the grid (its bottom is " +
                         format_number(grid_bottom) + " m)");
@@ -181,12 +187,7 @@ void read_water(TomlTable& top, CaseSpec& spec, double grid_bottom) {
 
 void read_drained_water(TomlTable& boundaries, CaseSpec& spec) {
   const std::string& key = boundaries.key_of(&FaceConditions::hydrostatic_drains);
-  if (spec.solver.gravity[0] != 0.0 || !(spec.solver.gravity[1] < 0.0)) {
-    boundaries.fail(key, "the far field's water is hydrostatic under gravity along -y; [solver] "
-                         "gravity is [" +
-                             format_number(spec.solver.gravity[0]) + ", " +
-                             format_number(spec.solver.gravity[1]) + "]");
-  }
+  require_gravity_down(boundaries, key, spec, "the far field's water");
   CaseSpec::DrainedWater water;
   for (const MaterialSpec& m : spec.materials) {
     if (saturated(m)) {
