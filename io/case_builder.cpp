@@ -315,7 +315,9 @@ std::unique_ptr<Scene> build_scene(const CaseSpec& spec) {
     }
     if (body.rigid) {
       const double density = scene->materials[material_of(spec, body)]->density();
-      scene->make_rigid(b, density, body.rigid->mass, body.rigid->inertia);
+      scene->make_rigid(b, density, body.rigid->mass,
+                        spec.mode == GeometryMode::plane_strain ? body.rigid->inertia
+                                                                : body.rigid->polar_inertia);
     }
   }
 

@@ -384,7 +384,8 @@ std::vector<TableSpec> declare() {
                {numbers("centre", "m", "[r, y]").length(2).needed(),
                 number("radius", "m", "its radius; off the axis at most the centre's r")
                     .needed()
-                    .above(0.0)},
+                    .above(0.0)
+                    .into(&CircleSpec::radius)},
                false});
   t.push_back(
       {"bodies.velocity_profile",
@@ -407,10 +408,12 @@ std::vector<TableSpec> declare() {
             .into(&RigidSpec::mass),
         number("polar_inertia", "kg m^2/rad", "axisymmetric: the moment of inertia about the axis")
             .above(0.0)
-            .or_computed("from the particles"),
+            .or_computed("from the particles")
+            .into(&RigidSpec::polar_inertia),
         number("inertia", "kg m^2/m", "plane strain: the moment of inertia about the centre")
             .above(0.0)
-            .or_computed("from the particles")};
+            .or_computed("from the particles")
+            .into(&RigidSpec::inertia)};
     for (KeySpec& k : drive_keys()) {
       keys.push_back(std::move(k));
     }
@@ -494,14 +497,17 @@ std::vector<TableSpec> declare() {
             "(\"\" for none); at most 8 surfaces")
             .or_computed("a rectangle's four edges, named bottom, right, top, left"),
         string("surface", "the single surface's name: mass-gradient normals, or a circle's outline")
-            .or_computed("\"interface\" (mass gradient), \"surface\" (circle)")},
+            .or_computed("\"interface\" (mass gradient), \"surface\" (circle)")
+            .into(&ContactSpec::surface)},
        false});
   {
     std::vector<KeySpec> edges;
-    for (const char* edge : {"bottom", "right", "top", "left"}) {
-      edges.push_back(
-          string(edge, std::string("the surface the rectangle's ") + edge + " edge belongs to")
-              .or_computed("no contact surface"));
+    const char* names[] = {"bottom", "right", "top", "left"}; // rectangle_edges' order
+    for (std::size_t e = 0; e < rectangle_edges.size(); ++e) {
+      edges.push_back(string(names[e], std::string("the surface the rectangle's ") + names[e] +
+                                           " edge belongs to")
+                          .or_computed("no contact surface")
+                          .into(rectangle_edges[e]));
     }
     t.push_back({"contact.surfaces", "A rectangle's contact surfaces, by edge.", edges, false});
   }
@@ -595,8 +601,9 @@ std::vector<TableSpec> declare() {
     keys.push_back(number("mass", "kg/rad", "not allowed: follows from the parameters")
                        .or_computed("none")
                        .into(&RigidSpec::mass));
-    keys.push_back(
-        number("polar_inertia", "kg m^2/rad", "not allowed: follows from the parameters"));
+    keys.push_back(number("polar_inertia", "kg m^2/rad", "not allowed: follows from the parameters")
+                       .or_computed("none")
+                       .into(&RigidSpec::polar_inertia));
     keys.push_back(string("phase", "the phase in which the drives start")
                        .or_computed(first_phase)
                        .into(&RigidSpec::phase));
@@ -730,8 +737,10 @@ std::vector<TableSpec> declare() {
       {"phases.k0",
        "A K0 procedure: sigma_yy = -(surcharge + rho g (surface - y)), sigma_rr = sigma_thth = K0 "
        "sigma_yy, for one body or every body of one material.",
-       {string("body", "the body; or material"),
-        string("material", "every body of this material; or body"),
+       {string("body", "the body; or material").or_computed("none").into(&K0Spec::body),
+        string("material", "every body of this material; or body")
+            .or_computed("none")
+            .into(&K0Spec::material),
         number("surface", "m", "y of the soil surface").needed().into(&K0Spec::surface),
         number("k0", "-", "K0").needed().above(0.0).into(&K0Spec::k0),
         number("surcharge", "Pa", "a surface load q").at_least(0.0).into(&K0Spec::surcharge)},
@@ -763,7 +772,8 @@ std::vector<TableSpec> declare() {
       {"output",
        "What the run writes, and when.",
        {string("directory", "where outputs go (mpile run --out overrides it)")
-            .or_computed("out/<case file name>"),
+            .or_computed("out/<case file name>")
+            .into(&OutputSpec::directory),
         number("snapshot_interval", "s",
                "simulated time between particle snapshots; 0: only the "
                "first and the last")

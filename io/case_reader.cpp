@@ -364,17 +364,25 @@ void read_rigid_body(TomlTable& table, BodySpec& body, const CaseSpec& spec,
   RigidSpec rigid = body.rigid.value_or(RigidSpec{});
   const bool derived = body.rigid.has_value();
   const bool plane = spec.mode == GeometryMode::plane_strain;
-  const std::string inertia_key = plane ? "inertia" : "polar_inertia";
-  for (const std::string& key : {table.key_of(&RigidSpec::mass), inertia_key}) {
-    if (derived && table.has(key)) {
-      table.fail(key, "the monopile's mass and polar inertia follow from pile_length, diameter, "
-                      "wall_thickness and the pile material's density; remove this key");
+  // Each mode turns a body about its own axis, under its own key.
+  const auto inertia = plane ? &RigidSpec::inertia : &RigidSpec::polar_inertia;
+  const auto other_mode = plane ? &RigidSpec::polar_inertia : &RigidSpec::inertia;
+  for (const auto member : {&RigidSpec::mass, inertia}) {
+    if (derived && table.has(table.key_of(member))) {
+      table.fail(member, "the monopile's mass and polar inertia follow from pile_length, "
+                         "diameter, wall_thickness and the pile material's density; remove this "
+                         "key");
     }
   }
-  table.read_into(rigid);
-  if (table.has(inertia_key)) {
-    rigid.inertia = table.number(inertia_key);
+  // (The monopile's drive table declares neither: its finish() refuses them as unknown.)
+  if (!derived && table.has(table.key_of(other_mode))) {
+    table.fail(other_mode, plane ? "axisymmetric cases only: a plane-strain body turns about its "
+                                   "centre, its moment of inertia given as inertia (kg m^2/m)"
+                                 : "plane-strain cases only: an axisymmetric body turns about the "
+                                   "axis, its moment of inertia given as polar_inertia "
+                                   "(kg m^2/rad)");
   }
+  table.read_into(rigid);
   rigid.drive = read_drives(table, spec, warnings);
   check_phase_reference(table, table.key_of(&RigidSpec::phase), rigid.phase, spec);
   table.finish();
@@ -403,15 +411,17 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
       table.fail(&ContactSpec::surface_gap, "the soil's surface gap needs the outline's normals");
     }
     if (contact.outline) {
-      contact.surfaces = read_outline_surfaces(table, body->region, body->name);
+      contact.surfaces = read_outline_surfaces(table, contact, body->region, body->name);
     } else {
       if (table.has("surfaces")) {
         table.fail("surfaces", "mass-gradient normals have one surface: use the key surface");
       }
-      contact.surfaces = {table.string_or("surface", "interface")};
+      contact.surfaces = {table.has(table.key_of(&ContactSpec::surface)) ? contact.surface
+                                                                         : "interface"};
     }
     // Edges given one name are one surface; two names must not become one group.
-    const std::string key = table.has("surfaces") ? "surfaces" : "surface";
+    const std::string key =
+        table.has("surfaces") ? "surfaces" : table.key_of(&ContactSpec::surface);
     GroupNames groups("/reactions/" + dataset_name(contact.structure));
     std::set<std::string> seen{""};
     for (const std::string& surface : contact.surfaces) {
@@ -692,15 +702,15 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
     }
     for (TomlTable& k0 : table.tables("k0")) {
       // One body, or every body of one material (the monopile's three soil bodies).
-      const bool by_material = k0.has("material");
-      if (by_material == k0.has("body")) {
-        k0.fail("body", "give either body or material (every body of that material)");
+      const bool by_material = k0.has(k0.key_of(&K0Spec::material));
+      if (by_material == k0.has(k0.key_of(&K0Spec::body))) {
+        k0.fail(&K0Spec::body, "give either body or material (every body of that material)");
       }
-      const std::string key = by_material ? "material" : "body";
-      const std::string name = k0.string(key);
       K0Spec init;
       k0.read_into(init);
       k0.finish();
+      const auto named = by_material ? &K0Spec::material : &K0Spec::body;
+      const std::string name = init.*named;
       bool found = false;
       for (const BodySpec& body : spec.bodies) {
         if ((by_material ? body.material : body.name) == name) {
@@ -710,7 +720,7 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
         }
       }
       if (!found) {
-        k0.fail(key,
+        k0.fail(named,
                 "no body " + std::string(by_material ? "of material '" : "named '") + name + "'");
       }
     }
@@ -964,7 +974,7 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   }
   OutputSpec& out = spec.output;
   table->read_into(out);
-  out.directory = table->path_or("directory", "");
+  table->check_path(&OutputSpec::directory, out.directory);
   out.snapshot_times = table->numbers_or("snapshot_times", {});
   for (const double t : out.snapshot_times) {
     if (t < 0.0) {

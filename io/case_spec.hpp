@@ -37,9 +37,16 @@ struct VelocityProfile {
 
 /// A rigid body's mass, inertia and drives (physics.md section 6). A DOF without a drive is free;
 /// until the drives' phase starts every DOF is held at rest.
+/// A circle region's radius as read (its centre is an array, read by itself).
+struct CircleSpec {
+  double radius = 0.0;
+};
+
 struct RigidSpec {
-  double mass = 0.0;                              // 0: from the particles
-  double inertia = 0.0;                           // 0: from the particles
+  double mass = 0.0; // 0: from the particles
+  /// The moment of inertia the body turns with, each under its mode's key (0: from the particles).
+  double polar_inertia = 0.0;                     // axisymmetric: about the axis, per radian
+  double inertia = 0.0;                           // plane strain: about the centre, per metre
   std::array<std::optional<RigidDrive>, 3> drive; // RigidDof order
   std::string phase;
 };
@@ -61,6 +68,15 @@ struct BodySpec {
 };
 
 /// Contact between the soil (every body that is not a structure) and one structure body.
+/// A rectangle's contact surfaces as read, by edge (empty: no contact surface).
+struct RectangleSurfaces {
+  std::string bottom, right, top, left;
+};
+/// The edges in the order of a rectangle's vertices(), as ContactSpec::surfaces keeps them.
+inline constexpr std::array<std::string RectangleSurfaces::*, 4> rectangle_edges{
+    &RectangleSurfaces::bottom, &RectangleSurfaces::right, &RectangleSurfaces::top,
+    &RectangleSurfaces::left};
+
 struct ContactSpec {
   std::string structure;
   double friction = 0.0;
@@ -69,6 +85,9 @@ struct ContactSpec {
   /// With an outline: contact at a node on a straight run of one surface along r or y needs the
   /// soil's surface interpolated to the node to reach the outline (ContactPair::surface_gap).
   bool surface_gap = false;
+  /// The single surface's name as written (`surface`; empty when absent): mass-gradient normals'
+  /// or a circle's, gathered into `surfaces`.
+  std::string surface;
   /// With an outline, the surface name of each of its edges (empty: not a contact surface), in
   /// the order of the region's vertices(): a rectangle's bottom, right, top and left edges, a
   /// polygon's edges counter-clockwise; a circle's single name. With mass-gradient normals, the
@@ -104,7 +123,8 @@ struct LoadSpec {
 };
 
 struct K0Spec {
-  std::string body;
+  std::string body;     // each body the stress is set in
+  std::string material; // as read: every body of this material (then one K0Spec per body)
   double surface = 0.0;
   double k0 = 0.5;
   double surcharge = 0.0; // Pa on the surface (a calibration chamber's vertical stress)

@@ -93,7 +93,7 @@ std::optional<TomlTable> read_monopile(TomlTable& table, CaseSpec& spec) {
   }
   RigidSpec rigid;
   rigid.mass = g.pile_mass(p, density->second);
-  rigid.inertia = g.pile_polar_inertia(p, density->second);
+  rigid.polar_inertia = g.pile_polar_inertia(p, density->second);
   pile.rigid = rigid;
   spec.bodies.push_back(pile);
   spec.contacts.push_back(contact);

@@ -97,7 +97,9 @@ Region read_polygon(TomlTable& region, GeometryMode mode, const GradedAxis& r,
 Region read_circle(TomlTable& region, GeometryMode mode, const GradedAxis& r, const GradedAxis& y) {
   TomlTable circle = region.table("circle");
   const auto centre = circle.numbers("centre", 2);
-  const double radius = circle.number("radius");
+  CircleSpec read;
+  circle.read_into(read);
+  const double radius = read.radius;
   circle.finish();
   region.finish();
   double r_min = centre[0] - radius;
@@ -106,8 +108,9 @@ Region read_circle(TomlTable& region, GeometryMode mode, const GradedAxis& r, co
       circle.fail("centre", "lies behind the axis (r < 0)");
     }
     if (centre[0] > 0.0 && r_min < 0.0) {
-      circle.fail("radius", "reaches behind the axis: centre the circle on the axis (a sphere) or "
-                            "keep the radius within the centre's r (a torus)");
+      circle.fail(&CircleSpec::radius,
+                  "reaches behind the axis: centre the circle on the axis (a sphere) or "
+                  "keep the radius within the centre's r (a torus)");
     }
     r_min = std::max(r_min, 0.0); // a sphere: the half at r >= 0
   }
@@ -146,13 +149,14 @@ Region read_region(TomlTable& body, GeometryMode mode, const GradedAxis& r, cons
   return read_rectangle(body, region, mode, r, y);
 }
 
-std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region& region,
-                                               const std::string& name) {
+std::vector<std::string> read_outline_surfaces(TomlTable& contact, const ContactSpec& read,
+                                               const Region& region, const std::string& name) {
+  const std::string& surface_key = contact.key_of(&ContactSpec::surface);
   switch (region.shape()) {
   case Region::Shape::rectangle: {
-    if (contact.has("surface")) {
-      contact.fail("surface", "an outline has four edges: name them in surfaces = { bottom = "
-                              "..., right = ..., top = ..., left = ... }");
+    if (contact.has(surface_key)) {
+      contact.fail(surface_key, "an outline has four edges: name them in surfaces = { bottom = "
+                                "..., right = ..., top = ..., left = ... }");
     }
     std::vector<std::string> surfaces{"bottom", "right", "top", "left"};
     if (contact.has("surfaces") && !contact.raw("surfaces").is_table()) {
@@ -163,11 +167,13 @@ std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region&
     }
     if (std::optional<TomlTable> table = contact.optional_table("surfaces")) {
       // Given a table, edges it does not name are not contact surfaces.
-      const char* edges[] = {"bottom", "right", "top", "left"};
-      for (std::size_t e = 0; e < 4; ++e) {
-        surfaces[e] = table->string_or(edges[e], "");
-        if (table->has(edges[e]) && surfaces[e].empty()) {
-          table->fail(edges[e], "a surface name must not be empty (leave the edge out instead)");
+      RectangleSurfaces named;
+      table->read_into(named);
+      for (std::size_t e = 0; e < rectangle_edges.size(); ++e) {
+        surfaces[e] = named.*rectangle_edges[e];
+        if (table->has(table->key_of(rectangle_edges[e])) && surfaces[e].empty()) {
+          table->fail(rectangle_edges[e],
+                      "a surface name must not be empty (leave the edge out instead)");
         }
       }
       table->finish();
@@ -184,9 +190,9 @@ std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region&
                                    "' is a circle, outlined as one surface: name "
                                    "it with surface = \"...\"");
     }
-    const std::string surface = contact.string_or("surface", "surface");
+    const std::string surface = contact.has(surface_key) ? read.surface : "surface";
     if (surface.empty()) {
-      contact.fail("surface", "a surface name must not be empty");
+      contact.fail(surface_key, "a surface name must not be empty");
     }
     return {surface};
   }
@@ -203,10 +209,10 @@ std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region&
                      "), and outline normals (the default) need a convex outline: use normals = "
                      "\"mass_gradient\", or split the structure into convex bodies");
   }
-  if (contact.has("surface")) {
-    contact.fail("surface", "body '" + name +
-                                "' is a polygon: name each edge in surfaces = "
-                                "[\"...\", ...]");
+  if (contact.has(surface_key)) {
+    contact.fail(surface_key, "body '" + name +
+                                  "' is a polygon: name each edge in surfaces = "
+                                  "[\"...\", ...]");
   }
   const std::string expected = "an array of " + std::to_string(n) +
                                " surface names, one per edge of body '" + name +

@@ -6,6 +6,7 @@
 #include "engine/geometry_mode.hpp"
 #include "engine/graded_axis.hpp"
 #include "engine/region.hpp"
+#include "io/case_spec.hpp"
 #include "io/toml_reader.hpp"
 
 #include <string>
@@ -21,8 +22,8 @@ Region read_region(TomlTable& body, GeometryMode mode, const GradedAxis& r, cons
 /// Reads the surface names of a [[contact]] entry whose structure (body `name`, region `region`)
 /// takes outline normals, in the order ContactSpec::surfaces keeps them: a rectangle's by
 /// `surfaces = { bottom, right, top, left }`, a convex polygon's by `surfaces = [...]` (one per
-/// edge as given), a circle's by `surface`.
-std::vector<std::string> read_outline_surfaces(TomlTable& contact, const Region& region,
-                                               const std::string& name);
+/// edge as given), a circle's by `surface` (read into `read` already).
+std::vector<std::string> read_outline_surfaces(TomlTable& contact, const ContactSpec& read,
+                                               const Region& region, const std::string& name);
 
 } // namespace mpile

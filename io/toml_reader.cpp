@@ -441,10 +441,14 @@ std::string TomlTable::string_or(const std::string& key, const std::string& fall
 
 std::string TomlTable::path(const std::string& key) {
   std::string x = string(key);
+  check_path(key, x);
+  return x;
+}
+
+void TomlTable::check_path(const std::string& key, const std::string& x) const {
   if (x.find('\0') != std::string::npos) {
     fail(key, "a path cannot hold a NUL character (\\u0000)");
   }
-  return x;
 }
 
 std::string TomlTable::path_or(const std::string& key, const std::string& fallback) {

@@ -43,6 +43,12 @@ public:
   /// to it: "x.toml\u0000junk" named x.toml).
   std::string path(const std::string& key);
   std::string path_or(const std::string& key, const std::string& fallback);
+  /// The check path() makes, for a path a bound key has read.
+  void check_path(const std::string& key, const std::string& x) const;
+  template <class Target = void, class T, class Owner>
+  void check_path(T Owner::*member, const std::string& x) const {
+    check_path(key_of<Target>(member), x);
+  }
   bool boolean(const std::string& key);
   bool boolean_or(const std::string& key, bool fallback);
   std::vector<double> numbers(const std::string& key, std::size_t expected_size = 0);

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -181,6 +182,25 @@ TEST(CaseFormat, EachSolverSettingIsDeclaredOnceAndBoundToItsMember) {
           }
         },
         p.member);
+  }
+}
+
+// One name per key: every scalar key of the case format is bound to the field it is read into,
+// so its name, unit, range and default are written once, in the declaration, and an error names
+// the key the user wrote. The exceptions read a value before the case is composed or take more
+// than one form.
+TEST(CaseFormat, EveryScalarKeyIsBoundToItsField) {
+  const std::set<std::string> unbound{
+      ".base", // the composition's include, resolved before the tables are read
+  };
+  for (const TableSpec& table : case_format()) {
+    for (const KeySpec& key : table.keys) {
+      const bool scalar = key.kind == ValueKind::number || key.kind == ValueKind::integer ||
+                          key.kind == ValueKind::boolean || key.kind == ValueKind::string;
+      if (scalar && unbound.count(table.path + "." + key.name) == 0) {
+        EXPECT_NE(key.bound_to, nullptr) << "[" << table.path << "] " << key.name;
+      }
+    }
   }
 }
 

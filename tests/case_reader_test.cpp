@@ -418,6 +418,12 @@ std::vector<BadInput> bad_contact_inputs() {
        "bodies[1].rigid.mass: must be > 0 kg/rad, got -650", "mass = -650.0"},
       {"drive phase unknown", contact_edited("phase = \"drive\"", "phase = \"install\""),
        "bodies[1].rigid.phase: no phase named 'install'", "phase = \"install\""},
+      // Each mode's moment of inertia under its own key: the other mode's is named, not unknown.
+      {"plane-strain inertia on an axisymmetric body",
+       contact_edited("mass = 650.0", "mass = 650.0\ninertia = 3.0"),
+       "bodies[1].rigid.inertia: plane-strain cases only: an axisymmetric body turns about the "
+       "axis",
+       "inertia = 3.0"},
       {"misspelt rigid key", contact_edited("mass = 650.0", "mas = 650.0"),
        "bodies[1].rigid.mas: unknown key", "mas = 650.0"},
       {"polygon structure with a rectangle's surfaces",
@@ -585,6 +591,10 @@ std::vector<BadInput> bad_monopile_inputs() {
       {"pile mass given",
        monopile_edited("phase = \"installation\"", "phase = \"installation\"\nmass = 650.0"),
        "monopile.drive.mass: the monopile's mass and polar inertia follow from", "mass = 650.0"},
+      {"pile polar inertia given",
+       monopile_edited("phase = \"installation\"", "phase = \"installation\"\npolar_inertia = 9.0"),
+       "monopile.drive.polar_inertia: the monopile's mass and polar inertia follow from",
+       "polar_inertia = 9.0"},
       {"grid given as well",
        "[grid]\nr = [{ start = 0.0, end = 5.0, cells = 10 }]\n" + monopile_case(),
        "grid: [monopile] builds the grid", ""},
