@@ -1,12 +1,12 @@
 #include "app/run_command.hpp"
 #include "app/run_estimate.hpp"
+#include "cases/case_builder.hpp"
+#include "cases/case_error.hpp"
+#include "cases/case_phases.hpp"
+#include "cases/case_warnings.hpp"
+#include "cases/plausibility.hpp"
 #include "engine/materials/undrained_soil.hpp"
-#include "io/case_builder.hpp"
-#include "io/case_error.hpp"
-#include "io/case_phases.hpp"
-#include "io/case_warnings.hpp"
 #include "io/monitor_points.hpp"
-#include "io/plausibility.hpp"
 #include "solver/explicit_solver.hpp"
 
 #include <unistd.h>

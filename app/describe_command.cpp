@@ -1,5 +1,6 @@
 // `mpile describe`: the case format's tables and material types in words, as the Markdown tables
-// of docs/case-format.md and as a JSON Schema, all from the one declaration in io/case_format.cpp.
+// of docs/case-format.md and as a JSON Schema, all from the one declaration in
+// cases/case_format.cpp.
 //
 // Outline:
 //   a key's kind, range, choices and default in words (kind_name, allowed, material_range, ...)
@@ -12,9 +13,9 @@
 #include "app/describe_command.hpp"
 
 #include "app/run_command.hpp"
+#include "cases/case_error.hpp"
+#include "cases/case_format.hpp"
 #include "engine/materials/material_registry.hpp"
-#include "io/case_error.hpp"
-#include "io/case_format.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -435,7 +436,7 @@ std::string regenerate_doc(const std::string& text, const std::string& file) {
       const TableSpec* t = find_table_spec(name == "top" ? "" : name);
       if (t == nullptr) {
         throw CaseError(file + ":" + std::to_string(number) + ": no table '" + name +
-                        "' in io/case_format.cpp");
+                        "' in cases/case_format.cpp");
       }
       shown_tables.insert(t->path);
       out << markdown_table(*t);
@@ -486,7 +487,7 @@ int describe_command(const DescribeOptions& options, std::ostream& out, std::ost
       if (!options.check_doc.empty()) {
         if (fresh != text.str()) {
           err << path
-              << " is stale: its key tables differ from io/case_format.cpp; run mpile "
+              << " is stale: its key tables differ from cases/case_format.cpp; run mpile "
                  "describe --update-doc "
               << path << '\n';
           return exit_failure;

@@ -1,6 +1,6 @@
 #pragma once
 
-// `mpile describe`: the case format's declaration (io/case_format.hpp) as text for the terminal,
+// `mpile describe`: the case format's declaration (cases/case_format.hpp) as text for the terminal,
 // as the key tables of docs/case-format.md, and as a JSON Schema for TOML editors.
 
 #include <iosfwd>

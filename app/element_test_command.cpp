@@ -1,8 +1,8 @@
 #include "app/element_test_command.hpp"
 
 #include "app/run_command.hpp"
-#include "io/case_error.hpp"
-#include "io/element_test_file.hpp"
+#include "cases/case_error.hpp"
+#include "cases/element_test_file.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -21,7 +21,7 @@ struct RunOptions {
   double stop_after_seconds = 0.0;
   /// check: run the case for this many seconds of wall time and estimate its run time from it.
   double pilot_seconds = 0.0;
-  /// --strict: a plausibility warning of units (io/case_warnings.hpp) refuses the case (exit
+  /// --strict: a plausibility warning of units (cases/case_warnings.hpp) refuses the case (exit
   /// status 2) instead of being printed; notes on resolution are printed either way.
   bool strict = false;
   /// check --print-resolved: print the case as it runs (bases merged, --set applied) as TOML.

@@ -6,7 +6,7 @@
 // where the pile gathers speed (the progress line's estimator, fed the pilot's rows); later
 // phases are bounded by their durations at that rate.
 
-#include "io/case_spec.hpp"
+#include "cases/case_spec.hpp"
 
 #include <map>
 #include <string>

@@ -1,10 +1,10 @@
 #include "app/sweep_command.hpp"
 
 #include "app/run_command.hpp"
-#include "io/case_error.hpp"
-#include "io/case_warnings.hpp"
+#include "cases/case_error.hpp"
+#include "cases/case_warnings.hpp"
+#include "cases/sweep_file.hpp"
 #include "io/replace_file.hpp"
-#include "io/sweep_file.hpp"
 
 #include <spawn.h>
 #include <sys/wait.h>

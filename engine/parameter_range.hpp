@@ -1,6 +1,6 @@
 #pragma once
 
-// The interval a parameter may take, declared with the parameter (io/case_format.hpp for case
+// The interval a parameter may take, declared with the parameter (cases/case_format.hpp for case
 // keys, engine/materials/material_registry.hpp for material parameters) and checked by the readers.
 
 #include <optional>

@@ -1,7 +1,7 @@
 #include "io/checkpoint.hpp"
 
-#include "io/case_composition.hpp"
-#include "io/case_error.hpp"
+#include "cases/case_composition.hpp"
+#include "cases/case_error.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/replace_file.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 
+#include "cases/case_spec.hpp"
 #include "engine/scene.hpp"
-#include "io/case_spec.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/run_phase.hpp"
 

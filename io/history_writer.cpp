@@ -1,6 +1,6 @@
 #include "io/history_writer.hpp"
 
-#include "io/case_composition.hpp"
+#include "cases/case_composition.hpp"
 #include "io/monitor_points.hpp"
 #include "io/reserve_space.hpp"
 #include "io/source_commit.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "io/case_spec.hpp"
-#include "io/dataset_name.hpp"
+#include "cases/case_spec.hpp"
+#include "cases/dataset_name.hpp"
 #include "io/hdf5_file.hpp"
 #include "solver/explicit_solver.hpp"
 

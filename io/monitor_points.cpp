@@ -1,7 +1,7 @@
 #include "io/monitor_points.hpp"
 
+#include "cases/case_error.hpp"
 #include "engine/tensor.hpp"
-#include "io/case_error.hpp"
 
 #include <cmath>
 #include <limits>

@@ -5,8 +5,8 @@
 // A monitor named by a position follows the particle nearest it at the start of the run (by its
 // id, through every re-sort), since material points move with the soil.
 
+#include "cases/case_spec.hpp"
 #include "engine/scene.hpp"
-#include "io/case_spec.hpp"
 
 #include <cstdint>
 #include <string>

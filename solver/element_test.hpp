@@ -4,7 +4,7 @@
 // isotropic, unload-reload, cyclic triaxial, cyclic torsion, or a table of strain increments),
 // with some components under stress control, to check a constitutive model against closed forms
 // and laboratory curves without a grid. docs/element-tests.md documents the input file, which
-// io/element_test_file.hpp reads.
+// cases/element_test_file.hpp reads.
 
 #include "engine/materials/material_registry.hpp"
 #include "solver/element_point.hpp"

@@ -1,7 +1,7 @@
 // Case composition: a base file under the case, --set values on top, and what a restart may change.
 #include "app/run_command.hpp"
-#include "io/case_composition.hpp"
-#include "io/case_spec.hpp"
+#include "cases/case_composition.hpp"
+#include "cases/case_spec.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>

@@ -3,9 +3,9 @@
 // through the whole command path (reader, builder, phases, checkpoint).
 #include "app/element_test_command.hpp"
 #include "app/run_command.hpp"
-#include "io/case_spec.hpp"
+#include "cases/case_spec.hpp"
+#include "cases/sweep_file.hpp"
 #include "io/hdf5_file.hpp"
-#include "io/sweep_file.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
-// The case format's one declaration (io/case_format.cpp): the reader takes defaults, ranges and
+// The case format's one declaration (cases/case_format.cpp): the reader takes defaults, ranges and
 // choices from it, reading an undeclared key is caught, docs/case-format.md is generated from it.
 #include "app/describe_command.hpp"
+#include "cases/case_error.hpp"
+#include "cases/case_format.hpp"
+#include "cases/case_spec.hpp"
+#include "cases/monopile_geometry.hpp"
+#include "cases/toml_reader.hpp"
 #include "engine/materials/material_registry.hpp"
-#include "engine/monopile_geometry.hpp"
-#include "io/case_error.hpp"
-#include "io/case_format.hpp"
-#include "io/case_spec.hpp"
-#include "io/toml_reader.hpp"
 #include "solver/solver_settings.hpp"
 
 #include <gtest/gtest.h>
@@ -104,7 +104,7 @@ TEST(CaseFormat, TheReaderTakesTheDeclaredDefaults) {
   std::string text = block + "[[contact]]\nstructure = \"block\"\n";
   const CaseSpec spec = read_case_text(text, "case.toml");
   // [[contact]] friction and adhesion default to 0, [monopile]'s friction to the seed's 0.4: two
-  // declarations, each read from io/case_format.cpp.
+  // declarations, each read from cases/case_format.cpp.
   EXPECT_EQ(spec.contacts.at(0).friction,
             std::get<double>(find_table_spec("contact")->key("friction")->fallback));
   EXPECT_EQ(spec.contacts.at(0).friction, 0.0);

@@ -1,8 +1,8 @@
 // The case reader must reject bad input with the file, line, key and reason, and run_case must turn
 // that into exit status 2. Each row of the table below is one mistake a user makes.
 #include "app/run_command.hpp"
-#include "io/case_error.hpp"
-#include "io/case_spec.hpp"
+#include "cases/case_error.hpp"
+#include "cases/case_spec.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>

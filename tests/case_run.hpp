@@ -2,8 +2,8 @@
 
 // A case built from TOML text and stepped through its first phase by the tests, with the helpers
 // they share for reading and editing case files.
-#include "io/case_builder.hpp"
-#include "io/case_spec.hpp"
+#include "cases/case_builder.hpp"
+#include "cases/case_spec.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/phase_runner.hpp"
 

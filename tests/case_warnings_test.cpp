@@ -1,8 +1,8 @@
 // Values that read but are most likely in the wrong unit must be named before the run, with the
 // file, line and key and the likely mistake; --strict refuses them; no shipped case has one.
 #include "app/run_command.hpp"
-#include "io/case_error.hpp"
-#include "io/case_spec.hpp"
+#include "cases/case_error.hpp"
+#include "cases/case_spec.hpp"
 #include "tests/case_run.hpp"
 #include "tests/saturated_column.hpp"
 

@@ -33,9 +33,10 @@ def main() -> int:
         "engine/materials/soil.hpp": '#include "engine/grid.hpp"\n',
         "solver/step.cpp": '#include "solver/step.hpp"\n#include "engine/grid.hpp"\n',
         "solver/step.hpp": "#pragma once\n",
-        "io/reader.cpp": '#include "solver/step.hpp"\n#include "case_texts.hpp"\n',
-        "cases/verification/run.cpp": '#include "io/reader.hpp"\n',
-        "app/main.cpp": '#include "cases/verification/run.hpp"\n',
+        "cases/reader.cpp": '#include "solver/step.hpp"\n#include "case_texts.hpp"\n',
+        "cases/verification/run.cpp": '#include "cases/reader.hpp"\n',
+        "io/history.cpp": '#include "cases/reader.hpp"\n',
+        "app/main.cpp": '#include "io/history.hpp"\n#include "cases/verification/run.hpp"\n',
         "tests/helper.hpp": '#include "app/run.hpp"\n',
         "tests/a_test.cpp": '#include "helper.hpp"\n',
     }
@@ -46,14 +47,14 @@ def main() -> int:
             failures.append(f"a layered tree failed:\n{done.stdout}{done.stderr}")
 
         upward = dict(layered)
-        upward["io/geometry_reader.cpp"] = (
-            '#include "engine/grid.hpp"\n#include "cases/m/geo.hpp"\n')
+        upward["cases/geometry_reader.cpp"] = (
+            '#include "engine/grid.hpp"\n#include "io/m/vtk.hpp"\n')
         upward["engine/materials/soil.hpp"] = '#include "../../solver/step.hpp"\n'
         root = tree(pathlib.Path(directory) / "upward", upward)
         done = check(root)
         expected = [
             "engine/materials/soil.hpp:1: includes solver/step.hpp: engine/ is below solver/",
-            "io/geometry_reader.cpp:2: includes cases/m/geo.hpp: io/ is below cases/",
+            "cases/geometry_reader.cpp:2: includes io/m/vtk.hpp: cases/ is below io/",
             "2 include(s) run up the layers",
         ]
         if done.returncode != 1 or any(line not in done.stdout for line in expected):

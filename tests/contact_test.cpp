@@ -1,11 +1,11 @@
 // Contact and rigid bodies (physics.md sections 5 and 6): nodal contact areas against exact
 // integrals, the approach test and momentum exchange, rigid-body dynamics, V7 (block on an
 // incline) and V9 (the seed's torsion with adhesion), from the shipped case files.
+#include "cases/case_builder.hpp"
+#include "cases/case_spec.hpp"
 #include "cases/verification/verification_cases.hpp"
 #include "engine/parallel.hpp"
 #include "engine/structures/contact.hpp"
-#include "io/case_builder.hpp"
-#include "io/case_spec.hpp"
 #include "solver/diagnostics.hpp"
 #include "solver/explicit_solver.hpp"
 #include "tests/bitwise.hpp"

@@ -3,9 +3,9 @@
 // k carries as an undrained one does, Biot's damping of that wave growing with k, the energy
 // ledger closing with the drag and the water's energies, the same bits on one, two and three
 // threads, and the water's keys refused where they make no sense.
+#include "cases/case_error.hpp"
 #include "cases/verification/verification_cases.hpp"
 #include "engine/materials/pore_water.hpp"
-#include "io/case_error.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 #include "tests/saturated_column.hpp"

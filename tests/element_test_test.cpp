@@ -3,9 +3,9 @@
 // rejected with file, line and key (exit status 2), as case files are.
 #include "app/element_test_command.hpp"
 #include "app/run_command.hpp"
+#include "cases/case_error.hpp"
+#include "cases/element_test_file.hpp"
 #include "engine/materials/material_registry.hpp"
-#include "io/case_error.hpp"
-#include "io/element_test_file.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,12 +4,12 @@
 // stiffness multipliers, its suppression of ratcheting, and the refusal of parameters outside the
 // model's range. Karlsruhe fine sand's parameters (docs/hypoplasticity.md).
 #include "app/element_test_command.hpp"
+#include "cases/case_error.hpp"
+#include "cases/case_phases.hpp"
+#include "cases/element_test_file.hpp"
 #include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "engine/materials/principal_stress.hpp"
-#include "io/case_error.hpp"
-#include "io/case_phases.hpp"
-#include "io/element_test_file.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 

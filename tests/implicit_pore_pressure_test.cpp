@@ -4,8 +4,8 @@
 // closing with backward Euler's damping booked; the same bits on one, two and three threads; and
 // the setting refused where it cannot work.
 #include "app/run_command.hpp"
+#include "cases/case_error.hpp"
 #include "cases/verification/verification_cases.hpp"
-#include "io/case_error.hpp"
 #include "io/hdf5_file.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"

@@ -1,11 +1,11 @@
 // Mohr-Coulomb: parameter checks, returns against hand-computed closed forms, the consistency
 // conditions checked by an independent enumeration, frame invariance, a million random increments,
 // and drained triaxial failure through the element-test driver.
+#include "cases/element_test_file.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "engine/materials/mohr_coulomb.hpp"
 #include "engine/materials/principal_stress.hpp"
-#include "io/element_test_file.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // The moving mesh (physics.md section 7) and the monopile geometry builder (cases/monopile/):
 // lines of the band translate exactly, the zones beside it deform linearly, the pile tip stays on
 // its grid line while the pile penetrates 0.6 m, and the reactions do not depend on the band size.
-#include "engine/monopile_geometry.hpp"
+#include "cases/case_error.hpp"
+#include "cases/monopile_geometry.hpp"
 #include "engine/moving_mesh.hpp"
-#include "io/case_error.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 

@@ -5,7 +5,7 @@
 // cavitation stress the water carries no more tension, and a tension wave then splits in two with
 // speeds and amplitudes that follow from the two phases' stiffnesses alone.
 #include "app/run_command.hpp"
-#include "io/case_error.hpp"
+#include "cases/case_error.hpp"
 #include "io/monitor_points.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"

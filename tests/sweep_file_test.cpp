@@ -1,8 +1,8 @@
 // Sweep files: the variants they expand to, the values --set receives, and bad inputs refused
 // with the file, line and key before anything runs.
 #include "app/sweep_command.hpp"
-#include "io/case_error.hpp"
-#include "io/sweep_file.hpp"
+#include "cases/case_error.hpp"
+#include "cases/sweep_file.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>

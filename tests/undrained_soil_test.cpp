@@ -6,10 +6,10 @@
 // stress until the critical state angle of Rowe's law and dilates past it, the K0 procedure puts
 // the water hydrostatic, and an undrained P-wave runs at sqrt((M + K_w / n) / rho_sat).
 #include "app/run_command.hpp"
+#include "cases/case_error.hpp"
+#include "cases/element_test_file.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "engine/materials/undrained_soil.hpp"
-#include "io/case_error.hpp"
-#include "io/element_test_file.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 #include "tests/saturated_column.hpp"

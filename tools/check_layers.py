@@ -4,15 +4,16 @@
 The layers, lowest first. A C or C++ file in one of these folders may include headers of its own
 folder and of the folders before it in the list, never of one after it:
 
-    engine   grid, particles, materials, structures, the scene, the monopile geometry
+    engine   grid, particles, materials, structures, the scene
     solver   the explicit step as passes, the phase runner
-    io       case files, the scene builder, phase set-up, histories, snapshots, checkpoints
-    cases    the verification cases (case files run through io/)
+    cases    the case format and its readers, the scene and phase builders (the seed's monopile
+             among them), element-test and sweep files, the verification cases
+    io       what a run writes: histories, snapshots, checkpoints, the output directory
     app      the mpile command line
     tools    the benchmark program (tools/bench/)
     tests    the tests, on top of everything
 
-An include is placed by its first folder ("io/case_spec.hpp"), or, when that is no layer, by the
+An include is placed by its first folder ("cases/case_spec.hpp"), or, when that is no layer, by the
 path relative to the including file ("case_run.hpp" in tests/). Python files are not checked.
 
     tools/check_layers.py [--root DIR]
@@ -27,7 +28,7 @@ import pathlib
 import re
 import sys
 
-LAYERS = ["engine", "solver", "io", "cases", "app", "tools", "tests"]
+LAYERS = ["engine", "solver", "cases", "io", "app", "tools", "tests"]
 
 SOURCE_SUFFIXES = (".cpp", ".hpp", ".h", ".cc", ".cpp.in", ".hpp.in")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"')

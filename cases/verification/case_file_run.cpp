@@ -1,8 +1,8 @@
 #include "cases/verification/case_file_run.hpp"
 
+#include "cases/case_builder.hpp"
+#include "cases/case_phases.hpp"
 #include "cases/verification/case_texts.hpp"
-#include "io/case_builder.hpp"
-#include "io/case_phases.hpp"
 
 #include <chrono>
 #include <limits>

@@ -4,8 +4,8 @@
 // refinement, particles per cell, a Poisson ratio, solver choices) applied on top. The case files
 // are the cases' one source: each case's code only measures the run against its reference.
 
+#include "cases/case_spec.hpp"
 #include "cases/verification/verification_case.hpp"
-#include "io/case_spec.hpp"
 #include "solver/equilibrium.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/phase_runner.hpp"

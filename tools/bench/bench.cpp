@@ -9,11 +9,11 @@
 // for each scene and thread count it runs the two alternately (A, B, A, B, ...), so that both see
 // the same machine, and prints the best throughput of each and their ratio. On a shared machine a
 // speed-up is a ratio measured in one run, not two absolute figures from two days.
+#include "cases/case_builder.hpp"
 #include "cases/verification/verification_cases.hpp"
 #include "engine/materials/hardening_soil.hpp"
 #include "engine/materials/linear_elastic.hpp"
 #include "engine/particle_fill.hpp"
-#include "io/case_builder.hpp"
 #include "solver/explicit_solver.hpp"
 
 #include <CLI/CLI.hpp>

@@ -1,0 +1,78 @@
+// Physical plausibility of a whole run, judged from its first stable step before anything is
+// written: a stiffness or density off by powers of ten shows as a step count no machine can run
+// or a step longer than the run.
+#include "cases/plausibility.hpp"
+
+#include "cases/case_error.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace mpile {
+
+namespace {
+
+/// The particle of a case's own material whose crossing time h / c_p is shortest (the step's
+/// limit at rest). A rigid body's particles are left out: their material is the one the scene
+/// gives the body (it has no entry among the case's materials) and sets no step.
+std::size_t stiffest_particle(const CaseSpec& spec, const Scene& scene) {
+  const Particles& p = scene.particles;
+  std::size_t found = 0;
+  bool eligible = false;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.material[i] >= spec.materials.size()) {
+      continue; // a rigid body's material, which the scene adds after the case's
+    }
+    const Material& material = *scene.materials[p.material[i]];
+    const double modulus = material.constrained_modulus(
+        p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
+    const double speed = std::sqrt(modulus * p.volume[i] / p.mass[i]);
+    const double time = scene.grid.cell_min_size(p.cell_r[i], p.cell_y[i]) / speed;
+    // The first eligible particle stands until a shorter time is found (a modulus so small that
+    // every time is infinite still names one of the case's particles).
+    if (!eligible || time < shortest || (std::isnan(time) && !std::isnan(shortest))) {
+      shortest = time;
+      found = i;
+      eligible = true;
+    }
+  }
+  return found;
+}
+
+} // namespace
+
+void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double first_step) {
+  const double run = spec.end_time();
+  const double steps = run / first_step;
+  const bool too_many = !(steps <= max_run_steps);
+  const bool too_long = first_step > run;
+  if (!too_many && !too_long) {
+    return;
+  }
+  const Particles& p = scene.particles;
+  const std::size_t i = stiffest_particle(spec, scene);
+  const MaterialSpec& material = spec.materials[p.material[i]];
+  std::ostringstream s;
+  s << spec.file << ": the first stable time step is " << first_step << " s";
+  if (too_many) {
+    s << ", so the phases' " << run << " s need about " << steps << " steps (more than "
+      << max_run_steps << ")";
+  } else {
+    s << ", longer than the whole run (" << run << " s of phases): waves would not cross a cell";
+  }
+  s << "; it is set by particle " << i << " of body '" << scene.body_names[p.body[i]]
+    << "' in a cell of " << scene.grid.cell_min_size(p.cell_r[i], p.cell_y[i]) << " m, material '"
+    << material.name << "' (" << material.type << ":";
+  const char* separator = " ";
+  for (const auto& [key, value] : material.parameters) {
+    s << separator << key << " = " << value;
+    separator = ", ";
+  }
+  s << "): check materials." << material.name << " (a stiffness or density off by powers of ten) "
+    << "and the phases' duration";
+  throw CaseError(s.str());
+}
+
+} // namespace mpile

@@ -1,0 +1,19 @@
+#pragma once
+
+#include "cases/case_spec.hpp"
+#include "engine/scene.hpp"
+
+namespace mpile {
+
+/// The most steps a run may need at its first stable step: about a day at the engine's speed on
+/// a small scene. Past it, the case is almost surely mistyped (a modulus or density off by powers
+/// of ten) and would step for ever.
+inline constexpr double max_run_steps = 1e9;
+
+/// Refuses (CaseError) a run that cannot be carried out as written, from its first stable step:
+/// more than max_run_steps steps for the phases' durations, or one step longer than the whole run
+/// (waves that cannot cross a cell in the run). The message names the material, the particle and
+/// the cell that set the step, and the keys to check. Needs the particles located in their cells.
+void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double first_step);
+
+} // namespace mpile
