@@ -26,10 +26,6 @@ std::string point_text(const Point& p) {
   return s.str();
 }
 
-double as_number(const TomlValue& v) {
-  return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
-}
-
 Region read_rectangle(TomlTable& body, TomlTable& region, GeometryMode mode, const GradedAxis& r,
                       const GradedAxis& y) {
   const auto rs = region.numbers("r", 2);

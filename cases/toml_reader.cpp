@@ -44,11 +44,11 @@ bool is_number(const TomlValue& v) {
   return v.is_floating() || v.is_integer();
 }
 
+} // namespace
+
 double as_number(const TomlValue& v) {
   return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
 }
-
-} // namespace
 
 /// Levenshtein distance (insertions, deletions, substitutions).
 std::size_t edit_distance(const std::string& a, const std::string& b) {

@@ -159,6 +159,9 @@ const std::string& TomlTable::key_of(T Owner::*member) const {
   return bound_key(typeid(Spec), member_offset<Spec>(member));
 }
 
+/// A TOML float or integer as a double (the caller has checked it is one of them).
+double as_number(const TomlValue& v);
+
 /// A number as a message quotes it (six significant digits).
 std::string format_number(double x);
 
