@@ -19,39 +19,6 @@
 
 namespace mpile {
 
-namespace {
-
-/// Mass scaling multiplies both phases' inertia and leaves Darcy's drag, so that the water drains
-/// as fast as unscaled while inertia is negligible (physics.md section 9d). With the water's
-/// stiffness explicit its waves would set the step still: only the implicit pore pressure gains.
-void require_scalable_water(const SolverSettings& settings) {
-  if (settings.mass_scaling != 1.0 && !settings.implicit_pore_pressure) {
-    throw std::invalid_argument("mass_scaling must be 1 in a scene with coupled soil unless "
-                                "[solver] implicit_pore_pressure is on: the water's explicit "
-                                "stiffness would still set the step");
-  }
-}
-
-/// The materials leave their pore pressure to the solver exactly when the solver finds it: else
-/// the water's increment would be counted twice, or not at all.
-void require_pore_pressure_agreement(const Scene& scene, const SolverSettings& settings) {
-  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
-    const Material& material = *scene.materials[m];
-    if (material.pore_pressure_index() < 0) {
-      continue;
-    }
-    if ((material.implicit_pore_storage() != nullptr) != settings.implicit_pore_pressure) {
-      throw std::invalid_argument(
-          "material '" + scene.material_names[m] + "' was built for " +
-          (settings.implicit_pore_pressure ? "an explicit" : "an implicit") +
-          " pore pressure and the solver's implicit_pore_pressure is " +
-          (settings.implicit_pore_pressure ? "on" : "off"));
-    }
-  }
-}
-
-} // namespace
-
 ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log)
     : scene_(scene), settings_(settings), log_(log) {
   prepare();
@@ -101,25 +68,8 @@ void ExplicitSolver::prepare() {
   mass_floor_ = 1e-9 * min_mass;
   if (scene_.has_contact()) {
     passes::prepare_contact(scene_);
-    const std::vector<int> slots = passes::pore_pressure_slots(scene_);
-    pore_water_at_contact_ =
-        std::any_of(slots.begin(), slots.end(), [](int slot) { return slot >= 0; });
   }
-  liquid_phases_ = passes::liquid_phases(scene_);
-  if (std::none_of(liquid_phases_.begin(), liquid_phases_.end(),
-                   [](const LiquidPhase* phase) { return phase != nullptr; })) {
-    liquid_phases_.clear();
-  } else {
-    require_scalable_water(settings_);
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if (liquid_phases_[p.material[i]] != nullptr && scene_.field_of(p.body[i]) != 0) {
-        throw std::invalid_argument(
-            "body '" + scene_.body_names[p.body[i]] +
-            "' is a contact structure of coupled soil: only the soil's field carries pore water");
-      }
-    }
-  }
-  require_pore_pressure_agreement(scene_, settings_);
+  water_ = PoreWaterCoupling::of(scene_, bins_, settings_, timings_);
   scene_.boundaries.mark_constrained_dofs(scene_.grid);
   if (scene_.moving_mesh) {
     // A restored run continues on the mesh of its rigid body's restored position.
@@ -156,10 +106,9 @@ void ExplicitSolver::report_settings() {
 
 void ExplicitSolver::change_settings(const SolverSettings& settings) {
   settings.validate();
-  if (!liquid_phases_.empty()) {
-    require_scalable_water(settings);
+  if (water_) {
+    water_->check(settings);
   }
-  require_pore_pressure_agreement(scene_, settings);
   const bool rebin_needed = settings.block_cells != settings_.block_cells;
   const bool scaling_changed = settings.mass_scaling != settings_.mass_scaling;
   if (scaling_changed) {

@@ -3,34 +3,19 @@
 #include "engine/particle_bins.hpp"
 #include "engine/scene.hpp"
 #include "solver/energy_balance.hpp"
+#include "solver/pass_timer.hpp"
 #include "solver/passes.hpp"
-#include "solver/pore_pressure_projection.hpp"
+#include "solver/pore_water_coupling.hpp"
 #include "solver/run_log.hpp"
+#include "solver/simulation_error.hpp"
 #include "solver/solver_settings.hpp"
 #include "solver/xpic.hpp"
 
-#include <stdexcept>
+#include <limits>
+#include <memory>
 #include <vector>
 
 namespace mpile {
-
-/// A run that cannot go on (a particle left the grid, the time step collapsed); the message names
-/// the cause, the step and where.
-class SimulationError : public std::runtime_error {
-public:
-  using std::runtime_error::runtime_error;
-};
-
-/// Wall time spent in each pass since the solver was made (s).
-struct PassTimings {
-  double binning = 0.0;
-  double particle_to_grid = 0.0;
-  double grid_update = 0.0;
-  double grid_to_particle = 0.0;
-  double momentum_remap = 0.0;
-  double stress_update = 0.0;
-  double contact = 0.0; // contact and rigid bodies (scenes with contact only)
-};
 
 /// What a checkpoint must keep of the integrator to continue a run bitwise identically.
 struct SolverState {
@@ -58,6 +43,10 @@ public:
   ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log);
   /// Continues a run from a checkpoint: the particles keep their order and the step its size.
   ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& log, const SolverState& restored);
+  /// The pore water keeps references to the solver's bins, settings and timings: the solver stays
+  /// where it was made.
+  ExplicitSolver(const ExplicitSolver&) = delete;
+  ExplicitSolver& operator=(const ExplicitSolver&) = delete;
 
   /// One explicit step of length min(stable dt, max_dt).
   void step(double max_dt = std::numeric_limits<double>::infinity());
@@ -108,36 +97,20 @@ private:
   template <GeometryMode mode, bool contact, ShapeFunctions shape> void step_in_mode(double dt);
   template <GeometryMode mode, bool contact> void step_with_contact(double dt);
   template <GeometryMode mode, bool contact, ShapeFunctions shape> void map_particles_to_grid();
-  /// Undrained soil beside a structure: the pore water's share of field 0's node forces, for
-  /// the contact's effective normal force.
-  template <GeometryMode mode, ShapeFunctions shape> void map_pore_force();
-  /// Coupled soil: the water's passes (solver/pore_water_passes.cpp), each a no-op without it.
-  template <GeometryMode mode, ShapeFunctions shape> void map_water_to_grid();
-  template <GeometryMode mode>
-  EnergyIncrement update_water_velocities(const passes::StepParameters& step);
-  template <GeometryMode mode, ShapeFunctions shape>
-  EnergyIncrement update_water_particle_velocities(const passes::StepParameters& step);
-  template <GeometryMode mode, ShapeFunctions shape>
-  void find_pore_pressure_from_flow(const passes::StepParameters& step);
-  /// some_made_stress_free: the stress pass made soil inside a rigid body stress-free this step.
-  EnergyIncrement apply_pore_pressure_from_flow(bool some_made_stress_free);
-  /// implicit_pore_pressure: the step's pore pressure increment solved on the grid from the
-  /// remapped velocities, which it corrects (solver/pore_pressure_projection.hpp) ...
-  template <GeometryMode mode, ShapeFunctions shape>
-  EnergyIncrement project_pore_pressure(const passes::StepParameters& step);
-  /// ... and taken by the undrained particles after the stress pass (coupled ones take it with
-  /// their flow's).
-  EnergyIncrement apply_projected_pore_pressure(bool some_made_stress_free);
-  /// Loads, absorbing faces' holding forces, the momentum balance with damping, the dashpots.
+  /// Loads, absorbing faces' holding forces, the water folded into the skeleton's nodes (coupled
+  /// soil), the momentum balance with damping, the dashpots.
   template <GeometryMode mode> EnergyIncrement balance_momentum(const passes::StepParameters& step);
   /// The structures' supports, the rigid bodies' prediction, contact, the bodies' accelerations.
   template <GeometryMode mode>
   EnergyIncrement correct_for_contact(const passes::StepParameters& step);
   template <bool contact> EnergyIncrement enforce_supports(const passes::StepParameters& step);
   EnergyIncrement work_of_loads(const passes::StepParameters& step);
+  /// The skeleton's particle velocities, then their water's (coupled soil): adds both to the
+  /// ledger.
   template <GeometryMode mode, bool contact, ShapeFunctions shape>
-  EnergyIncrement update_particle_velocities(const passes::StepParameters& step);
-  /// The MUSL remap and the same corrections on the remapped velocities.
+  void update_particle_velocities(const passes::StepParameters& step);
+  /// The MUSL remap (the skeleton's as the mixture's where it carries water) and the same
+  /// corrections on the remapped velocities.
   template <GeometryMode mode, bool contact, ShapeFunctions shape>
   EnergyIncrement remap_momentum(const passes::StepParameters& step);
   template <GeometryMode mode, bool contact, ShapeFunctions shape>
@@ -151,8 +124,6 @@ private:
   /// Throws SimulationError naming what failed at (step, time); returns when nothing did.
   void stop_if_failed(const StepFailure& failure, long step, double time) const;
   void report_stress_free_inside_rigid(std::int64_t count);
-  /// Warns, once, of pore water in more tension than water can carry where nothing caps it.
-  void report_water_tension();
   /// Particle-to-grid alone (for the equilibrium check), in the scene's mode and shape functions.
   void particle_to_grid();
   void prepare();
@@ -183,16 +154,8 @@ private:
   double time_ = 0.0;
   double stable_dt_ = 0.0;
   double mass_floor_ = 0.0;
-  /// A scene with contact and undrained soil: the contact's friction needs the pore pressure.
-  bool pore_water_at_contact_ = false;
-  /// Each material's water phase when it is coupled soil (passes::liquid_phases); empty in a
-  /// scene without coupled soil, whose step then runs no water pass.
-  std::vector<const LiquidPhase*> liquid_phases_;
-  /// Each particle's pore-pressure change from the water's flow, between the passes that find
-  /// and apply it (scratch of one step).
-  std::vector<passes::PendingPorePressure> pending_pore_;
-  /// implicit_pore_pressure's workspace (its system and solver kept from step to step).
-  passes::PorePressureProjection projection_;
+  /// The scene's pore water; null in a dry scene, whose step then runs no water pass.
+  std::unique_ptr<PoreWaterCoupling> water_;
   double min_dt_ = 0.0;
   /// The log says what sets the step when it falls below this: half the step at the start, then
   /// half the step last reported (not in checkpoints: a restart reports from its own step).
@@ -201,8 +164,6 @@ private:
   /// The log says how many soil particles lie inside rigid bodies when a step's count reaches this
   /// (then the next power of ten); not in checkpoints.
   std::int64_t stress_free_report_at_ = 1;
-  /// Whether report_water_tension has warned (not in checkpoints: a restart warns again).
-  bool water_tension_reported_ = false;
   /// Each particle's c_p + |v_p| from the last stress update, kept only with a moving mesh.
   std::vector<double> signal_speed_;
   double last_dt_ = 0.0;

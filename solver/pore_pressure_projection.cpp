@@ -115,11 +115,24 @@ template <GeometryMode mode, ShapeFunctions shape>
 ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBins& bins,
                                                  const SolverSettings& settings,
                                                  const StepParameters& step) {
+  ProjectionResult result;
+  result.cells = assemble<mode, shape>(scene, bins, settings, step);
+  if (result.cells == 0 || !solve_with_cavitation(scene.grid, step, result)) {
+    return result;
+  }
+  correct_velocities(scene.grid, step, result);
+  hand_back_to_particles<shape>(scene, bins, step);
+  return result;
+}
+
+template <GeometryMode mode, ShapeFunctions shape>
+Eigen::Index PorePressureProjection::assemble(Scene& scene, const ParticleBins& bins,
+                                              const SolverSettings& settings,
+                                              const StepParameters& step) {
   Grid& grid = scene.grid;
   Particles& p = scene.particles;
   const auto stride = static_cast<std::size_t>(p.state_stride);
   const std::vector<const PoreStorage*> storages = implicit_storages(scene);
-  const std::vector<const LiquidPhase*> phases = liquid_phases(scene);
   const int cells_r = grid.cells_r();
   const int nodes_r = grid.nodes_r();
   const int nodes_y = grid.nodes_y();
@@ -194,12 +207,10 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
     }
   }
   const auto unknowns = static_cast<Eigen::Index>(cell_of_unknown_.size());
-  ProjectionResult result;
-  result.cells = unknowns;
   particle_increment_.assign(p.size(), 0.0);
   particle_cavitated_.assign(p.size(), 0);
   if (unknowns == 0) {
-    return result;
+    return 0;
   }
 
   // Each node DOF's response to the pressure's force, and the flux it carries.
@@ -248,11 +259,11 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   divergence_.resize(unknowns, static_cast<Eigen::Index>(dofs));
   divergence_.setZero();
   divergence_.reserve(Eigen::VectorXi::Constant(unknowns, 32));
-  Eigen::VectorXd storage(unknowns);
+  storage_.resize(unknowns);
   for (Eigen::Index u = 0; u < unknowns; ++u) {
     const int c = cell_of_unknown_[static_cast<std::size_t>(u)];
     const CellSums& cell = cells_[static_cast<std::size_t>(c)];
-    storage[u] = cell.storage;
+    storage_[u] = cell.storage;
     const int cr = c % cells_r;
     const int cy = c / cells_r;
     for (int ly = 0; ly < 4; ++ly) {
@@ -279,18 +290,26 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
   Eigen::SparseMatrix<double> diagonal(unknowns, unknowns);
   diagonal.reserve(Eigen::VectorXi::Constant(unknowns, 1));
   for (Eigen::Index u = 0; u < unknowns; ++u) {
-    diagonal.insert(u, u) = storage[u];
+    diagonal.insert(u, u) = storage_[u];
   }
   system_ += diagonal;
-  const Eigen::VectorXd rhs = step.dt * (divergence_ * flux);
-  Eigen::VectorXd increment = Eigen::VectorXd::Zero(unknowns);
+  rhs_ = step.dt * (divergence_ * flux);
+  return unknowns;
+}
+
+bool PorePressureProjection::solve_with_cavitation(const Grid& grid, const StepParameters& step,
+                                                   ProjectionResult& result) {
+  const auto unknowns = static_cast<Eigen::Index>(cell_of_unknown_.size());
+  const int cells_r = grid.cells_r();
+  const bool structures = !grid.structure_fields.empty();
+  increment_ = Eigen::VectorXd::Zero(unknowns);
   const ConjugateGradientResult solved =
-      solve_conjugate_gradients(system_, rhs, increment, tolerance);
+      solve_conjugate_gradients(system_, rhs_, increment_, tolerance);
   result.iterations = solved.iterations;
   result.residual = solved.residual;
   result.converged = solved.converged;
   if (!result.converged) {
-    return result;
+    return false;
   }
 
   // The cut-off: each cell's increment to its limit (infinite without one). A cell of coupled soil
@@ -326,7 +345,7 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       bool changed = false;
       for (Eigen::Index u = 0; u < unknowns; ++u) {
         auto& held = held_[static_cast<std::size_t>(u)];
-        if (held == 0 && increment[u] > limit_increment[u]) {
+        if (held == 0 && increment_[u] > limit_increment[u]) {
           held = 1;
           changed = true;
         } else if (held != 0 && vapour[u] < 0.0 && pass <= passes_freeing) {
@@ -337,10 +356,10 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       if (!changed) {
         break;
       }
-      if (!solve_held(rhs, limit_increment, increment, result)) {
-        return result;
+      if (!solve_held(rhs_, limit_increment, increment_, result)) {
+        return false;
       }
-      vapour = rhs - system_ * increment;
+      vapour = rhs_ - system_ * increment_;
       for (Eigen::Index u = 0; u < unknowns; ++u) {
         if (held_[static_cast<std::size_t>(u)] == 0) {
           vapour[u] = 0.0;
@@ -349,13 +368,19 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
     }
     for (Eigen::Index u = 0; u < unknowns; ++u) {
       if (held_[static_cast<std::size_t>(u)] != 0) {
-        result.vapour_work += increment[u] * vapour[u];
+        result.vapour_work += increment_[u] * vapour[u];
       }
     }
   }
+  return true;
+}
 
+void PorePressureProjection::correct_velocities(Grid& grid, const StepParameters& step,
+                                                ProjectionResult& result) {
+  const std::size_t dofs = 2 * grid.nodes.size();
+  const bool coupled = !grid.liquid.empty();
   // The correction: the pressure's force f = -G^T dp on every node DOF the pressure moves.
-  const Eigen::VectorXd force = -(divergence_.transpose() * increment);
+  const Eigen::VectorXd force = -(divergence_.transpose() * increment_);
   correction_.assign(dofs, 0.0);
   water_correction_.assign(dofs, 0.0);
   // Backward Euler's damping, dp^2 S / 2: what the water's pressure increment stores beyond what
@@ -380,11 +405,21 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       }
     }
   });
-  result.dissipated = 0.5 * increment.dot(storage.cwiseProduct(increment));
+  result.dissipated = 0.5 * increment_.dot(storage_.cwiseProduct(increment_));
   if (coupled) {
     result.drag = darcy_dissipation(grid, step);
   }
+}
 
+template <ShapeFunctions shape>
+void PorePressureProjection::hand_back_to_particles(Scene& scene, const ParticleBins& bins,
+                                                    const StepParameters& step) {
+  const Grid& grid = scene.grid;
+  Particles& p = scene.particles;
+  const auto stride = static_cast<std::size_t>(p.state_stride);
+  const std::vector<const LiquidPhase*> phases = liquid_phases(scene);
+  const int cells_r = grid.cells_r();
+  const bool coupled = !grid.liquid.empty();
   // The particles' velocities take the nodes' corrections (as FLIP and PIC both would); each
   // saturated particle keeps its cell's increment for after the stress pass.
   bins.for_each_block([&](int, std::span<const std::int32_t> particles) {
@@ -418,12 +453,11 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
       if (takes_increment_[i] != 0) {
         const auto c = static_cast<std::size_t>(p.cell_r[i] + cells_r * p.cell_y[i]);
         const int u = unknown_of_cell_[c];
-        particle_increment_[i] = increment[u];
+        particle_increment_[i] = increment_[u];
         particle_cavitated_[i] = held_[static_cast<std::size_t>(u)];
       }
     }
   });
-  return result;
 }
 
 bool PorePressureProjection::solve_held(const Eigen::VectorXd& rhs,

@@ -58,7 +58,8 @@ struct ProjectionResult {
 
 class PorePressureProjection {
 public:
-  /// Solves for this step's pore pressure increment and corrects the velocities.
+  /// Solves for this step's pore pressure increment and corrects the velocities: assemble, solve
+  /// with the cavitation cut-off, correct the nodes' velocities, hand back to the particles.
   template <GeometryMode mode, ShapeFunctions shape>
   ProjectionResult project(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
                            const StepParameters& step);
@@ -84,6 +85,23 @@ private:
     double flowing;  // sum V over its coupled soil's particles (their water flows)
   };
 
+  /// The cells' sums, the unknowns (the cells holding saturated soil), each node DOF's response
+  /// to the pressure's force, G, the system S + dt G H G^T and its right-hand side dt G u*.
+  /// Returns the number of unknowns (0: nothing to solve; the particles take no increment).
+  template <GeometryMode mode, ShapeFunctions shape>
+  Eigen::Index assemble(Scene& scene, const ParticleBins& bins, const SolverSettings& settings,
+                        const StepParameters& step);
+  /// The increment, with the cells past their cavitation limit held at it (a primal-dual active
+  /// set) and the vapour's work; false if a solve failed.
+  bool solve_with_cavitation(const Grid& grid, const StepParameters& step,
+                             ProjectionResult& result);
+  /// The nodes' velocities of both phases take the correction -H G^T dp; backward Euler's damping
+  /// and Darcy's drag at the corrected velocities.
+  void correct_velocities(Grid& grid, const StepParameters& step, ProjectionResult& result);
+  /// The particles' velocities (and their water's) take the nodes' corrections; each saturated
+  /// particle keeps its cell's increment and whether the cell was held.
+  template <ShapeFunctions shape>
+  void hand_back_to_particles(Scene& scene, const ParticleBins& bins, const StepParameters& step);
   /// Solves again with the held cells' increments fixed: their rows and columns become their
   /// diagonal's (scaled as the others, so the solve's tolerance still speaks of the free cells).
   /// Starts from `increment` and leaves the solution there; false if the solve failed.
@@ -101,6 +119,9 @@ private:
   std::vector<std::uint8_t> particle_cavitated_;
   std::vector<std::uint8_t> held_;            // per unknown: held at the cavitation limit
   std::vector<std::uint8_t> takes_increment_; // per particle: saturated soil in the solve
+  Eigen::VectorXd storage_;                   // S per unknown
+  Eigen::VectorXd rhs_;                       // dt G u*
+  Eigen::VectorXd increment_;                 // dp per unknown, the solve's
   Eigen::SparseMatrix<double, Eigen::RowMajor> divergence_;
   Eigen::SparseMatrix<double> system_;
   Eigen::SparseMatrix<double> held_system_;
