@@ -12,6 +12,7 @@ build, run and sweep cases.
     mpile.radiation("out/gdp_quick")                      # radiated energy, peak particle velocity
     mpile.load_test("out/gdp_quick_capacity")             # load-settlement curve, capacity
     mpile.friction_fatigue("out/gdp_cycles_quick", 60.0)  # sigma'_r / sigma'_r0 against cycles
+    mpile.shaft_bands("out/cycles", 0.373, 10.0, [(1, 2)], [0, 0.05, 0.1])  # bands beside a shaft
 
 Cases are built and run from Python with the command line's checks (the mpile program does them):
 
@@ -48,6 +49,7 @@ _EXPORTS = {
     "radiation": "vibration",
     "load_test": "capacity",
     "friction_fatigue": "fatigue",
+    "shaft_bands": "bands",
     "LoadTest": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",
