@@ -49,9 +49,11 @@ def cycled_bands(path, args):
 def changes(bands):
     """sigma'_r / sigma'_r0, e - e_0 and the excess pore pressure (kPa), on (time, depth, distance)."""
     first = bands.isel(time=0)
-    return {"sigma_r / sigma_r0": bands["sigma_r"] / first["sigma_r"],
-            "e - e0": bands["void_ratio"] - first["void_ratio"],
-            "excess u (kPa)": bands["excess_pore_pressure"] / 1e3}
+    found = {"sigma_r / sigma_r0": bands["sigma_r"] / first["sigma_r"],
+             "e - e0": bands["void_ratio"] - first["void_ratio"],
+             "excess u (kPa)": bands["excess_pore_pressure"] / 1e3}
+    # A run without void ratio (Hardening Soil) or pore water (dry) has none of those.
+    return {name: values for name, values in found.items() if bool(np.isfinite(values).any())}
 
 
 def reach(ratio, edges, threshold):
@@ -68,7 +70,10 @@ def report(label, bands, args):
     quantities = changes(bands)
     depths = [f"{top:g}-{bottom:g} m" for top, bottom in args.depths]
     cycles = bands["cycle"].values
-    rows = [i for i, n in enumerate(cycles) if n in SHOWN] + [len(cycles) - 1]
+    # The snapshot nearest each shown cycle count (snapshots fall on the output's clock, not
+    # necessarily on whole cycles of the phase), and the last.
+    rows = [int(np.argmin(np.abs(cycles - n))) for n in SHOWN if abs(cycles - n).min() <= 0.5]
+    rows.append(len(cycles) - 1)
     print(f"{label}: the band next to the wall ({args.distances[0]:g} to {args.distances[1]:g} m)")
     print()
     print("| cycle | " + " | ".join(f"{q}, {d}" for q in quantities for d in depths) + " |")
@@ -76,10 +81,10 @@ def report(label, bands, args):
     for i in dict.fromkeys(rows):
         cells = [f"{float(v.isel(time=i, distance=0, depth=k)):.3g}"
                  for v in quantities.values() for k in range(len(depths))]
-        print(f"| {cycles[i]:g} | " + " | ".join(cells) + " |")
+        print(f"| {cycles[i]:.2f} | " + " | ".join(cells) + " |")
     print()
     edges = args.distances
-    print(f"{label}: after {cycles[-1]:g} cycles, against distance from the wall (m)")
+    print(f"{label}: after {cycles[-1]:.2f} cycles, against distance from the wall (m)")
     print()
     print("| quantity, depth | " + " | ".join(f"{a:g}-{b:g}" for a, b in zip(edges, edges[1:])) + " |")
     print("|---|" + "---|" * (len(edges) - 1))
@@ -113,7 +118,7 @@ def plot(runs, args):
         bottom.axhline(1.0, color="0.6", linewidth=0.8)
         top.set(title=label, xlabel="cycles", ylabel="sigma'_r / sigma'_r0 beside the wall")
         bottom.set(xscale="log", xlabel="distance from the wall (m), band mid-points",
-                   ylabel=f"sigma'_r / sigma'_r0 after {bands['cycle'].values[-1]:g} cycles")
+                   ylabel=f"sigma'_r / sigma'_r0 after {bands['cycle'].values[-1]:.0f} cycles")
         top.legend()
         bottom.legend()
     figure.tight_layout()
