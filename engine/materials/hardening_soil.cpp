@@ -439,6 +439,8 @@ public:
   }
 
   double tolerance() const { return tolerance_; }
+  /// The cap's modulus, where the trial's residuals were decided before it was needed.
+  void set_cap_modulus(double cap_modulus_now) { cap_modulus_ = cap_modulus_now; }
 
   /// The shear residual at zero multipliers (the trial's, at the state every return starts from).
   double shear_residual_at_zero() const {
@@ -909,8 +911,7 @@ double mobilised_dilatancy(const Principal& s, double a, double sin_phi, double 
 }
 
 /// What a substep needs of the stress it starts from: sigma_3 (the stiffness) and the mobilised
-/// dilatancy. With psi = 0 the latter is zero whatever the stress, and sigma_3 alone costs a cosine
-/// less than the three principal values.
+/// dilatancy. With psi = 0 the latter is zero whatever the stress, and sigma_3 alone is needed.
 struct SubstepStart {
   double sigma_3, sin_psi;
 };
@@ -1097,13 +1098,15 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
   }
 
   const PrincipalStress trial = principal_compression(trial_stress, trial_values);
-  const double cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
+  // The cap's modulus is a power law the residuals below do not need: it is set only once the
+  // trial is known to be outside (a sixth of the trials decomposed here turn out inside).
+  double cap_hardening = 0.0;
   auto returner_at = [&](const ReturnState& from) {
     return HardeningSoilReturn(*this, P, elastic, sin_psi, delta_, alpha_, cap_hardening,
                                from.stress, from.gamma, from.cap_pressure, memo);
   };
   const ReturnState trial_state{trial.values, gamma_n, cap_n};
-  const HardeningSoilReturn returner = returner_at(trial_state);
+  HardeningSoilReturn returner = returner_at(trial_state);
   const double tolerance = returner.tolerance();
   // The trial's residuals, once: they decide both whether it stands and which mechanisms to try.
   const double shear_trial = returner.shear_residual_at_zero();
@@ -1114,6 +1117,8 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
     stress = trial_stress;
     return modulus;
   }
+  cap_hardening = cap_modulus_ * std::pow((cap_n + a_) / (P.p_ref + a_), P.power);
+  returner.set_cap_modulus(cap_hardening);
   const bool shear_may_hold =
       shear_trial > tolerance &&
       shear_alone_can_hold(trial.values, shear_trial, cap_n, sin_psi, alpha_, delta_, tolerance);

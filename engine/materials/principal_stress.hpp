@@ -46,7 +46,7 @@ struct PrincipalValues {
 PrincipalValues principal_compression_values(const Stress& stress);
 
 /// The smallest principal compression alone, principal_compression_values(stress).values[2] to the
-/// bit at a cosine less (for a stiffness law of sigma_3, which needs no other value).
+/// bit (for a stiffness law of sigma_3, which needs no other value).
 double principal_compression_minor(const Stress& stress);
 
 /// principal_compression for a stress whose values are known (principal_compression_values of the
