@@ -1084,12 +1084,13 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
   }
   // Most steps are elastic, and an elastic step needs neither the principal directions nor the
   // return: the trial stands if it lies inside both surfaces by more than the uncertainty of its
-  // principal values can move the residuals (their slopes: 1 + dq_f/dsigma_3 < 10 for shear,
-  // (1 + delta) / alpha for the cap). The stress then carries no rounding of a recomposition.
-  const PrincipalValues trial_values = principal_compression_values(trial_stress);
-  const Principal& t = trial_values.values;
+  // principal values (the cubic's, or the theta shears' bound on the block's) can move the
+  // residuals (their slopes: 1 + dq_f/dsigma_3 < 10 for shear, (1 + delta) / alpha for the cap).
+  // The stress then carries no rounding of a recomposition.
+  const PrincipalEstimate estimate = principal_compression_estimate(trial_stress);
+  const Principal& t = estimate.values.values;
   const double margin = surface_tolerance(t, P.p_ref) -
-                        10.0 * trial_values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
+                        10.0 * estimate.values.uncertainty * std::max(1.0, (1.0 + delta_) / alpha_);
   if (t[0] - t[2] - yield_deviator(gamma_n, t[2], memo) <= margin &&
       cap_surface(t, cap_n) <= margin) {
     state[P_P] = cap_n;
@@ -1097,7 +1098,9 @@ double HardeningSoil::substep(Stress& stress, double* state, const StrainIncreme
     return modulus;
   }
 
-  const PrincipalStress trial = principal_compression(trial_stress, trial_values);
+  const PrincipalStress trial = principal_compression(
+      trial_stress,
+      estimate.bounded ? principal_compression_values(trial_stress) : estimate.values);
   // The cap's modulus is a power law the residuals below do not need: it is set only once the
   // trial is known to be outside (a sixth of the trials decomposed here turn out inside).
   double cap_hardening = 0.0;
