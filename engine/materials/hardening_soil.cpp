@@ -406,11 +406,14 @@ double HardeningSoil::elastic_energy_density(const Stress& stress, const double*
 }
 
 void HardeningSoil::update_stress(const StressUpdateBatch& batch) const {
+  // One memo for the batch: a batch is a run of particles in a block of cells, the same for any
+  // thread count, so the results do not depend on it.
+  StiffnessFactorMemo memo;
   for (std::size_t k = 0; k < batch.particles.size(); ++k) {
     const auto i = static_cast<std::size_t>(batch.particles[k]);
     batch.constrained_modulus[k] = update_point(
         batch.stress[i], batch.state + i * static_cast<std::size_t>(batch.state_stride),
-        batch.strain[k]);
+        batch.strain[k], memo);
   }
 }
 
@@ -1041,11 +1044,16 @@ ReturnState return_to_surfaces(const HardeningSoilReturn& returner, const Return
 
 double HardeningSoil::update_point(Stress& stress, double* state,
                                    const StrainIncrement& strain) const {
+  StiffnessFactorMemo memo;
+  return update_point(stress, state, strain, memo);
+}
+
+double HardeningSoil::update_point(Stress& stress, double* state, const StrainIncrement& strain,
+                                   StiffnessFactorMemo& memo) const {
   const HardeningSoilParameters& P = parameters_;
   SubstepStart now = substep_start(stress, a_, sin_phi_, sin_psi_);
-  // One memo for the point's update: the stiffness at the start, the trial's and the return's
-  // evaluations lie close together in sigma_3 (stiffness_factor).
-  StiffnessFactorMemo memo;
+  // The stiffness at the start, the trial's and the return's evaluations lie close together in
+  // sigma_3 (stiffness_factor), and often near the last point's.
   const double e_start = unloading_modulus(now.sigma_3, memo);
   const int substeps =
       substep_count(strain, e_start, P.poisson_ur, now.sigma_3, a_ + P.stiffness_floor * P.p_ref);
