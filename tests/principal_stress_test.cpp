@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include <Eigen/Eigenvalues>
@@ -155,6 +156,45 @@ TEST(PrincipalStress, ValuesAloneAgreeWithTheDecompositionWithinTheirUncertainty
       ASSERT_NEAR(fast.values[k], reference.values[k], allowed) << "value " << k;
     }
   }
+}
+
+TEST(PrincipalStress, TheEstimateBoundsItsDistanceFromTheValues) {
+  // The elastic check's estimate: with theta shears below 1e-8 of the stress, the r-y block's
+  // values with the shears as their bound (Weyl), which must hold against the tensor's values
+  // (the iterative decomposition), at K0-like double roots above all; otherwise the values.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> value(-1e5, 1e5), scale(-12.0, -8.0);
+  std::vector<Stress> cases;
+  for (int k = 0; k < 2000; ++k) {
+    Stress s;
+    for (double& c : s) {
+      c = value(random);
+    }
+    if (k % 2 == 0) {
+      s[TT] = s[RR]; // a double root when the r-y shear is small, as at K0
+      s[RY] = k % 4 == 0 ? 0.0 : s[RY];
+    }
+    const double size = std::abs(s[RR]) + std::abs(s[YY]) + std::abs(s[TT]);
+    s[RT] = size * std::pow(10.0, scale(random)) * (k % 3 == 0 ? 0.0 : 1.0);
+    s[YT] = size * std::pow(10.0, scale(random));
+    cases.push_back(s);
+  }
+  int bounded = 0;
+  for (const Stress& s : cases) {
+    const PrincipalEstimate estimate = principal_compression_estimate(s);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> reference(-to_matrix(s));
+    const double largest = reference.eigenvalues().cwiseAbs().maxCoeff();
+    bounded += estimate.bounded ? 1 : 0;
+    for (int k = 0; k < 3; ++k) {
+      // Descending against Eigen's ascending order; rounding: a few ulps of the largest value.
+      ASSERT_NEAR(estimate.values.values[static_cast<std::size_t>(k)],
+                  reference.eigenvalues()(2 - k), estimate.values.uncertainty + 1e-14 * largest);
+    }
+    if (!estimate.bounded) {
+      EXPECT_EQ(estimate.values.values, principal_compression_values(s).values);
+    }
+  }
+  EXPECT_GT(bounded, 500); // the bound was exercised
 }
 
 TEST(PrincipalStress, TheMinorValueAloneIsTheValuesSmallestToTheBit) {

@@ -91,10 +91,14 @@ public:
   /// update evaluates it again and again at nearly the same sigma_3 (the start's stiffness, the
   /// trial's yield deviator, each Newton iterate, the check of the result); near the remembered
   /// ratio a series replaces the power law, equal to it to rounding (stiffness_factor). One memo
-  /// serves one point's update: it is never shared between threads.
+  /// serves one batch's updates (neighbours in a block of the grid lie at similar sigma_3): it is
+  /// never shared between threads.
   struct StiffnessFactorMemo {
     double ratio = 0.0, factor = 0.0;
   };
+  /// update_point with the memo of the updates before it in the same batch.
+  double update_point(Stress& stress, double* state, const StrainIncrement& strain,
+                      StiffnessFactorMemo& memo) const;
   double yield_deviator(double gamma_p, double sigma_3, StiffnessFactorMemo& memo) const;
   YieldDeviator yield_deviator_slopes(double gamma_p, double sigma_3,
                                       StiffnessFactorMemo& memo) const;

@@ -45,8 +45,22 @@ struct PrincipalValues {
 };
 PrincipalValues principal_compression_values(const Stress& stress);
 
+/// Principal compressive stresses for a decision with a margin (is a trial inside the surfaces?):
+/// where the theta shears are small against the stress, the values of the r-y block and the hoop
+/// stress alone, uncertainty |RT| + |YT| (at least the norm of the coupling the block leaves out,
+/// which by Weyl's inequality bounds how far each ordered value moves), otherwise
+/// principal_compression_values. The bound is far tighter near a double root, where the cubic's
+/// values are ill-conditioned, and the block costs a fraction of the cubic; but the values are
+/// not the tensor's to rounding, so `bounded` says that a decomposition needs
+/// principal_compression_values first.
+struct PrincipalEstimate {
+  PrincipalValues values;
+  bool bounded = false;
+};
+PrincipalEstimate principal_compression_estimate(const Stress& stress);
+
 /// The smallest principal compression alone, principal_compression_values(stress).values[2] to the
-/// bit at a cosine less (for a stiffness law of sigma_3, which needs no other value).
+/// bit (for a stiffness law of sigma_3, which needs no other value).
 double principal_compression_minor(const Stress& stress);
 
 /// principal_compression for a stress whose values are known (principal_compression_values of the
