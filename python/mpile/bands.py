@@ -75,7 +75,7 @@ def shaft_bands(path, wall, surface, depths, distances, snapshots=None):
     snapshots = open_snapshots(path) if snapshots is None else snapshots
     if len(snapshots) == 0:
         raise RunFileError(f"{path}: no particle snapshot")
-    names = {name: [] for name in ("sigma_r", "void_ratio", "excess_pore_pressure")}
+    series = {name: [] for name in ("sigma_r", "void_ratio", "excess_pore_pressure")}
     counts, times = [], []
     for snapshot in snapshots:
         arrays = snapshot.arrays
@@ -84,15 +84,15 @@ def shaft_bands(path, wall, surface, depths, distances, snapshots=None):
         rigid = np.isin(arrays["material"], rigid_materials) if "material" in arrays else \
             np.zeros(len(snapshot.positions), dtype=bool)
         means, count = _band_means(snapshot.positions, arrays, rigid, wall, surface, depths, distances)
-        for name in names:
-            names[name].append(means[name])
+        for name, values in series.items():
+            values.append(means[name])
         counts.append(count)
         times.append(snapshot.time)
     coords = {"time": np.array(times),
               "depth": [0.5 * (top + bottom) for top, bottom in depths],
               "distance": [0.5 * (a + b) for a, b in zip(distances, distances[1:])]}
     dims = ("time", "depth", "distance")
-    data = {name: (dims, np.array(values)) for name, values in names.items()}
+    data = {name: (dims, np.array(values)) for name, values in series.items()}
     data["count"] = (dims, np.array(counts))
     bands = xr.Dataset(data, coords=coords,
                        attrs={"wall": wall, "surface": surface,
