@@ -4,6 +4,7 @@
 #include "engine/materials/hypoplastic.hpp"
 
 #include "engine/angles.hpp"
+#include "engine/materials/power_near_one.hpp"
 #include "engine/materials/principal_stress.hpp"
 
 #include <algorithm>
@@ -56,6 +57,24 @@ struct Tangent {
     }
     return out;
   }
+};
+
+/// What the rate needs of the state besides the stress's direction: Bauer's factor and the
+/// barotropy and pycnotropy factors at (p, e), and rho^chi and rho^beta_R at |h|.
+struct StateFactors {
+  double p = 0.0;       // mean pressure where they hold (compression positive)
+  double e = 0.0;       // void ratio where they hold
+  double ratio_n = 0.0; // (3 p / h_s)^n
+  double bauer = 0.0;   // exp(-(3 p / h_s)^n): e_x = e_x0 bauer
+  double f_b = 0.0;
+  double f_e = 0.0;
+  double density = 0.0; // (e - e_d) / (e_c - e_d), at least zero
+  double f_d = 0.0;     // density^alpha
+  double h_norm = 0.0;  // |h|
+  double rho = 0.0;     // min(|h| / R, 1)
+  double log_rho = 0.0;
+  double rho_chi = 0.0;
+  double rho_beta = 0.0; // NaN: not evaluated, exp(beta_R log_rho)
 };
 
 } // namespace
@@ -124,14 +143,15 @@ Hypoplastic::Hypoplastic(const HypoplasticParameters& p) : parameters_(p) {
           "intergranular_strain must be 0 or 1");
   const double sin_phi = std::sin(radians(p.critical_friction_angle));
   a_ = std::sqrt(3.0) * (3.0 - sin_phi) / (2.0 * std::sqrt(2.0) * sin_phi);
-  f_b_ratio_ = std::pow(p.e_i0 / p.e_c0, p.beta);
-  f_b_divisor_ = 3.0 + a_ * a_ -
-                 a_ * std::sqrt(3.0) * std::pow((p.e_i0 - p.e_d0) / (p.e_c0 - p.e_d0), p.alpha);
+  const double f_b_divisor =
+      3.0 + a_ * a_ -
+      a_ * std::sqrt(3.0) * std::pow((p.e_i0 - p.e_d0) / (p.e_c0 - p.e_d0), p.alpha);
   // Below zero the isotropic compression's stiffness f_b would change sign (Herle and Gudehus
   // 1999): such parameters describe no granular material.
-  require(f_b_divisor_ > 0.0,
+  require(f_b_divisor > 0.0,
           "alpha makes 3 + a^2 - a sqrt(3) ((e_i0 - e_d0) / (e_c0 - e_d0))^alpha "
           "<= 0: lower alpha or widen e_c0 - e_d0");
+  f_b_scale_ = p.granular_hardness / p.exponent * std::pow(p.e_i0 / p.e_c0, p.beta) / f_b_divisor;
 }
 
 double Hypoplastic::limit_void_ratio(double e_x0, double p) const {
@@ -145,14 +165,93 @@ double Hypoplastic::critical_stress_ratio() const {
 
 namespace {
 
-/// The tangent of von Wolffersdorff's model at stress `stress` (p > 0) and void ratio e.
-Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b_ratio,
-                            double f_b_divisor, const Stress& stress, double e) {
+/// f_b from 3 p / h_s, its n-th power and Bauer's factor (no power of its own).
+double barotropy(const HypoplasticParameters& q, double f_b_scale, double ratio, double ratio_n,
+                 double bauer) {
+  const double e_i = q.e_i0 * bauer;
+  return f_b_scale * (1.0 + e_i) / e_i * (ratio / ratio_n);
+}
+
+/// rho^chi from log(rho) (zero at h = 0); rho^beta_R is left to the rate, which needs it only
+/// when loading along h.
+void intergranular_factors(const HypoplasticParameters& q, StateFactors& f) {
+  f.log_rho = f.rho > 0.0 ? std::log(f.rho) : -std::numeric_limits<double>::infinity();
+  f.rho_chi = std::exp(q.chi * f.log_rho);
+  f.rho_beta = std::numeric_limits<double>::quiet_NaN();
+}
+
+/// The factors at (p, e, |h|) from their definitions.
+StateFactors exact_factors(const HypoplasticParameters& q, double f_b_scale, double p, double e,
+                           double h_norm) {
+  StateFactors f;
+  f.p = p;
+  f.e = e;
+  const double ratio = 3.0 * p / q.granular_hardness;
+  // (3 p / h_s)^n once: Bauer's exponent and, divided into 3 p / h_s, f_b's (3 p / h_s)^(1 - n).
+  f.ratio_n = std::pow(ratio, q.exponent);
+  f.bauer = std::exp(-f.ratio_n);
+  f.f_b = barotropy(q, f_b_scale, ratio, f.ratio_n, f.bauer);
+  const double e_c = q.e_c0 * f.bauer;
+  const double e_d = q.e_d0 * f.bauer;
+  // pow(x, 1) is x exactly: a sand with beta = 1 (the seed's) skips a third of the pows here.
+  f.f_e = q.beta == 1.0 ? e_c / e : std::pow(e_c / e, q.beta);
+  // Denser than e_d the model has no state: f_d is held at zero there (no dilatancy term).
+  f.density = std::max(e - e_d, 0.0) / (e_c - e_d);
+  f.f_d = std::pow(f.density, q.alpha);
+  f.h_norm = h_norm;
+  if (q.intergranular_strain != 0.0) {
+    f.rho = std::min(h_norm / q.r_max, 1.0);
+    intergranular_factors(q, f);
+  }
+  return f;
+}
+
+/// The factors at (p, e, |h|) near `base`'s point, where each power is base's times a power of a
+/// number near one (power_near_one; std::pow where the numbers are not near one). Equal to
+/// exact_factors to a few units of rounding: it only evaluates the same functions more cheaply.
+StateFactors factors_near(const HypoplasticParameters& q, double f_b_scale,
+                          const StateFactors& base, double p, double e, double h_norm) {
+  StateFactors f;
+  f.p = p;
+  f.e = e;
+  const double ratio = 3.0 * p / q.granular_hardness;
+  f.ratio_n = base.ratio_n * power_near_one(p / base.p - 1.0, q.exponent);
+  f.bauer = base.bauer * exp_near_zero(base.ratio_n - f.ratio_n);
+  f.f_b = barotropy(q, f_b_scale, ratio, f.ratio_n, f.bauer);
+  const double e_c = q.e_c0 * f.bauer;
+  const double e_d = q.e_d0 * f.bauer;
+  f.f_e = q.beta == 1.0
+              ? e_c / e
+              : base.f_e * power_near_one((f.bauer * base.e) / (base.bauer * e) - 1.0, q.beta);
+  f.density = std::max(e - e_d, 0.0) / (e_c - e_d);
+  f.f_d = base.density > 0.0 && f.density > 0.0
+              ? base.f_d * power_near_one(f.density / base.density - 1.0, q.alpha)
+              : std::pow(f.density, q.alpha);
+  f.h_norm = h_norm;
+  if (q.intergranular_strain != 0.0) {
+    f.rho = std::min(h_norm / q.r_max, 1.0);
+    // Where |h| changed by more than NEAR_ONE of itself (as it does near h = 0), one logarithm
+    // and two exponentials rather than two powers.
+    const double delta = base.rho > 0.0 ? f.rho / base.rho - 1.0 : 1.0;
+    if (std::abs(delta) <= NEAR_ONE) {
+      f.rho_chi = base.rho_chi * power_near_one(delta, q.chi);
+      f.rho_beta = std::isnan(base.rho_beta) ? std::numeric_limits<double>::quiet_NaN()
+                                             : base.rho_beta * power_near_one(delta, q.beta_r);
+      f.log_rho = base.log_rho + log_near_one(delta);
+    } else {
+      intergranular_factors(q, f);
+    }
+  }
+  return f;
+}
+
+/// The tangent of von Wolffersdorff's model at stress `stress` (p > 0) from the state's factors.
+Tangent hypoplastic_tangent(double a, const Stress& stress, const StateFactors& factors) {
   Tangent t;
   const double trace = stress[RR] + stress[YY] + stress[TT]; // < 0 in compression
-  const double p = -trace / 3.0;
+  const double inverse_trace = 1.0 / trace;
   for (std::size_t k = 0; k < 6; ++k) {
-    t.s[k] = stress[k] / trace;
+    t.s[k] = stress[k] * inverse_trace;
   }
   Stress deviator = t.s;
   for (std::size_t k = 0; k < 3; ++k) {
@@ -172,23 +271,10 @@ Tangent hypoplastic_tangent(const HypoplasticParameters& q, double a, double f_b
   const double f =
       std::sqrt(tan2 / 8.0 + (2.0 - tan2) / (2.0 + std::sqrt(2.0) * tan_psi * cos_3theta)) -
       tan_psi / (2.0 * std::sqrt(2.0));
-  const double ratio = 3.0 * p / q.granular_hardness;
-  // (3 p / h_s)^n once: Bauer's exponent and, divided into 3 p / h_s, f_b's (3 p / h_s)^(1 - n).
-  const double ratio_n = std::pow(ratio, q.exponent);
-  const double bauer = std::exp(-ratio_n);
-  const double e_i = q.e_i0 * bauer;
-  const double e_c = q.e_c0 * bauer;
-  const double e_d = q.e_d0 * bauer;
-  const double f_b = q.granular_hardness / q.exponent * (1.0 + e_i) / e_i * f_b_ratio *
-                     (ratio / ratio_n) / f_b_divisor;
-  // pow(x, 1) is x exactly: a sand with beta = 1 (the seed's) skips a third of the pows here.
-  const double f_e = q.beta == 1.0 ? e_c / e : std::pow(e_c / e, q.beta);
-  // Denser than e_d the model has no state: f_d is held at zero there (no dilatancy term).
-  const double f_d = std::pow(std::max(e - e_d, 0.0) / (e_c - e_d), q.alpha);
-  t.c = f_b * f_e / t.s_norm2;
+  t.c = factors.f_b * factors.f_e / t.s_norm2;
   t.f2 = f * f;
   t.a2 = a * a;
-  const double n_scale = t.c * f_d * f * a;
+  const double n_scale = t.c * factors.f_d * f * a;
   for (std::size_t k = 0; k < 6; ++k) {
     t.n[k] = n_scale * (t.s[k] + deviator[k]);
   }
@@ -241,10 +327,14 @@ double modulus_bound(const HypoplasticParameters& q, const Tangent& t) {
 
 } // namespace
 
-HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d,
-                                   double* modulus) const {
-  const HypoplasticParameters& q = parameters_;
-  const Tangent t = hypoplastic_tangent(q, a_, f_b_ratio_, f_b_divisor_, at.stress, at.e);
+namespace {
+
+/// The model's rate at `at` (whose factors `f` are) per unit of D: HypoplasticPoint::rate. Sets
+/// f.rho_beta where it evaluates it.
+HypoplasticPoint hypoplastic_rate(const HypoplasticParameters& q, double a,
+                                  const HypoplasticPoint& at, StateFactors& f, const Stress& d,
+                                  double* modulus) {
+  const Tangent t = hypoplastic_tangent(a, at.stress, f);
   if (modulus != nullptr) {
     *modulus = modulus_bound(q, t);
   }
@@ -258,35 +348,43 @@ HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d,
     }
     return out;
   }
-  const double h_norm = norm(at.h);
-  const double rho = std::min(h_norm / q.r_max, 1.0);
   Stress direction{}; // h / |h|; zero at h = 0 (rho = 0: the stiffness is m_R L whatever D)
-  if (h_norm > 0.0) {
+  if (f.h_norm > 0.0) {
+    const double inverse_norm = 1.0 / f.h_norm;
     for (std::size_t k = 0; k < 6; ++k) {
-      direction[k] = at.h[k] / h_norm;
+      direction[k] = at.h[k] * inverse_norm;
     }
   }
   const double along = contract(direction, d); // h_hat : D
-  // rho^chi and rho^beta_R from one logarithm (zero at h = 0).
-  const double log_rho = rho > 0.0 ? std::log(rho) : -std::numeric_limits<double>::infinity();
-  const double rho_chi = std::exp(q.chi * log_rho);
-  const double blend = rho_chi * q.m_t + (1.0 - rho_chi) * q.m_r;
+  const double blend = f.rho_chi * q.m_t + (1.0 - f.rho_chi) * q.m_r;
   const Stress lh = t.apply(direction);
   if (along > 0.0) {
     // Loading along the intergranular strain: towards the hypoplastic response as rho -> 1.
-    const double rho_beta = std::exp(q.beta_r * log_rho);
+    if (std::isnan(f.rho_beta)) {
+      f.rho_beta = std::exp(q.beta_r * f.log_rho);
+    }
+    const double rho_beta = f.rho_beta;
     for (std::size_t k = 0; k < 6; ++k) {
-      out.stress[k] = blend * ld[k] + rho_chi * ((1.0 - q.m_t) * lh[k] + t.n[k]) * along;
+      out.stress[k] = blend * ld[k] + f.rho_chi * ((1.0 - q.m_t) * lh[k] + t.n[k]) * along;
       out.h[k] = d[k] - rho_beta * direction[k] * along;
     }
   } else {
     // Reversal or neutral: stiff (m_R L after 180 degrees, m_T L after 90 degrees at rho = 1).
     for (std::size_t k = 0; k < 6; ++k) {
-      out.stress[k] = blend * ld[k] + rho_chi * (q.m_r - q.m_t) * lh[k] * along;
+      out.stress[k] = blend * ld[k] + f.rho_chi * (q.m_r - q.m_t) * lh[k] * along;
       out.h[k] = d[k];
     }
   }
   return out;
+}
+
+} // namespace
+
+HypoplasticPoint Hypoplastic::rate(const HypoplasticPoint& at, const Stress& d,
+                                   double* modulus) const {
+  StateFactors f =
+      exact_factors(parameters_, f_b_scale_, mean_pressure(at.stress), at.e, norm(at.h));
+  return hypoplastic_rate(parameters_, a_, at, f, d, modulus);
 }
 
 void Hypoplastic::initialise_state(const Stress& /*stress*/, double* state) const {
@@ -352,9 +450,18 @@ double Hypoplastic::update_point(Stress& stress, double* state,
   // within the substep of the end): a third tangent at the final state cost a third of the update.
   // NaN where that substep ended at the floor or was cut: the tangent is then taken at the end.
   double modulus = std::numeric_limits<double>::quiet_NaN();
+  // The rate at a substep's start is kept while the substep is retried smaller; the rate at its
+  // Euler state takes its factors from the start's (factors_near: the same values, cheaper).
+  bool start_rate_known = false;
+  StateFactors start{};
+  HypoplasticPoint k1;
   while (t < 1.0) {
     dt = std::min(dt, 1.0 - t);
-    const HypoplasticPoint k1 = rate(point, d);
+    if (!start_rate_known) {
+      start = exact_factors(q, f_b_scale_, mean_pressure(point.stress), point.e, norm(point.h));
+      k1 = hypoplastic_rate(q, a_, point, start, d, nullptr);
+      start_rate_known = true;
+    }
     HypoplasticPoint euler = point;
     for (std::size_t k = 0; k < 6; ++k) {
       euler.stress[k] += dt * k1.stress[k];
@@ -368,7 +475,9 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     double error = 0.0;
     double attempt_modulus = std::numeric_limits<double>::quiet_NaN();
     if (mean_pressure(euler.stress) >= p_min && compressive(euler.stress, 1e-3 * p_min)) {
-      const HypoplasticPoint k2 = rate(euler, d, &attempt_modulus);
+      StateFactors at_euler =
+          factors_near(q, f_b_scale_, start, mean_pressure(euler.stress), euler.e, norm(euler.h));
+      const HypoplasticPoint k2 = hypoplastic_rate(q, a_, euler, at_euler, d, &attempt_modulus);
       Stress stress_error{}, h_error{};
       next = point;
       for (std::size_t k = 0; k < 6; ++k) {
@@ -389,6 +498,7 @@ double Hypoplastic::update_point(Stress& stress, double* state,
       continue;
     }
     point = next;
+    start_rate_known = false;
     modulus =
         floor_pressure(point.stress) ? std::numeric_limits<double>::quiet_NaN() : attempt_modulus;
     // No state is looser than e_i(p): sand stretched past it at the floor pressure (beside a
@@ -427,25 +537,25 @@ namespace {
 /// The tangent at a stress raised to the floor pressure where it lies below it, and at the
 /// particle's void ratio (the initial one before the state is set): what the time step, the
 /// absorbing faces and the ledger read.
-Tangent floored_tangent(const HypoplasticParameters& q, double a, double f_b_ratio,
-                        double f_b_divisor, Stress s, const double* state) {
+Tangent floored_tangent(const HypoplasticParameters& q, double a, double f_b_scale, Stress s,
+                        const double* state) {
   if (mean_pressure(s) < q.minimum_pressure) {
     const double p = q.minimum_pressure;
     s = Stress{-p, -p, -p, 0.0, 0.0, 0.0};
   }
   const double e = state[Hypoplastic::VOID_RATIO];
-  return hypoplastic_tangent(q, a, f_b_ratio, f_b_divisor, s, e > 0.0 ? e : q.void_ratio);
+  return hypoplastic_tangent(
+      a, s, exact_factors(q, f_b_scale, mean_pressure(s), e > 0.0 ? e : q.void_ratio, 0.0));
 }
 
 } // namespace
 
 double Hypoplastic::constrained_modulus(const Stress& stress, const double* state) const {
-  return modulus_bound(parameters_,
-                       floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state));
+  return modulus_bound(parameters_, floored_tangent(parameters_, a_, f_b_scale_, stress, state));
 }
 
 double Hypoplastic::shear_modulus(const Stress& stress, const double* state) const {
-  const Tangent t = floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state);
+  const Tangent t = floored_tangent(parameters_, a_, f_b_scale_, stress, state);
   return reversal_multiplier(parameters_) * 0.5 * t.c * t.f2;
 }
 
@@ -454,7 +564,7 @@ double Hypoplastic::elastic_energy_density(const Stress& stress, const double* s
   if (p < parameters_.minimum_pressure) {
     return 0.0;
   }
-  const Tangent t = floored_tangent(parameters_, a_, f_b_ratio_, f_b_divisor_, stress, state);
+  const Tangent t = floored_tangent(parameters_, a_, f_b_scale_, stress, state);
   const double multiplier = reversal_multiplier(parameters_);
   return isotropic_elastic_energy_density(stress, multiplier * t.c * (t.f2 + t.a2 / 3.0) / 3.0,
                                           multiplier * 0.5 * t.c * t.f2);

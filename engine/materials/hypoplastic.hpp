@@ -98,9 +98,10 @@ private:
   HypoplasticParameters parameters_;
   std::vector<std::string> names_{"void_ratio", "h_rr",     "h_yy",     "h_thth",
                                   "h_ry",       "h_ytheta", "h_rtheta", "substep"};
-  double a_ = 0.0;           // von Wolffersdorff's a from phi_c
-  double f_b_divisor_ = 0.0; // 3 + a^2 - a sqrt(3) ((e_i0 - e_d0) / (e_c0 - e_d0))^alpha
-  double f_b_ratio_ = 0.0;   // (e_i0 / e_c0)^beta
+  double a_ = 0.0; // von Wolffersdorff's a from phi_c
+  // f_b's constant factor: h_s / n (e_i0 / e_c0)^beta / (3 + a^2 - a sqrt(3) ((e_i0 - e_d0) /
+  // (e_c0 - e_d0))^alpha).
+  double f_b_scale_ = 0.0;
 };
 
 } // namespace mpile
