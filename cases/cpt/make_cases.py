@@ -88,6 +88,7 @@ def case(
     sand=None,
     geometry="axisymmetric",
     moving=True,
+    xpic_order=0,
 ):
     """The case text; the keywords vary it for docs/cpt.md's study. `sand` holds Hardening Soil
     keys set beside Table 5 (the model's own settings: ocr, stiffness_floor, cap_floor) or over it
@@ -132,6 +133,7 @@ def case(
     # Written only when varied, so that the shipped cases keep their defaults implicit.
     ppc_line = "" if particles_per_cell == 2 else f"particles_per_cell = {particles_per_cell}\n"
     bbar_line = "" if bbar else "bbar = false\n"
+    xpic_line = f"xpic_order = {xpic_order}\n" if xpic_order else ""
     # Mass-gradient normals know no outline, so no named surfaces and no q_c: the rod's total force.
     outlined = normals == "outline"
     # In plane strain the "rod" is a strip of half-width RADIUS per metre, symmetric about r = 0
@@ -233,7 +235,7 @@ traction = -50e3
 [solver]
 gravity = [0.0, 0.0]
 courant_number = 0.8
-{bbar_line}
+{bbar_line}{xpic_line}
 [[phases]]
 name = "chamber"
 duration = 0.05
@@ -261,7 +263,7 @@ if __name__ == "__main__":
         flags = ("flat", "bbar", "moving")
         sand = {k[len("sand."):]: float(v) for k, v in options.items() if k.startswith("sand.")}
         options = {
-            k: (v == "true") if k in flags else int(v) if k == "particles_per_cell"
+            k: (v == "true") if k in flags else int(v) if k in ("particles_per_cell", "xpic_order")
             else v if k in ("normals", "geometry") else float(v)
             for k, v in options.items() if not k.startswith("sand.")
         }
