@@ -92,7 +92,7 @@ Files write_files(const std::string& name, const std::string& base = base_text,
   return f;
 }
 
-std::string error_of(const std::string& path, const std::vector<std::string>& overrides = {}) {
+std::string composition_error_of(const std::string& path, const std::vector<std::string>& overrides = {}) {
   try {
     read_case_file(path, overrides);
   } catch (const CaseError& e) {
@@ -120,7 +120,7 @@ TEST(CaseComposition, ABaseMergesUnderTheCaseTableByTableAndArraysAreReplaced) {
 TEST(CaseComposition, AnErrorInABaseValueNamesTheBaseFileAndLine) {
   const Files f =
       write_files("base_error", replaced(base_text, "poisson_ratio = 0.3", "poisson_ratio = 0.7"));
-  const std::string error = error_of(f.case_file.string());
+  const std::string error = composition_error_of(f.case_file.string());
   // Line 8 of the base holds poisson_ratio.
   EXPECT_EQ(
       error.rfind(f.base.lexically_normal().string() + ":8: materials.soil.poisson_ratio:", 0), 0u)
@@ -163,7 +163,7 @@ TEST(CaseComposition, ACheckBetweenKeysNamesTheKeyTheCaseWrote) {
   const auto error_with = [](const std::string& name, const std::string& top,
                              const std::vector<std::string>& overrides = {}) {
     const Files f = write_files(name, monopile_base, "base = \"shared/base.toml\"\n" + top);
-    return std::pair{error_of(f.case_file.string(), overrides), f};
+    return std::pair{composition_error_of(f.case_file.string(), overrides), f};
   };
   {
     const auto [error, f] = error_with("blame_diameter", "[monopile]\ndiameter = 746\n");
@@ -216,7 +216,7 @@ TEST(CaseComposition, ACheckBetweenKeysNamesTheKeyTheCaseWrote) {
 
 TEST(CaseComposition, BadBasesAreRefusedWithTheLineThatNamesThem) {
   Files f = write_files("missing_base", base_text, replaced(case_text, "shared/base", "nowhere"));
-  std::string error = error_of(f.case_file.string());
+  std::string error = composition_error_of(f.case_file.string());
   EXPECT_EQ(error.rfind(f.case_file.string() + ":1: base: " +
                             (f.directory / "nowhere.toml").string() + ": cannot open the case file",
                         0),
@@ -224,27 +224,27 @@ TEST(CaseComposition, BadBasesAreRefusedWithTheLineThatNamesThem) {
       << error;
   // An empty path names the case's own directory.
   f = write_files("empty_base", base_text, replaced(case_text, "shared/base.toml", ""));
-  error = error_of(f.case_file.string());
+  error = composition_error_of(f.case_file.string());
   EXPECT_EQ(error.rfind(f.case_file.string() + ":1: base: ", 0), 0u) << error;
   EXPECT_NE(error.find("is a directory, not a case file"), std::string::npos) << error;
 
   // A base that names the case again: a cycle.
   f = write_files("cycle", std::string("base = \"../case.toml\"\n") + base_text);
-  error = error_of(f.case_file.string());
+  error = composition_error_of(f.case_file.string());
   EXPECT_NE(error.find(":1: base: "), std::string::npos) << error;
   EXPECT_NE(error.find("is already in this chain of bases (a cycle)"), std::string::npos) << error;
 
   f = write_files("base_type", base_text, replaced(case_text, "\"shared/base.toml\"", "3"));
-  EXPECT_EQ(error_of(f.case_file.string()),
+  EXPECT_EQ(composition_error_of(f.case_file.string()),
             f.case_file.string() +
                 ":1: base: expected the path of a base case file (a string) or a list of them");
   f = write_files("base_empty_list", base_text, replaced(case_text, "\"shared/base.toml\"", "[]"));
-  EXPECT_EQ(error_of(f.case_file.string()),
+  EXPECT_EQ(composition_error_of(f.case_file.string()),
             f.case_file.string() + ":1: base: the list of base files is empty");
   // The system reads a path up to a NUL: "shared/base.toml\u0000junk" read shared/base.toml.
   f = write_files("base_nul", base_text,
                   replaced(case_text, "\"shared/base.toml\"", "\"shared/base.toml\\u0000junk\""));
-  EXPECT_EQ(error_of(f.case_file.string()),
+  EXPECT_EQ(composition_error_of(f.case_file.string()),
             f.case_file.string() + ":1: base: a path cannot hold a NUL character (\\u0000)");
 }
 
@@ -287,9 +287,9 @@ TEST(CaseComposition, AListOfBasesMergesInOrderAndATableOfAnotherTypeReplacesThe
   f = write_files("base_list_cycle",
                   std::string("base = [\"sand.toml\", \"../case.toml\"]\n") + base_text);
   std::ofstream(f.directory / "shared" / "sand.toml") << sand_text;
-  EXPECT_NE(error_of(f.case_file.string()).find("is already in this chain of bases (a cycle)"),
+  EXPECT_NE(composition_error_of(f.case_file.string()).find("is already in this chain of bases (a cycle)"),
             std::string::npos)
-      << error_of(f.case_file.string());
+      << composition_error_of(f.case_file.string());
 }
 
 TEST(CaseComposition, SetReplacesOneValueAnywhereAndIsRecorded) {
@@ -318,10 +318,10 @@ TEST(CaseComposition, SetTakesAnArrayElementByItsName) {
   const CaseSpec spec = read_case_file(f.case_file.string(), {"phases.rest.duration=0.07"});
   EXPECT_EQ(spec.phases.at(1).duration, 0.07);
   EXPECT_EQ(spec.phases.at(0).duration, 0.2);
-  EXPECT_EQ(error_of(f.case_file.string(), {"phases.rst.duration=1"}),
+  EXPECT_EQ(composition_error_of(f.case_file.string(), {"phases.rst.duration=1"}),
             "--set phases.rst.duration=1: phases.rst: no element is named 'rst' (names: settle, "
             "rest); did you mean 'rest'?");
-  EXPECT_EQ(error_of(f.case_file.string(), {"phases.consolidation.duration=1"}),
+  EXPECT_EQ(composition_error_of(f.case_file.string(), {"phases.consolidation.duration=1"}),
             "--set phases.consolidation.duration=1: phases.consolidation: no element is named "
             "'consolidation' (names: settle, rest)");
 }
@@ -330,36 +330,36 @@ TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
   const Files f = write_files("set_errors");
   const std::string path = f.case_file.string();
   // An unknown key is caught by the strict reader, which names the --set it came from.
-  EXPECT_EQ(error_of(path, {"materials.soil.densty=2000"})
+  EXPECT_EQ(composition_error_of(path, {"materials.soil.densty=2000"})
                 .rfind("--set materials.soil.densty:1: materials.soil.densty: unknown key", 0),
             0u)
-      << error_of(path, {"materials.soil.densty=2000"});
+      << composition_error_of(path, {"materials.soil.densty=2000"});
   // A value of the wrong type too.
   EXPECT_EQ(
-      error_of(path, {"materials.soil.density=\"dense\""})
+      composition_error_of(path, {"materials.soil.density=\"dense\""})
           .rfind("--set materials.soil.density:1: materials.soil.density: expected a number", 0),
       0u)
-      << error_of(path, {"materials.soil.density=\"dense\""});
-  EXPECT_EQ(error_of(path, {"materials.soil.density"}),
+      << composition_error_of(path, {"materials.soil.density=\"dense\""});
+  EXPECT_EQ(composition_error_of(path, {"materials.soil.density"}),
             "--set materials.soil.density: expected key.path=value");
-  EXPECT_EQ(error_of(path, {"materials..density=1"}),
+  EXPECT_EQ(composition_error_of(path, {"materials..density=1"}),
             "--set materials..density=1: 'materials..density' is not a key path (keys joined by "
             "dots, like monopile.embedment)");
-  EXPECT_EQ(error_of(path, {"phases.2.duration=1"}),
+  EXPECT_EQ(composition_error_of(path, {"phases.2.duration=1"}),
             "--set phases.2.duration=1: phases.2: the array has 2 elements, numbered from 0");
-  EXPECT_EQ(error_of(path, {"title.text=1"}), "--set title.text=1: title is not a table");
-  EXPECT_EQ(error_of(path, {"base=\"other.toml\""}),
+  EXPECT_EQ(composition_error_of(path, {"title.text=1"}), "--set title.text=1: title is not a table");
+  EXPECT_EQ(composition_error_of(path, {"base=\"other.toml\""}),
             "--set base=\"other.toml\": base is the file a case builds on; name it in the case "
             "file");
   // Text after a line break was parsed as keys of its own and dropped; a value over several
   // lines is still one value.
-  EXPECT_EQ(error_of(path, {"phases.0.duration=2.0\nphases = 3"}),
+  EXPECT_EQ(composition_error_of(path, {"phases.0.duration=2.0\nphases = 3"}),
             "--set phases.0.duration: the value must be one TOML value; it goes on after a line "
             "break (give each assignment its own --set)");
-  EXPECT_EQ(error_of(path, {"phases.0.duration=2.0\n[solver]\ngravity = [0.0, 0.0]"}),
-            error_of(path, {"phases.0.duration=2.0\nphases = 3"}));
-  EXPECT_EQ(error_of(path, {"solver.gravity=[0.0,\n-9.81] # a comment\n"}), "accepted");
-  const std::string unquoted = error_of(path, {"title=a column"});
+  EXPECT_EQ(composition_error_of(path, {"phases.0.duration=2.0\n[solver]\ngravity = [0.0, 0.0]"}),
+            composition_error_of(path, {"phases.0.duration=2.0\nphases = 3"}));
+  EXPECT_EQ(composition_error_of(path, {"solver.gravity=[0.0,\n-9.81] # a comment\n"}), "accepted");
+  const std::string unquoted = composition_error_of(path, {"title=a column"});
   EXPECT_EQ(unquoted.rfind("--set title=a column: the value is not TOML (text needs quotes: "
                            "title=\"text\"):",
                            0),
@@ -374,7 +374,7 @@ TEST(CaseComposition, ASetKeyOfMoreThanSixtyFourPartsIsRefused) {
   for (int k = 1; k < 12000; ++k) {
     key += ".a";
   }
-  EXPECT_EQ(error_of(f.case_file.string(), {key + "=1"}),
+  EXPECT_EQ(composition_error_of(f.case_file.string(), {key + "=1"}),
             "--set " + key.substr(0, 39) +
                 "...: the key has 12000 parts; a dotted key has at "
                 "most 64");
@@ -390,7 +390,7 @@ TEST(CaseComposition, ASetKeyOfMoreThanSixtyFourPartsIsRefused) {
   for (int k = 1; k < 64; ++k) {
     fits += ".a";
   }
-  EXPECT_NE(error_of(f.case_file.string(), {fits + "=1"}).find("unknown key"), std::string::npos);
+  EXPECT_NE(composition_error_of(f.case_file.string(), {fits + "=1"}).find("unknown key"), std::string::npos);
 }
 
 TEST(CaseComposition, DifferingKeysNameTheChangedValuesAndPhases) {

@@ -51,7 +51,7 @@ name = "run"
 duration = 1e-3
 )";
 
-std::string error_of(const std::string& text) {
+std::string format_error_of(const std::string& text) {
   try {
     read_case_text(text, "case.toml");
   } catch (const CaseError& e) {
@@ -224,31 +224,31 @@ TEST(CaseFormat, BoundKeysReachTheirFieldsThroughTheDeclaration) {
   EXPECT_EQ(pile.travel, std::get<double>(find_table_spec("monopile")->key("travel")->fallback));
   EXPECT_EQ(pile.wall_cells,
             std::get<long>(find_table_spec("monopile")->key("wall_cells")->fallback));
-  EXPECT_NE(error_of(block + "k0 = [{ body = \"soil\", k0 = 0.4 }]\n")
+  EXPECT_NE(format_error_of(block + "k0 = [{ body = \"soil\", k0 = 0.4 }]\n")
                 .find("case.toml:27: phases[0].k0[0].surface: missing"),
             std::string::npos)
-      << error_of(block + "k0 = [{ body = \"soil\", k0 = 0.4 }]\n");
+      << format_error_of(block + "k0 = [{ body = \"soil\", k0 = 0.4 }]\n");
 }
 
 TEST(CaseFormat, ARangeOrChoiceOutsideTheDeclarationNamesFileLineKeyAndBound) {
-  EXPECT_EQ(error_of(block + "[solver]\ncourant_number = 3.0\n"),
+  EXPECT_EQ(format_error_of(block + "[solver]\ncourant_number = 3.0\n"),
             "case.toml:28: solver.courant_number: must lie in (0, 2], got 3");
-  EXPECT_EQ(error_of(block + "[solver]\nxpic_order = 17\n"),
+  EXPECT_EQ(format_error_of(block + "[solver]\nxpic_order = 17\n"),
             "case.toml:28: solver.xpic_order: must lie between 0 and 16, got 17");
-  EXPECT_EQ(error_of(block + "[solver]\nscheme = \"rk4\"\n"),
+  EXPECT_EQ(format_error_of(block + "[solver]\nscheme = \"rk4\"\n"),
             "case.toml:28: solver.scheme: must be \"musl\" or \"usl\", got \"rk4\"");
-  EXPECT_EQ(error_of(block + "[[contact]]\nstructure = \"block\"\nadhesion = -1.0\n"),
+  EXPECT_EQ(format_error_of(block + "[[contact]]\nstructure = \"block\"\nadhesion = -1.0\n"),
             "case.toml:29: contact[0].adhesion: must be >= 0 Pa, got -1");
   // A material parameter's range comes from the registry.
   std::string bad = block;
   bad.replace(bad.find("poisson_ratio = 0.3"), 19, "poisson_ratio = 0.7");
-  EXPECT_EQ(error_of(bad), "case.toml:9: materials.steel.poisson_ratio: linear_elastic: "
+  EXPECT_EQ(format_error_of(bad), "case.toml:9: materials.steel.poisson_ratio: linear_elastic: "
                            "poisson_ratio must lie in (-1, 0.5), got 0.7");
 }
 
 TEST(CaseFormat, AnUnknownKeyListsTheKeysOfItsTable) {
   const std::string message =
-      error_of(block + "[[contact]]\nstructure = \"block\"\nfricton = 0.3\n");
+      format_error_of(block + "[[contact]]\nstructure = \"block\"\nfricton = 0.3\n");
   EXPECT_EQ(message, "case.toml:29: contact[0].fricton: unknown key ([[contact]] has structure, "
                      "friction, adhesion, normals, gap, surfaces, surface)");
 }

@@ -722,7 +722,7 @@ ContactOutcome run_with_threads(const std::string& text, int threads) {
   return outcome;
 }
 
-void expect_identical(const ContactOutcome& a, const ContactOutcome& b) {
+void expect_identical_contact(const ContactOutcome& a, const ContactOutcome& b) {
   expect_particles_identical(a.particles, b.particles);
   EXPECT_TRUE(bitwise_equal(a.surface_force, b.surface_force));
   expect_rigid_bodies_identical(a.rigid, b.rigid);
@@ -733,7 +733,7 @@ TEST(ContactThreadIdentity, TorsionWithAdhesionOneAndTwoThreads) {
   text = replaced(text, "cells = 40", "cells = 20");
   text = replaced(text, "duration = 1.0", "duration = 0.1");
   text += "\n[solver]\nblock_cells = 2\n"; // many blocks per colour
-  expect_identical(run_with_threads(text, 1), run_with_threads(text, 2));
+  expect_identical_contact(run_with_threads(text, 1), run_with_threads(text, 2));
 }
 
 TEST(ContactThreadIdentity, SlidingOnADeformableInclineOneAndTwoThreads) {
@@ -744,7 +744,7 @@ TEST(ContactThreadIdentity, SlidingOnADeformableInclineOneAndTwoThreads) {
   text = replaced(text, "duration = 1.0", "duration = 0.2");
   text = replaced(text, "[solver]\n", "[solver]\nblock_cells = 2\n");
   const ContactOutcome one = run_with_threads(text, 1);
-  expect_identical(one, run_with_threads(text, 2));
+  expect_identical_contact(one, run_with_threads(text, 2));
   // Block particles that crossed into another block of two 0.1 m cells (boundaries at multiples
   // of 0.2 m from r = 0): the re-binning into other blocks was exercised.
   const double block_width = 0.2;

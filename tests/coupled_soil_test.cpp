@@ -384,7 +384,7 @@ TEST(CoupledSoil, AnImpermeableBaseCarriesTheWholeWeightOfAColumnAtRest) {
 }
 
 /// The reader's refusal of a case ("accepted" if it builds).
-std::string error_of(const std::string& text) {
+std::string coupled_error_of(const std::string& text) {
   try {
     CaseRun run(text);
   } catch (const CaseError& e) {
@@ -398,11 +398,11 @@ std::string error_of(const std::string& text) {
 // particles carry neither stress nor water).
 TEST(CoupledSoil, SettingsWithoutPoreWaterToActOnAreRefusedAtTheirKey) {
   std::string error =
-      error_of(saturated_wave_column("") + "[solver]\ncell_mean_pore_pressure = true\n");
+      coupled_error_of(saturated_wave_column("") + "[solver]\ncell_mean_pore_pressure = true\n");
   EXPECT_NE(error.find(": solver.cell_mean_pore_pressure: no material is undrained or coupled"),
             std::string::npos)
       << error;
-  error = error_of(
+  error = coupled_error_of(
       replaced(saturated_wave_column("drainage = \"coupled\"\nhydraulic_conductivity = 1e-4"),
                "region = { r = [0.0, 0.1], y = [0.0, 30.0] }",
                "region = { r = [0.0, 0.1], y = [0.0, 30.0] }\n[bodies.rigid]\nvelocity_y = 0.0"));
@@ -425,22 +425,22 @@ TEST(CoupledSoil, AFarFieldWithoutADrainGravityOrASurfaceIsRefusedAtItsKey) {
   // The key's line: the column's [boundaries] table, after its faces (and the drained list).
   const std::string key = ": boundaries.drained_pressure: ";
   std::string error =
-      error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + hydrostatic));
+      coupled_error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + hydrostatic));
   EXPECT_EQ(error.rfind("test.toml:19" + key + "no face is drained", 0), 0u) << error;
   const std::string at = "test.toml:20" + key;
   error =
-      error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
+      coupled_error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
                         "gravity = [0.0, -9.81]", "gravity = [-9.81, 0.0]"));
   EXPECT_NE(error.find(at + "the far field's water is hydrostatic under gravity along -y"),
             std::string::npos)
       << error;
   error =
-      error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
+      coupled_error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
                         "k0 = [{ body = \"column\", surface = 5, k0 = 0.5 }]\n", ""));
   EXPECT_NE(error.find(at + "body 'column' holds pore water but no phase gives it a K0 procedure"),
             std::string::npos)
       << error;
-  EXPECT_EQ(error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained)),
+  EXPECT_EQ(coupled_error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained)),
             "accepted");
 }
 

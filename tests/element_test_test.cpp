@@ -20,7 +20,7 @@
 namespace mpile {
 namespace {
 
-int line_of(const std::string& text, const std::string& needle) {
+int element_line_of(const std::string& text, const std::string& needle) {
   const auto at_position = text.find(needle);
   return at_position == std::string::npos
              ? -1
@@ -28,7 +28,7 @@ int line_of(const std::string& text, const std::string& needle) {
                        text.begin(), text.begin() + static_cast<long>(at_position), '\n'));
 }
 
-ElementTestTable run_text(const std::string& text) {
+ElementTestTable run_element_text(const std::string& text) {
   return run_element_test(read_element_test_text(text, "test.toml"));
 }
 
@@ -48,7 +48,7 @@ std::string linear_elastic(const std::string& initial, const std::string& path) 
 constexpr double exact = 1e-9;
 
 TEST(ElementTest, LinearElasticOedometerGivesTheConstrainedModulus) {
-  const ElementTestTable t = run_text(
+  const ElementTestTable t = run_element_text(
       linear_elastic("vertical = 50e3\nlateral = 25e3",
                      "type = \"oedometer\"\nvertical_stress = [200e3, 100e3]\nincrements = 50"));
   ASSERT_EQ(t.rows.size(), 101u);
@@ -87,7 +87,7 @@ TEST(ElementTest, StressControlOfALinearMaterialNeedsAtMostTwoIterations) {
 }
 
 TEST(ElementTest, LinearElasticTriaxialGivesYoungsModulus) {
-  const ElementTestTable t = run_text(linear_elastic(
+  const ElementTestTable t = run_element_text(linear_elastic(
       "isotropic = 100e3", "type = \"triaxial\"\naxial_strain = 0.004\nincrements = 40"));
   ASSERT_EQ(t.rows.size(), 41u);
   double worst = 0.0;
@@ -105,7 +105,7 @@ TEST(ElementTest, LinearElasticTriaxialGivesYoungsModulus) {
 }
 
 TEST(ElementTest, LinearElasticIsotropicGivesTheBulkModulus) {
-  const ElementTestTable t = run_text(linear_elastic(
+  const ElementTestTable t = run_element_text(linear_elastic(
       "isotropic = 50e3", "type = \"isotropic\"\nmean_stress = 250e3\nincrements = 20"));
   const double bulk = 20e6 / (3.0 * (1.0 - 2.0 * 0.3));
   EXPECT_NEAR(at(t, 20, "eps_v"), 200e3 / bulk, exact * 200e3 / bulk);
@@ -213,7 +213,7 @@ TEST(ElementTest, UnloadReloadReversesAtTheGivenDeviators) {
                "type = \"unload_reload\"\ndeviator = 150e3\nunload_deviator = 30e3");
   text.replace(text.find("increments = 500"), std::string("increments = 500").size(),
                "increments = 1000");
-  const ElementTestTable t = run_text(text);
+  const ElementTestTable t = run_element_text(text);
   // Loading stops at the first increment at or past 150 kPa, unloading at or below 30 kPa; in
   // the elastic range an increment changes q by E d eps_1 = 40 MPa * 5e-5 = 2 kPa.
   std::size_t peak = 0, trough = 0;
@@ -260,7 +260,7 @@ TEST(ElementTest, CyclicTorsionRotatesThePrincipalAxesAndFailsOnTheEnvelope) {
 }
 
 TEST(ElementTest, StrainTableIsAppliedAsGiven) {
-  const ElementTestTable t = run_text(linear_elastic(
+  const ElementTestTable t = run_element_text(linear_elastic(
       "isotropic = 100e3",
       "type = \"strain_table\"\nstrain_increments = [[1e-4, 2e-4, 3e-4, 0.0, 0.0, 0.0], "
       "[0.0, -1e-4, 0.0, 0.0, 0.0, 0.0]]\nrepeat = 3"));
@@ -297,7 +297,7 @@ increments = 10
   options.csv = (std::filesystem::temp_directory_path() / "mpile_element_tension.csv").string();
   std::ostringstream out, err;
   EXPECT_EQ(element_test_command(options, out, err), exit_failure);
-  const std::string location = file.string() + ":" + std::to_string(line_of(text, "[path]"));
+  const std::string location = file.string() + ":" + std::to_string(element_line_of(text, "[path]"));
   EXPECT_NE(err.str().find(location + ": path: increment"), std::string::npos) << err.str();
 }
 
@@ -324,7 +324,7 @@ axial_strain = 0.02
 increments = 50
 )";
 
-struct BadInput {
+struct BadElementInput {
   std::string from;
   std::string to;
   std::string key;
@@ -333,7 +333,7 @@ struct BadInput {
 };
 
 TEST(ElementTest, BadInputIsRejectedWithFileLineAndKey) {
-  const std::vector<BadInput> cases = {
+  const std::vector<BadElementInput> cases = {
       {"young_modulus = 40e6", "young_modulus = -40e6", "material.young_modulus", "young_modulus",
        "must be > 0 Pa, got -40000000"},
       {"friction_angle = 30.0", "friction_angle = 95.0", "material.friction_angle",
@@ -380,13 +380,13 @@ TEST(ElementTest, BadInputIsRejectedWithFileLineAndKey) {
        "cycles = 10000000",
        "path.cycles", "cycles", "the path takes 1e+14 increments in all (more than 1e+07)"},
   };
-  for (const BadInput& c : cases) {
+  for (const BadElementInput& c : cases) {
     std::string text = valid;
     const auto position = text.find(c.from);
     ASSERT_NE(position, std::string::npos) << c.from;
     text.replace(position, c.from.size(), c.to);
     const std::string expected =
-        "test.toml:" + std::to_string(line_of(text, c.line_of)) + ": " + c.key + ": ";
+        "test.toml:" + std::to_string(element_line_of(text, c.line_of)) + ": " + c.key + ": ";
     try {
       read_element_test_text(text, "test.toml");
       ADD_FAILURE() << "accepted: " << c.to;

@@ -6,7 +6,7 @@
 namespace mpile {
 namespace {
 
-Stress update_once(const LinearElastic& material, Stress stress, const StrainIncrement& de) {
+Stress update_elastic_once(const LinearElastic& material, Stress stress, const StrainIncrement& de) {
   const double modulus = update_single_point(material, stress, nullptr, de);
   EXPECT_DOUBLE_EQ(modulus, material.lame_lambda() + 2.0 * material.shear_modulus());
   return stress;
@@ -17,7 +17,7 @@ TEST(LinearElastic, IncrementFollowsHookesLawWithEngineeringShear) {
   // E = 100 MPa, nu = 0.25: lambda = mu = 40 MPa.
   ASSERT_DOUBLE_EQ(material.lame_lambda(), 40e6);
   ASSERT_DOUBLE_EQ(material.shear_modulus(), 40e6);
-  const Stress s = update_once(material, Stress{1.0, 2.0, 3.0, 4.0, 5.0, 6.0},
+  const Stress s = update_elastic_once(material, Stress{1.0, 2.0, 3.0, 4.0, 5.0, 6.0},
                                StrainIncrement{1e-4, -2e-4, 3e-4, 1e-4, 2e-4, -3e-4});
   const double volumetric = 40e6 * 2e-4;
   EXPECT_DOUBLE_EQ(s[RR], 1.0 + volumetric + 80e6 * 1e-4);
@@ -31,7 +31,7 @@ TEST(LinearElastic, IncrementFollowsHookesLawWithEngineeringShear) {
 TEST(LinearElastic, StoredEnergyIsHalfStressTimesStrain) {
   const LinearElastic material(70e6, 0.3, 1800.0);
   const StrainIncrement strain{2e-4, -1e-4, 5e-5, 3e-4, -2e-4, 1e-4};
-  const Stress s = update_once(material, Stress{}, strain);
+  const Stress s = update_elastic_once(material, Stress{}, strain);
   double work = 0.0;
   for (int c = 0; c < 6; ++c) {
     work += 0.5 * s[static_cast<std::size_t>(c)] * strain[static_cast<std::size_t>(c)];

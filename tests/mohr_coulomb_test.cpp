@@ -35,8 +35,8 @@ double flow_number_of(double angle) {
 
 /// E and nu with lambda = mu = 1 MPa: D = [[3, 1, 1], [1, 3, 1], [1, 1, 3]] MPa in principal space,
 /// which keeps the hand computations below in round numbers.
-constexpr double young = 2.5e6;
-constexpr double poisson = 0.25;
+constexpr double soil_young = 2.5e6;
+constexpr double soil_poisson = 0.25;
 
 Vector3 elastic_corrector(const Vector3& flow) {
   const double volumetric = 1e6 * (flow[0] + flow[1] + flow[2]);
@@ -95,11 +95,11 @@ TEST(MohrCoulomb, RejectsInvalidParametersNamingThem) {
 }
 
 TEST(MohrCoulomb, TensionLimitIsCappedAtTheApexOfTheCone) {
-  const MohrCoulomb capped(young, poisson, 1800.0, 20e3, 30.0, 0.0, 1e9);
+  const MohrCoulomb capped(soil_young, soil_poisson, 1800.0, 20e3, 30.0, 0.0, 1e9);
   EXPECT_DOUBLE_EQ(capped.tension_limit(), 20e3 / std::tan(std::numbers::pi / 6.0));
-  const MohrCoulomb below(young, poisson, 1800.0, 20e3, 30.0, 0.0, 5e3);
+  const MohrCoulomb below(soil_young, soil_poisson, 1800.0, 20e3, 30.0, 0.0, 5e3);
   EXPECT_DOUBLE_EQ(below.tension_limit(), 5e3);
-  const MohrCoulomb sand(young, poisson, 1800.0, 0.0, 35.0, 5.0, 1e3);
+  const MohrCoulomb sand(soil_young, soil_poisson, 1800.0, 0.0, 35.0, 5.0, 1e3);
   EXPECT_EQ(sand.tension_limit(), 0.0); // no cohesion, no tension
 }
 
@@ -109,7 +109,7 @@ TEST(MohrCoulomb, MainPlaneReturnMatchesTheHandComputation) {
   {
     // psi = phi: flow b = (1, 0, -3), D b = (0, -2, -8) MPa, a . D b = 24 MPa,
     // dlambda = 150 kPa / 24 MPa = 0.00625, sigma = trial - dlambda D b = (300, 112.5, 100) kPa.
-    const MohrCoulomb associated(young, poisson, 1800.0, 0.0, 30.0, 30.0, 0.0);
+    const MohrCoulomb associated(soil_young, soil_poisson, 1800.0, 0.0, 30.0, 30.0, 0.0);
     const MohrCoulombReturn r = associated.return_principal(trial);
     EXPECT_EQ(r.region, R::shear_plane);
     expect_principal(r.stress, {300e3, 112.5e3, 100e3}, 1e-9);
@@ -120,7 +120,7 @@ TEST(MohrCoulomb, MainPlaneReturnMatchesTheHandComputation) {
   {
     // psi = 0: b = (1, 0, -1), D b = (2, 0, -2) MPa, a . D b = 2 + 3 * 2 = 8 MPa,
     // dlambda = 150 kPa / 8 MPa = 0.01875, sigma = (262.5, 100, 87.5) kPa; no volume change.
-    const MohrCoulomb non_dilatant(young, poisson, 1800.0, 0.0, 30.0, 0.0, 0.0);
+    const MohrCoulomb non_dilatant(soil_young, soil_poisson, 1800.0, 0.0, 30.0, 0.0, 0.0);
     const MohrCoulombReturn r = non_dilatant.return_principal(trial);
     EXPECT_EQ(r.region, R::shear_plane);
     expect_principal(r.stress, {262.5e3, 100e3, 87.5e3}, 1e-9);
@@ -130,7 +130,7 @@ TEST(MohrCoulomb, MainPlaneReturnMatchesTheHandComputation) {
   {
     // With cohesion c = 10 kPa: k = 2 c sqrt(3) = 34.641 kPa, f = 150 - 34.641 kPa; psi = 0 gives
     // dlambda = f / 8 MPa and the same direction as above.
-    const MohrCoulomb cohesive(young, poisson, 1800.0, 10e3, 30.0, 0.0, 0.0);
+    const MohrCoulomb cohesive(soil_young, soil_poisson, 1800.0, 10e3, 30.0, 0.0, 0.0);
     const double f = 150e3 - 2.0 * 10e3 * std::sqrt(3.0);
     const double dlambda = f / 8e6;
     const MohrCoulombReturn r = cohesive.return_principal(trial);
@@ -141,7 +141,7 @@ TEST(MohrCoulomb, MainPlaneReturnMatchesTheHandComputation) {
 }
 
 TEST(MohrCoulomb, EdgeReturnsMatchTheHandComputation) {
-  const MohrCoulomb associated(young, poisson, 1800.0, 0.0, 30.0, 30.0, 0.0);
+  const MohrCoulomb associated(soil_young, soil_poisson, 1800.0, 0.0, 30.0, 30.0, 0.0);
   {
     // Trial (300, 290, 50) kPa: the main-plane return would give sigma_2 > sigma_1, so the stress
     // goes to the triaxial extension edge sigma_1 = sigma_2.
@@ -174,7 +174,7 @@ TEST(MohrCoulomb, EdgeReturnsMatchTheHandComputation) {
 
 TEST(MohrCoulomb, TensionAndApexReturnsMatchTheHandComputation) {
   // c = 20 kPa, phi = 30 degrees, cut-off t = 5 kPa (below c cot phi = 34.6 kPa).
-  const MohrCoulomb material(young, poisson, 1800.0, 20e3, 30.0, 0.0, 5e3);
+  const MohrCoulomb material(soil_young, soil_poisson, 1800.0, 20e3, 30.0, 0.0, 5e3);
   {
     // Trial (5, 0, -10) kPa: only the cut-off is violated, by 5 kPa. Flow (0, 0, -1), corrector
     // -(1, 1, 3) MPa, dlambda = 5 kPa / 3 MPa: sigma = (5 + 5/3, 5/3, -5) kPa.
@@ -197,13 +197,13 @@ TEST(MohrCoulomb, TensionAndApexReturnsMatchTheHandComputation) {
   }
   {
     // Cut-off at the cone's apex: hydrostatic tension returns to sigma = -c cot phi.
-    const MohrCoulomb capped(young, poisson, 1800.0, 20e3, 30.0, 10.0, 1e9);
+    const MohrCoulomb capped(soil_young, soil_poisson, 1800.0, 20e3, 30.0, 10.0, 1e9);
     const double apex = -20e3 * std::sqrt(3.0);
     const MohrCoulombReturn r = capped.return_principal({-100e3, -100e3, -100e3});
     EXPECT_EQ(r.region, R::apex);
     expect_principal(r.stress, {apex, apex, apex}, 1e-9);
     // Cohesionless: the apex is the origin.
-    const MohrCoulomb sand(young, poisson, 1800.0, 0.0, 30.0, 0.0, 0.0);
+    const MohrCoulomb sand(soil_young, soil_poisson, 1800.0, 0.0, 30.0, 0.0, 0.0);
     const MohrCoulombReturn s = sand.return_principal({-10e3, -20e3, -30e3});
     EXPECT_EQ(s.region, R::apex);
     expect_principal(s.stress, {0.0, 0.0, 0.0}, 0.0);
@@ -215,7 +215,7 @@ TEST(MohrCoulomb, TensionAndApexReturnsMatchTheHandComputation) {
 TEST(MohrCoulomb, EveryRegionReturnsAConstructedTrialToItsOrigin) {
   const double c = 20e3, t = 5e3;
   for (const double psi : {0.0, 15.0, 30.0}) {
-    const MohrCoulomb material(young, poisson, 1800.0, c, 30.0, psi, t);
+    const MohrCoulomb material(soil_young, soil_poisson, 1800.0, c, 30.0, psi, t);
     const double k = 2.0 * c * std::sqrt(3.0), m = flow_number_of(psi);
     const Vector3 f13 = elastic_corrector({1.0, 0.0, -m}), f23 = elastic_corrector({0.0, 1.0, -m});
     const Vector3 f12 = elastic_corrector({1.0, -m, 0.0});

@@ -129,7 +129,7 @@ struct Jacked {
   double tip_y[2]{}, inner_r[2]{}, outer_r[2]{}; // means over 0.08-0.12 and 0.18-0.22 m (N/rad)
 };
 
-Jacked jack(bool stress_free) {
+Jacked jack_rigid_interior(bool stress_free) {
   CaseRun run(jacked_pipe(stress_free));
   apply_k0(*run.scene, run.spec, run.spec.phases[0]);
   Jacked out;
@@ -159,8 +159,8 @@ Jacked jack(bool stress_free) {
 }
 
 TEST(StressFreeInsideRigid, AJackedPipeKeepsItsStepAndItsForces) {
-  const Jacked with = jack(true);
-  const Jacked without = jack(false);
+  const Jacked with = jack_rigid_interior(true);
+  const Jacked without = jack_rigid_interior(false);
   // Without the rule, soil stretched inside the wall cuts the step to 0.47 of the first by
   // 0.35 m (the log names a particle inside the wall at a third of its density); with it the
   // shortest step is 0.70 of the first (set by soil squeezed beside the tip, which is real). The

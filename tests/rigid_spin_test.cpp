@@ -24,8 +24,8 @@ namespace {
 using verification::OscillationMeter;
 using verification::uniform_grid;
 
-constexpr double young = 100e6, poisson = 0.3, density = 2000.0;
-constexpr double shear_modulus = young / (2.0 * (1.0 + poisson));
+constexpr double disc_young = 100e6, disc_poisson = 0.3, disc_density = 2000.0;
+constexpr double shear_modulus = disc_young / (2.0 * (1.0 + disc_poisson));
 
 double angular_momentum(const Particles& p) {
   double sum = 0.0;
@@ -58,7 +58,7 @@ FreeSpin spin_freely(Grid grid, const Rectangle& region) {
   constexpr double spin = 2.0; // rad/s
   Scene scene(GeometryMode::axisymmetric, std::move(grid));
   const auto material =
-      scene.add_material(std::make_unique<LinearElastic>(young, poisson, density));
+      scene.add_material(std::make_unique<LinearElastic>(disc_young, disc_poisson, disc_density));
   fill_rectangle(scene, region, 2, material, scene.add_body("spinner"));
   Particles& p = scene.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -133,7 +133,7 @@ struct TorsionalVibration {
 TorsionalVibration vibrate_shaft(double periods, const SolverSettings& settings) {
   constexpr double radius = 0.5, height = 2.0, h = 0.05, spin = 0.1;
   Scene scene(GeometryMode::axisymmetric, uniform_grid(0.0, radius + h, 11, 0.0, height, 40));
-  const auto material = scene.add_material(std::make_unique<LinearElastic>(young, 0.0, density));
+  const auto material = scene.add_material(std::make_unique<LinearElastic>(disc_young, 0.0, disc_density));
   fill_rectangle(scene, {0.0, radius, 0.0, height}, 2, material, scene.add_body("shaft"));
   Particles& p = scene.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -145,7 +145,7 @@ TorsionalVibration vibrate_shaft(double periods, const SolverSettings& settings)
   RunLog log;
   ExplicitSolver solver(scene, settings, log);
   TorsionalVibration result;
-  result.exact_period = 4.0 * height / std::sqrt(young / 2.0 / density);
+  result.exact_period = 4.0 * height / std::sqrt(disc_young / 2.0 / disc_density);
   OscillationMeter meter(0.0, angular_momentum(p));
   while (solver.time() < periods * result.exact_period) {
     solver.step();

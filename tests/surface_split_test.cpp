@@ -14,7 +14,7 @@ namespace {
 using Force = std::array<double, 3>;
 using Normal = std::array<double, 2>;
 
-std::vector<Force> split(const Force& f, const std::vector<double>& share,
+std::vector<Force> split_surface_force(const Force& f, const std::vector<double>& share,
                          const std::vector<Normal>& normal, bool* solved = nullptr) {
   std::vector<Force> part(share.size());
   const bool ok = split_over_surfaces(f, share, normal, part);
@@ -31,7 +31,7 @@ TEST(SurfaceSplit, ASquareTipCornerOfEqualSharesGivesEachSurfaceItsOwnPressure) 
   // surface's frame would give each p A / (2 sqrt(2)), 29 % short; the split gives p A / 2.
   const double pA = 1000.0;
   const Force f{-pA / 2.0, -pA / 2.0, 0.0};
-  const auto part = split(f, {0.5, 0.5}, {Normal{0.0, -1.0}, Normal{-1.0, 0.0}});
+  const auto part = split_surface_force(f, {0.5, 0.5}, {Normal{0.0, -1.0}, Normal{-1.0, 0.0}});
   EXPECT_NEAR(part[0][0], 0.0, 1e-12); // the tip: vertical only
   EXPECT_NEAR(part[0][1], -pA / 2.0, 1e-12);
   EXPECT_NEAR(part[1][0], -pA / 2.0, 1e-12); // the wall: radial only
@@ -56,7 +56,7 @@ TEST(SurfaceSplit, PartsAddUpToTheForceAndKeepTheNodesFrictionRatio) {
       const Normal t{-n[1], n[0]};
       const double fn = 3.0, ft = mu * fn;
       const Force f{fn * n[0] + ft * t[0], fn * n[1] + ft * t[1], 0.7};
-      const auto part = split(f, share, normal);
+      const auto part = split_surface_force(f, share, normal);
       for (std::size_t d = 0; d < 3; ++d) {
         EXPECT_NEAR(part[0][d] + part[1][d], f[d], 1e-12) << angle << " " << s << " " << d;
       }
@@ -74,7 +74,7 @@ TEST(SurfaceSplit, PartsAddUpToTheForceAndKeepTheNodesFrictionRatio) {
 
 TEST(SurfaceSplit, OneSurfaceTakesTheWholeForce) {
   const Force f{3.0, -4.0, 0.5};
-  const auto part = split(f, {1.0}, {Normal{1.0, 0.0}});
+  const auto part = split_surface_force(f, {1.0}, {Normal{1.0, 0.0}});
   for (std::size_t d = 0; d < 3; ++d) {
     EXPECT_NEAR(part[0][d], f[d], 1e-15);
   }
@@ -85,7 +85,7 @@ TEST(SurfaceSplit, OpposedFacesSplitTheForceByShares) {
   // is defined, and the parts are the shares of the force (still adding up to it).
   bool solved = true;
   const Force f{2.0, -1.0, 0.3};
-  const auto part = split(f, {0.5, 0.5}, {Normal{1.0, 0.0}, Normal{-1.0, 0.0}}, &solved);
+  const auto part = split_surface_force(f, {0.5, 0.5}, {Normal{1.0, 0.0}, Normal{-1.0, 0.0}}, &solved);
   EXPECT_FALSE(solved);
   for (std::size_t d = 0; d < 3; ++d) {
     EXPECT_DOUBLE_EQ(part[0][d], 0.5 * f[d]);

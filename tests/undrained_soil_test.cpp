@@ -126,7 +126,7 @@ TEST(UndrainedSoil, PorePressureFollowsTheVolumetricStrainAsKwOverN) {
   }
 }
 
-ElementTestTable run_text(const std::string& text) {
+ElementTestTable run_undrained_text(const std::string& text) {
   return run_element_test(read_element_test_text(text, "test.toml"));
 }
 
@@ -136,7 +136,7 @@ ElementTestTable run_text(const std::string& text) {
 // 1e-9 of the stress).
 TEST(UndrainedSoil, ElasticTriaxialGivesSkemptonsPorePressure) {
   const ElementTestTable t =
-      run_text("[material]\ntype = \"linear_elastic\"\ndrainage = \"undrained\"\n"
+      run_undrained_text("[material]\ntype = \"linear_elastic\"\ndrainage = \"undrained\"\n"
                "young_modulus = 20e6\npoisson_ratio = 0.3\ndensity = 1800.0\n"
                "water_bulk_modulus = 2e8\n\n"
                "[initial_stress]\nisotropic = 100e3\n\n"
