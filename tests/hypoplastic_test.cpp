@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -398,14 +399,16 @@ TEST(Hypoplastic, ASandRingTwistedInCyclesLosesItsEffectiveStressAsItsElementTes
   }
   // Cycle by cycle, the effective stress at the ends of the first five cycles: within 1 % (measured
   // 0.3 %; the pore pressure the cycles build is 25 kPa by then).
+  double worst_cycle_end = 0.0;
   for (int cycle = 1; cycle <= 5; ++cycle) {
     const auto at = [&](const std::vector<double>& x, const std::vector<double>& v) {
       const auto k =
           static_cast<std::size_t>(std::lower_bound(x.begin(), x.end(), cycle - 1e-9) - x.begin());
       return v.at(k);
     };
-    EXPECT_NEAR(at(cycles, pressure), at(element_cycles, element_pressure), 1e3)
-        << "cycle " << cycle;
+    const double element_end = at(element_cycles, element_pressure);
+    EXPECT_NEAR(at(cycles, pressure), element_end, 1e3) << "cycle " << cycle;
+    worst_cycle_end = std::max(worst_cycle_end, std::abs(at(cycles, pressure) / element_end - 1.0));
   }
   // Liquefaction: p' below 30 kPa after 9.4 cycles in the element test. A 1 % larger amplitude
   // takes 0.3 cycles fewer there (7.9 cycles at +5 %, 10.9 at -5 %), so the 0.5 % the particle's
@@ -416,6 +419,10 @@ TEST(Hypoplastic, ASandRingTwistedInCyclesLosesItsEffectiveStressAsItsElementTes
   EXPECT_NEAR(engine, element, 0.25);
   // The ledger: the shaft's drive against the sand's work and the kinetic energy.
   EXPECT_LT(residual, 5e-4);
+  // The measured numbers, for docs/hypoplasticity.md.
+  std::printf("p' at the ends of cycles 1 to 5 within %.2f %% of the element test's; below 30 kPa "
+              "after %.4f cycles against %.4f; ledger within %.4f %%\n",
+              100.0 * worst_cycle_end, engine, element, 100.0 * residual);
 }
 
 TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
