@@ -2,7 +2,9 @@
 """The engine's hypoplastic element tests (cases/element_tests/hypoplastic_*.toml, run by `mpile
 element-test`) against tools/hypoplastic_reference.py, an independent integration of the same
 equations in Python (Dormand-Prince 5(4) at a relative tolerance of 1e-9, tested on its own by
-tests/hypoplastic_reference_test.py). Usage: hypoplastic_against_reference.py MPILE OUT_DIR."""
+tests/hypoplastic_reference_test.py). Usage: hypoplastic_against_reference.py MPILE OUT_DIR
+[--figure PNG]: with --figure, also draws every path, the engine's as lines and the reference's as
+markers, to one PNG (docs/figures/hypoplastic/element_tests.png)."""
 import csv
 import pathlib
 import subprocess
@@ -40,14 +42,70 @@ def compare(what, engine, reference, failures):
         failures.append(what)
 
 
+def draw(curves, png):
+    """The paths of `curves` (name -> (engine x, engine y, reference x, reference y)) in panels."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    panels = [
+        ("drained triaxial, p0 = 100 kPa", "eps_1 (%)", "q (kPa)", ["dense q", "loose q"], None),
+        ("drained triaxial, p0 = 100 kPa", "eps_1 (%)", "eps_v (%), compression > 0",
+         ["dense eps_v", "loose eps_v"], None),
+        ("oedometer 50 -> 400 -> 100 kPa", "sigma_1 (kPa)", "void ratio", ["oedometer"], "logx"),
+        ("drained cycles of eps_1 = +-1e-3", "cycle", "eps_v at the cycle's end (%)",
+         ["drained cycles"], None),
+        ("undrained cycles, q = +-30 kPa, e0 = 0.85", "p' (kPa)", "q (kPa)", ["butterfly"], None),
+        ("secant shear modulus, drained cyclic torsion", "shear strain amplitude", "G / G0",
+         ["G/G0"], "logx"),
+        ("undrained triaxial, loose (e0 = 1.05), p0 = 100 kPa", "p' (kPa)", "q (kPa)",
+         ["static liquefaction"], None),
+    ]
+    fig, axes = plt.subplots(2, 4, figsize=(19, 8.5))
+    axes.flat[-1].set_visible(False)
+    for ax, (title, xlabel, ylabel, names, scale) in zip(axes.flat, panels):
+        for k, name in enumerate(names):
+            ex, ey, rx, ry = curves[name]
+            colour = f"C{k}"
+            ax.plot(ex, ey, "-", color=colour, lw=1.2 if len(ex) < 2000 else 0.5,
+                    label=f"{name}: engine")
+            if len(rx) > 2000:  # a long cyclic path: markers would hide it, a dashed line shows it
+                ax.plot(rx, ry, "--", color="k", lw=0.6, label=f"{name}: reference")
+                continue
+            step = max(1, len(rx) // 40)
+            ax.plot(rx[::step], ry[::step], "o", color=colour, ms=4, mfc="none",
+                    label=f"{name}: reference")
+        if scale == "logx":
+            ax.set_xscale("log")
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("Karlsruhe fine sand: mpile element-test (lines) against "
+                 "tools/hypoplastic_reference.py (markers)")
+    fig.tight_layout()
+    fig.savefig(png, dpi=90)
+    print(png)
+
+
+def column(rows, name, scale=1.0):
+    return [row[name] * scale for row in rows]
+
+
 def main():
     mpile, out = sys.argv[1], pathlib.Path(sys.argv[2])
+    figure = sys.argv[4] if len(sys.argv) > 4 and sys.argv[3] == "--figure" else None
+    curves = {}
     out.mkdir(parents=True, exist_ok=True)
     kfs = ref.KARLSRUHE_FINE_SAND
     failures = []
 
     rows = element_test(mpile, "hypoplastic_dense_triaxial", out)
     r = ref.drained_triaxial(kfs, ref.State.isotropic(100e3, 0.70), 0.3, steps=300)
+    curves["dense q"] = (column(rows, "eps_1", 100), column(rows, "q", 1e-3), r["eps_1"] * 100,
+                         r["q"] / 1e3)
+    curves["dense eps_v"] = (column(rows, "eps_1", 100), column(rows, "eps_v", 100),
+                             r["eps_1"] * 100, r["eps_v"] * 100)
     for eps in (0.01, 0.05, 0.3):
         k = int(round(eps / 0.3 * 300))
         row = row_at(rows, "eps_1", eps)
@@ -56,6 +114,10 @@ def main():
 
     rows = element_test(mpile, "hypoplastic_loose_triaxial", out)
     r = ref.drained_triaxial(kfs, ref.State.isotropic(100e3, 1.05), 0.3, steps=300)
+    curves["loose q"] = (column(rows, "eps_1", 100), column(rows, "q", 1e-3), r["eps_1"] * 100,
+                         r["q"] / 1e3)
+    curves["loose eps_v"] = (column(rows, "eps_1", 100), column(rows, "eps_v", 100),
+                             r["eps_1"] * 100, r["eps_v"] * 100)
     for eps in (0.01, 0.3):
         k = int(round(eps / 0.3 * 300))
         row = row_at(rows, "eps_1", eps)
@@ -65,13 +127,39 @@ def main():
     rows = element_test(mpile, "hypoplastic_oedometer", out)
     r = ref.oedometer_stress(kfs, ref.State.triaxial(50e3, 25e3, 0.80), [400e3, 100e3], steps=100)
     top = max(range(len(rows)), key=lambda k: rows[k]["sigma_1"])
+    curves["oedometer"] = (column(rows, "sigma_1", 1e-3), column(rows, "void_ratio"),
+                           r["sigma_1"] / 1e3, r["e"])
     compare("oedometer e at 400 kPa", rows[top]["void_ratio"], r["e"][100], failures)
     compare("oedometer sigma_3 at 400 kPa", rows[top]["sigma_3"], r["sigma_3"][100], failures)
     compare("oedometer e back at 100 kPa", rows[-1]["void_ratio"], r["e"][-1], failures)
 
+    # Undrained monotonic triaxial of the loose sample (static liquefaction), with the water made
+    # stiff as in the cyclic test (K_w = 2.2e12 Pa: the shipped file's 2.2e9 lets the sample change
+    # volume by about 1 % of what the skeleton's compliance asks, and the reference is isochoric).
+    text = (SOURCE / "cases/element_tests/hypoplastic_undrained_triaxial.toml").read_text()
+    (out / "undrained_triaxial_isochoric.toml").write_text(text.replace(
+        "grain_density = 2650.0", "water_bulk_modulus = 2.2e12\ngrain_density = 2650.0", 1))
+    csv_path = out / "undrained_triaxial_isochoric.csv"
+    subprocess.run([mpile, "element-test", str(out / "undrained_triaxial_isochoric.toml"), "--out",
+                    str(csv_path)], check=True, stdout=subprocess.DEVNULL)
+    with open(csv_path) as f:
+        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    r = ref.undrained_triaxial(kfs, ref.State.isotropic(100e3, 1.05), 0.05, steps=500)
+    curves["static liquefaction"] = ([(row["p"] + row["pore_pressure"]) / 1e3 for row in rows],
+                                     column(rows, "q", 1e-3), r["p"] / 1e3, r["q"] / 1e3)
+    for eps in (0.006, 0.05):
+        k = int(round(eps / 0.05 * 500))
+        row = row_at(rows, "eps_1", eps)
+        compare(f"undrained loose triaxial q at eps_1 = {eps}", row["q"], r["q"][k], failures)
+        compare(f"undrained loose triaxial p' at eps_1 = {eps}", row["p"] + row["pore_pressure"],
+                r["p"][k], failures)
+
     rows = element_test(mpile, "hypoplastic_drained_cycles", out)
     r = ref.drained_strain_cycles(kfs, ref.State.isotropic(100e3, 0.80), 1e-3, 10)
     per_cycle = 200
+    ends = range(1, 11)
+    curves["drained cycles"] = (list(ends), [rows[n * per_cycle]["eps_v"] * 100 for n in ends],
+                                list(ends), [v * 100 for v in r["cycle_eps_v"][:10]])
     for cycle in (1, 5, 10):
         compare(f"drained cycles eps_v after cycle {cycle}", rows[cycle * per_cycle]["eps_v"],
                 r["cycle_eps_v"][cycle - 1], failures)
@@ -85,6 +173,8 @@ def main():
     amplitude, p0 = 30e3, 100e3
     r = ref.undrained_cyclic_triaxial(kfs, ref.State.isotropic(p0, 0.85), amplitude, 60,
                                       eps_da=0.05)
+    curves["butterfly"] = ([(row["p"] + row["pore_pressure"]) / 1e3 for row in rows],
+                           column(rows, "q", 1e-3), r["p"] / 1e3, r["q"] / 1e3)
     ends = [row for row in rows if row["cycle"] > 0 and abs(row["cycle"] - round(row["cycle"])) < 1e-9]
     for cycle in (1, 10, 20, 30):
         row = ends[cycle - 1]
@@ -111,6 +201,7 @@ def main():
     template = (SOURCE / "cases/element_tests/hypoplastic_shear_modulus.toml").read_text()
     amplitudes = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
     r = ref.shear_modulus_decay(kfs, ref.State.isotropic(100e3, 0.80), amplitudes, steps=200)
+    engine_ratio = []
     for amplitude, reference_g in zip(amplitudes, r["G_sec"]):
         name = f"shear_modulus_{amplitude:g}"
         (out / f"{name}.toml").write_text(template.replace(
@@ -122,9 +213,13 @@ def main():
             table = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
         n = 400
         secant = (table[5 * n // 4]["tau_ytheta"] - table[3 * n // 4]["tau_ytheta"]) / (2.0 * amplitude)
+        engine_ratio.append(secant / r["G0"])
         compare(f"shear modulus G/G0 at gamma = {amplitude:g} (G0 = {r['G0'] / 1e6:.2f} MPa)",
                 secant / r["G0"], reference_g / r["G0"], failures)
 
+    curves["G/G0"] = (amplitudes, engine_ratio, amplitudes, list(r["G_ratio"]))
+    if figure:
+        draw(curves, figure)
     if failures:
         print(f"{len(failures)} comparison(s) outside {RELATIVE:g}: {', '.join(failures)}")
         return 1
