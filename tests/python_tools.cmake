@@ -6,6 +6,13 @@ function(add_pytest name file)
   set_tests_properties(${name} PROPERTIES LABELS python)
 endfunction()
 
+# A Python script of the tree (PATH from the source root) as the test NAME, passing when its output
+# matches REGEX (its exit status is not looked at: the scripts print what they found either way).
+function(add_python_check name path regex)
+  add_test(NAME ${name} COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/${path})
+  set_tests_properties(${name} PROPERTIES PASS_REGULAR_EXPRESSION "${regex}")
+endfunction()
+
 # The monopile post-processing tools on a synthetic run whose values are known exactly
 # (tests/make_monopile_history.py): the tests check printed numbers and colours, not only that the
 # tools ran.
