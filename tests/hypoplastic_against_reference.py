@@ -22,12 +22,17 @@ import hypoplastic_reference as ref  # noqa: E402
 RELATIVE = 1e-4
 
 
-def element_test(mpile, name, out):
-    csv_path = out / f"{name}.csv"
-    subprocess.run([mpile, "element-test", str(SOURCE / "cases/element_tests" / f"{name}.toml"),
-                    "--out", str(csv_path)], check=True, stdout=subprocess.DEVNULL)
+def run_element_file(mpile, toml_path, out):
+    """`mpile element-test` of one file, its CSV read back as rows of numbers."""
+    csv_path = out / f"{pathlib.Path(toml_path).stem}.csv"
+    subprocess.run([mpile, "element-test", str(toml_path), "--out", str(csv_path)], check=True,
+                   stdout=subprocess.DEVNULL)
     with open(csv_path) as f:
         return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+
+def element_test(mpile, name, out):
+    return run_element_file(mpile, SOURCE / "cases/element_tests" / f"{name}.toml", out)
 
 
 def row_at(rows, column, value):
@@ -139,11 +144,7 @@ def main():
     text = (SOURCE / "cases/element_tests/hypoplastic_undrained_triaxial.toml").read_text()
     (out / "undrained_triaxial_isochoric.toml").write_text(text.replace(
         "grain_density = 2650.0", "water_bulk_modulus = 2.2e12\ngrain_density = 2650.0", 1))
-    csv_path = out / "undrained_triaxial_isochoric.csv"
-    subprocess.run([mpile, "element-test", str(out / "undrained_triaxial_isochoric.toml"), "--out",
-                    str(csv_path)], check=True, stdout=subprocess.DEVNULL)
-    with open(csv_path) as f:
-        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    rows = run_element_file(mpile, out / "undrained_triaxial_isochoric.toml", out)
     r = ref.undrained_triaxial(kfs, ref.State.isotropic(100e3, 1.05), 0.05, steps=500)
     curves["static liquefaction"] = ([(row["p"] + row["pore_pressure"]) / 1e3 for row in rows],
                                      column(rows, "q", 1e-3), r["p"] / 1e3, r["q"] / 1e3)
@@ -206,11 +207,7 @@ def main():
         name = f"shear_modulus_{amplitude:g}"
         (out / f"{name}.toml").write_text(template.replace(
             "shear_strain_amplitude = 1e-4", f"shear_strain_amplitude = {amplitude:g}"))
-        csv_path = out / f"{name}.csv"
-        subprocess.run([mpile, "element-test", str(out / f"{name}.toml"), "--out", str(csv_path)],
-                       check=True, stdout=subprocess.DEVNULL)
-        with open(csv_path) as f:
-            table = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+        table = run_element_file(mpile, out / f"{name}.toml", out)
         n = 400
         secant = (table[5 * n // 4]["tau_ytheta"] - table[3 * n // 4]["tau_ytheta"]) / (2.0 * amplitude)
         engine_ratio.append(secant / r["G0"])
