@@ -6,7 +6,11 @@ Markdown table of each run's capacity at a settlement of 10 % of the diameter (d
   tools/capacity.py out/jacked_quick_capacity:jacked out/gdp_quick_capacity:GDP --out capacity.png
 
 A run is a directory or history.h5 whose last phase is the load test, optionally with :label
-(default: the run's title). The capacity is in kN/rad and, times 2 pi, in MN for the whole pile.
+(default: the run's title). The capacity is in kN/rad and, times 2 pi, in MN for the whole pile;
+beside it the soil's upward force on the tip and each shaft there (their sum is the load plus the
+pile's weight). With --zone F, a second table: how far the sand the test moved by at least F of
+its settlement reaches (below the tip, out from the wall, above the tip outside it) and how much
+of the settlement the plug followed, from the snapshots at the test's start and end.
 """
 import argparse
 import math
@@ -15,7 +19,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 
-from mpile.capacity import CAPACITY_SETTLEMENT, load_test  # noqa: E402
+from mpile.capacity import CAPACITY_SETTLEMENT, load_test, test_zone  # noqa: E402
 from mpile.files import RunFileError  # noqa: E402
 
 
@@ -23,20 +27,34 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("runs", nargs="+", help="run directory or history.h5, optionally :label")
     parser.add_argument("--out", default="capacity.png", help="the figure (PNG)")
+    parser.add_argument("--zone", type=float, metavar="F", help="also the zone the test moved by F of its settlement")
     args = parser.parse_args()
-    tests = []
+    tests, zones = [], []
     try:
         for run in args.runs:
             path, _, label = run.partition(":")
             tests.append(load_test(path, label=label or None))
-    except RunFileError as e:
+            if args.zone is not None:
+                zones.append(test_zone(path, args.zone))
+    except (RunFileError, KeyError) as e:
         print(f"capacity.py: {e}", file=sys.stderr)
         return 2
-    print("| run | settlement reached (m) | load at 10 % of D (kN/rad) | whole pile (MN) | ended |")
-    print("|---|---|---|---|---|")
+    surfaces = ("tip", "external_shaft", "internal_shaft")
+    print("| run | settlement reached (m) | load at 10 % of D (kN/rad) | whole pile (MN) | "
+          "tip / external / internal F_y there (kN/rad) | ended |")
+    print("|---|---|---|---|---|---|")
     for t in tests:
         q = t.capacity
-        print(f"| {t.label} | {t.settlement.max():.4f} | {q:.1f} | {2 * math.pi * q / 1e3:.3g} | {t.ended} |")
+        shares = t.shares
+        split = " / ".join(f"{shares[name]:.1f}" if name in shares else "-" for name in surfaces)
+        print(f"| {t.label} | {t.settlement.max():.4f} | {q:.1f} | {2 * math.pi * q / 1e3:.3g} | {split} | {t.ended} |")
+    if zones:
+        print()
+        print(f"| run | moved by {args.zone:g} of the settlement: below the tip (m) | out from the wall (m) | "
+              "above the tip outside (m) | plug's settlement / pile's |")
+        print("|---|---|---|---|---|")
+        for t, z in zip(tests, zones):
+            print(f"| {t.label} | {z.below_tip:.2f} | {z.outside_wall:.2f} | {z.above_tip_outside:.2f} | {z.plug_follows:.2f} |")
 
     import matplotlib
     matplotlib.use("Agg")

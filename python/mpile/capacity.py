@@ -3,14 +3,20 @@ capacity at a settlement of 10 % of the pile's diameter (the usual criterion).
 
 The load is the downward force the pile's drive applied (-/bodies/<pile>/driving_F_y, kN/rad; for
 a prescribed velocity, what it took), the settlement the pile's penetration since the phase
-began. The diameter is the case's [monopile] diameter unless given.
+began. The diameter is the case's [monopile] diameter unless given. Where the history has the
+pile's surface reactions (/reactions/<pile>/<surface>/F_y), each surface's share is kept: the
+soil's upward force on the tip and on each shaft, whose sum is the load plus the pile's weight.
+
+`test_zone` measures the soil the test moved, from the particle snapshots at the test's start and
+end: how far below the tip and out from the wall the sand moved by a given fraction of the
+settlement, and how much of it the plug followed.
 """
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from .files import history_path
-from .history import attributes, case as case_of, read_series
+from .files import RunFileError, history_path
+from .history import attributes, case as case_of, list_datasets, read_series
 from .phase_table import last_phase_rows, phases
 
 CAPACITY_SETTLEMENT = 0.1  # of the diameter
@@ -25,18 +31,31 @@ class LoadTest:
     load: np.ndarray  # kN/rad, downward
     diameter: float  # m (NaN when unknown)
     ended: str  # why the phase ended, as the run recorded it
+    surfaces: dict = field(default_factory=dict)  # {surface: upward F_y on it, kN/rad}
 
-    def load_at(self, settlement):
-        """The load (kN/rad) at a settlement (m), interpolated; NaN if the test stopped short."""
+    def _at(self, values, settlement):
         if not self.settlement.size or settlement > self.settlement.max():
             return np.nan
         # The first passage: a settlement that dips back (unloading) does not count twice.
         first = int(np.flatnonzero(self.settlement >= settlement)[0])
         if first == 0:
-            return float(self.load[0])
+            return float(values[0])
         s0, s1 = self.settlement[first - 1], self.settlement[first]
         w = (settlement - s0) / (s1 - s0) if s1 > s0 else 1.0
-        return float(self.load[first - 1] + w * (self.load[first] - self.load[first - 1]))
+        return float(values[first - 1] + w * (values[first] - values[first - 1]))
+
+    def load_at(self, settlement):
+        """The load (kN/rad) at a settlement (m), interpolated; NaN if the test stopped short."""
+        return self._at(self.load, settlement)
+
+    def surface_at(self, surface, settlement):
+        """The soil's upward force on one surface of the pile (kN/rad) at a settlement (m)."""
+        return self._at(self.surfaces[surface], settlement)
+
+    @property
+    def shares(self):
+        """{surface: its force at a settlement of 10 % of the diameter (kN/rad)}."""
+        return {name: self.surface_at(name, CAPACITY_SETTLEMENT * self.diameter) for name in self.surfaces}
 
     @property
     def capacity(self):
@@ -48,14 +67,72 @@ def load_test(path, body="pile", diameter=None, label=None):
     """The last phase of a run (its directory or history.h5) as a `LoadTest`."""
     path = history_path(path)
     attrs = attributes(path)
+    prefix = f"/reactions/{body}/"
+    reactions = [name for name, _, _ in list_datasets(path) if name.startswith(prefix) and name.endswith("/F_y")]
     series = read_series(path, ["/time", "/phase", f"/bodies/{body}/penetration",
-                                f"/bodies/{body}/driving_F_y"])
+                                f"/bodies/{body}/driving_F_y", *reactions])
     rows, before = last_phase_rows(path, series["/phase"], "the load test")
     depth = series[f"/bodies/{body}/penetration"]
     settlement = depth[rows] - depth[before]
     load = -series[f"/bodies/{body}/driving_F_y"][rows] / 1e3
+    surfaces = {name[len(prefix):-len("/F_y")]: series[name][rows] / 1e3 for name in reactions}
     if diameter is None:
         diameter = float(case_of(path).get("monopile", {}).get("diameter", np.nan))
     table = phases(path)
     ended = str(table["ended"].iloc[-1]) if len(table) and table["ended"].iloc[-1] else ""
-    return LoadTest(label or attrs.get("title", str(path)), settlement, load, diameter, ended)
+    return LoadTest(label or attrs.get("title", str(path)), settlement, load, diameter, ended, surfaces)
+
+
+@dataclass
+class TestZone:
+    """The soil a load test moved by at least `fraction` of its settlement (distances in m; the
+    tip's height and the wall's radii are the case's pile at the test's start)."""
+
+    fraction: float
+    below_tip: float  # how deep below the tip the moved sand reaches
+    outside_wall: float  # how far out from the outer wall it reaches
+    above_tip_outside: float  # how high above the tip it reaches outside the wall
+    plug_follows: float  # the plug's mean settlement over the pile's (1: it goes down with the pile)
+
+
+def test_zone(path, fraction=0.1, body="pile"):
+    """The `TestZone` of the run's load test (its last phase), from the particle snapshots at the
+    phase's start and at its end (a run writes one at every phase end). Particles are followed by
+    id; rigid bodies' particles are left out."""
+    from .snapshots import open_snapshots
+
+    history = history_path(path)
+    table = phases(history)
+    start, end = float(table["start"].iloc[-1]), float(table["end"].iloc[-1])
+    snapshots = open_snapshots(history.parent)
+    first, last = snapshots.at(start), snapshots.at(end)
+    if not (abs(first.time - start) <= 1e-9 * max(1.0, end) and abs(last.time - end) <= 1e-9 * max(1.0, end)):
+        raise RunFileError(f"{history.parent} has no particle snapshots at the load test's start ({start:g} s) "
+                           f"and end ({end:g} s)")
+    monopile = case_of(history).get("monopile", {})
+    outer = 0.5 * float(monopile.get("diameter", np.nan))
+    return moved_zone(first, last, fraction, outer, outer - float(monopile.get("wall_thickness", np.nan)))
+
+
+def moved_zone(first, last, fraction, outer, inner):
+    """The `TestZone` between two snapshots (objects with positions, arrays id and material, and
+    material_names) of a pile whose wall spans radii inner to outer: the pile's settlement is its
+    particles' mean downward movement, its tip their lowest point at the start."""
+    ids_first, ids_last = first.arrays["id"].astype(np.int64), last.arrays["id"].astype(np.int64)
+    _, a, b = np.intersect1d(ids_first, ids_last, return_indices=True)
+    rigid = [k for k, name in enumerate(first.material_names) if name.endswith("(rigid)")]
+    is_rigid = np.isin(first.arrays["material"].astype(int)[a], rigid)
+    r, y = first.positions[a, 0], first.positions[a, 1]
+    moved = last.positions[b] - first.positions[a]
+    tip = y[is_rigid].min()
+    settlement = float(np.mean(-moved[is_rigid, 1]))
+    soil = ~is_rigid
+    zone = soil & (np.hypot(moved[:, 0], moved[:, 1]) >= fraction * settlement)
+    outside = zone & (r > outer)
+    plug = soil & (r < inner) & (y > tip)
+
+    def largest(values):
+        return float(values.max()) if values.size else 0.0
+
+    return TestZone(fraction, largest(tip - y[zone]), largest(r[outside] - outer), largest(y[outside] - tip),
+                    float(np.mean(-moved[plug, 1]) / settlement) if plug.any() else np.nan)

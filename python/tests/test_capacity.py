@@ -4,7 +4,7 @@ import pytest
 from conftest import write_history
 
 import mpile
-from mpile.capacity import load_test
+from mpile.capacity import load_test, moved_zone
 from mpile.files import RunFileError
 
 CASE = '[monopile]\ndiameter = 0.5\n[[phases]]\nname = "install"\n[[phases]]\nname = "load_test"\n'
@@ -14,11 +14,16 @@ def history(tmp_path):
     # Two rows of the installation (0.1 m reached), then the load test: the pile goes from 0.1 to
     # 0.16 m while the drive's force rises linearly, 1 kN/rad per mm of settlement (driving_F_y
     # is upward positive: the load is its negative).
+    # The soil's upward force on the tip is half the load, on each shaft a quarter, plus 1 kN/rad
+    # of the pile's weight on the tip.
     depth = np.array([0.0, 0.1, 0.11, 0.12, 0.14, 0.16])
     force = np.array([0.0, -5e3, -10e3, -20e3, -40e3, -60e3])
     return write_history(tmp_path / "history.h5", {
         "/time": ([0.0, 1.0, 2.0, 3.0, 4.0, 5.0], "s"), "/phase": (np.array([0, 0, 1, 1, 1, 1]), "-"),
-        "/bodies/pile/penetration": (depth, "m"), "/bodies/pile/driving_F_y": (force, "N/rad")},
+        "/bodies/pile/penetration": (depth, "m"), "/bodies/pile/driving_F_y": (force, "N/rad"),
+        "/reactions/pile/tip/F_y": (1e3 - 0.5 * force, "N/rad"),
+        "/reactions/pile/external_shaft/F_y": (-0.25 * force, "N/rad"),
+        "/reactions/pile/internal_shaft/F_y": (-0.25 * force, "N/rad")},
         attrs={"case_resolved": CASE, "title": "known"},
         phases=[{"name": "install", "start": 0.0, "end": 1.0, "ended": "at pile penetration 0.1 m"},
                 {"name": "load_test", "start": 1.0, "end": 5.0, "ended": "at pile settlement 0.06 m"}])
@@ -34,6 +39,7 @@ def test_load_settlement_and_capacity_at_a_tenth_of_the_diameter(tmp_path):
     assert t.capacity == pytest.approx(50.0, rel=1e-12)
     assert t.load_at(0.03) == pytest.approx(30.0, rel=1e-12)
     assert np.isnan(t.load_at(0.07))  # beyond the test
+    assert t.shares == pytest.approx({"tip": 26.0, "external_shaft": 12.5, "internal_shaft": 12.5}, rel=1e-12)
 
 
 def test_a_smaller_given_diameter_and_a_test_stopped_short(tmp_path):
@@ -57,5 +63,46 @@ def test_the_tool_prints_the_capacity_and_draws_the_curve(tmp_path):
     done = subprocess.run([sys.executable, str(REPOSITORY / "tools" / "capacity.py"), f"{path}:known",
                            "--out", str(figure)], capture_output=True, text=True, check=True)
     # 50 kN/rad, 2 pi x 50 kN = 0.314 MN for the whole pile.
-    assert "| known | 0.0600 | 50.0 | 0.314 | at pile settlement 0.06 m |" in done.stdout.splitlines()
+    assert ("| known | 0.0600 | 50.0 | 0.314 | 26.0 / 12.5 / 12.5 | at pile settlement 0.06 m |"
+            in done.stdout.splitlines())
     assert figure.stat().st_size > 10000
+
+
+class LatticeSnapshot:
+    """What moved_zone reads of a snapshot."""
+
+    material_names = ["sand", "pile (rigid)"]
+
+    def __init__(self, positions, ids, material):
+        self.positions = positions
+        self.arrays = {"id": ids, "material": material}
+
+
+def test_the_zone_a_test_moved_is_measured_from_the_particles():
+    # Particles at the centres of a 0.01 m lattice on 0 < r < 1 m, 0 < y < 3 m; the wall, rigid,
+    # spans r = 0.35 to 0.37 m above y = 2 m (its lowest particles at y = 2.005 m: the tip). The
+    # pile settles S = 0.06 m; the sand moves, as fractions of S: below the tip (1 - d / 1 m)(1 - x
+    # / 0.2 m) with d the depth below the tip and x the distance out from the wall (0 inside it),
+    # the plug 0.5, outside above the tip 0.2 (1 - h / 0.5 m)(1 - x / 0.2 m). Moved by a tenth of S:
+    # down to d = 0.9 m, out to x = 0.18 m (just below the tip), up to h = 0.25 m (at the wall).
+    # Particles sit on the lattice, so each reach is known to a spacing, 0.01 m.
+    centres = 0.005 + 0.01 * np.arange(300)
+    r, y = (a.ravel() for a in np.meshgrid(centres[:100], centres))
+    pile = (r > 0.35) & (r < 0.37) & (y > 2.0)
+    tip, S = 2.005, 0.06
+    d, h, x = np.maximum(tip - y, 0.0), np.maximum(y - tip, 0.0), np.maximum(r - 0.37, 0.0)
+    fraction = np.where(y < tip, np.maximum(1.0 - d, 0.0) * np.maximum(1.0 - x / 0.2, 0.0),
+                        np.where(r < 0.35, 0.5, 0.2 * np.maximum(1.0 - h / 0.5, 0.0) * np.maximum(1.0 - x / 0.2, 0.0)))
+    fraction[pile] = 1.0
+    ids = np.arange(r.size)
+    material = pile.astype(int)  # 1: the rigid pile
+    first = LatticeSnapshot(np.column_stack([r, y]), ids, material)
+    # The second snapshot re-sorted, as the solver does between snapshots: particles go by id.
+    order = np.random.default_rng(1).permutation(r.size)
+    moved = np.column_stack([r, y - S * fraction])
+    last = LatticeSnapshot(moved[order], ids[order], material[order])
+    zone = moved_zone(first, last, 0.1, outer=0.37, inner=0.35)
+    assert zone.below_tip == pytest.approx(0.9, abs=0.01)
+    assert zone.outside_wall == pytest.approx(0.18, abs=0.01)
+    assert zone.above_tip_outside == pytest.approx(0.25, abs=0.01)
+    assert zone.plug_follows == pytest.approx(0.5, rel=1e-12)
