@@ -419,6 +419,9 @@ set_tests_properties(Mandel.MeetsTheClosedForm_plate_flip PROPERTIES
 # Barron's radial consolidation (docs/consolidation.md): the free strain series against a
 # finite-volume solution, the short-time flux into a cylinder and equal strain (Python alone, 2 s).
 add_pytest(Barron.Pytest barron_test.py)
+# tools/step_levels.py (docs/performance.md, the fine band at its own step): levels and costs.
+add_pytest(StepLevels.Pytest step_levels_test.py)
+
 # The coarse cell (18 x 2 cells) under the lid moved as the series settles, to t = 1.4 s (the
 # series' U = 0.5 at 1.35 s), explicitly at Courant 0.8 and 0.4 and with the implicit pore
 # pressure: a drain that restarted its water's velocity from the particles' each step passed 0.6
