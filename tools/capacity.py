@@ -19,7 +19,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 
-from mpile.capacity import CAPACITY_SETTLEMENT, load_test, test_zone  # noqa: E402
+from mpile.capacity import CAPACITY_SETTLEMENT, load_test, load_test_zone  # noqa: E402
 from mpile.files import RunFileError  # noqa: E402
 
 
@@ -35,7 +35,7 @@ def main():
             path, _, label = run.partition(":")
             tests.append(load_test(path, label=label or None))
             if args.zone is not None:
-                zones.append(test_zone(path, args.zone))
+                zones.append(load_test_zone(path, args.zone))
     except (RunFileError, KeyError) as e:
         print(f"capacity.py: {e}", file=sys.stderr)
         return 2

@@ -11,6 +11,7 @@ build, run and sweep cases.
     run = mpile.installation("out/jacked_quick")          # the seed's figures 3 to 7
     mpile.radiation("out/gdp_quick")                      # radiated energy, peak particle velocity
     mpile.load_test("out/gdp_quick_capacity")             # load-settlement curve, capacity
+    mpile.load_test_zone("out/gdp_quick_capacity", 0.1)   # the sand the load test moved
     mpile.friction_fatigue("out/gdp_cycles_quick", 60.0)  # sigma'_r / sigma'_r0 against cycles
     mpile.shaft_bands("out/cycles", 0.373, 10.0, [(1, 2)], [0, 0.05, 0.1])  # bands beside a shaft
 
@@ -51,6 +52,8 @@ _EXPORTS = {
     "friction_fatigue": "fatigue",
     "shaft_bands": "bands",
     "LoadTest": "capacity",
+    "load_test_zone": "capacity",
+    "LoadTestZone": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",
     "Case": "cases",

@@ -7,7 +7,7 @@ began. The diameter is the case's [monopile] diameter unless given. Where the hi
 pile's surface reactions (/reactions/<pile>/<surface>/F_y), each surface's share is kept: the
 soil's upward force on the tip and on each shaft, whose sum is the load plus the pile's weight.
 
-`test_zone` measures the soil the test moved, from the particle snapshots at the test's start and
+`load_test_zone` measures the soil the test moved, from the particle snapshots at the test's start and
 end: how far below the tip and out from the wall the sand moved by a given fraction of the
 settlement, and how much of it the plug followed.
 """
@@ -84,7 +84,7 @@ def load_test(path, body="pile", diameter=None, label=None):
 
 
 @dataclass
-class TestZone:
+class LoadTestZone:
     """The soil a load test moved by at least `fraction` of its settlement (distances in m; the
     tip's height and the wall's radii are the case's pile at the test's start)."""
 
@@ -95,8 +95,8 @@ class TestZone:
     plug_follows: float  # the plug's mean settlement over the pile's (1: it goes down with the pile)
 
 
-def test_zone(path, fraction=0.1, body="pile"):
-    """The `TestZone` of the run's load test (its last phase), from the particle snapshots at the
+def load_test_zone(path, fraction=0.1, body="pile"):
+    """The `LoadTestZone` of the run's load test (its last phase), from the particle snapshots at the
     phase's start and at its end (a run writes one at every phase end). Particles are followed by
     id; rigid bodies' particles are left out."""
     from .snapshots import open_snapshots
@@ -115,7 +115,7 @@ def test_zone(path, fraction=0.1, body="pile"):
 
 
 def moved_zone(first, last, fraction, outer, inner):
-    """The `TestZone` between two snapshots (objects with positions, arrays id and material, and
+    """The `LoadTestZone` between two snapshots (objects with positions, arrays id and material, and
     material_names) of a pile whose wall spans radii inner to outer: the pile's settlement is its
     particles' mean downward movement, its tip their lowest point at the start."""
     ids_first, ids_last = first.arrays["id"].astype(np.int64), last.arrays["id"].astype(np.int64)
@@ -134,5 +134,5 @@ def moved_zone(first, last, fraction, outer, inner):
     def largest(values):
         return float(values.max()) if values.size else 0.0
 
-    return TestZone(fraction, largest(tip - y[zone]), largest(r[outside] - outer), largest(y[outside] - tip),
+    return LoadTestZone(fraction, largest(tip - y[zone]), largest(r[outside] - outer), largest(y[outside] - tip),
                     float(np.mean(-moved[plug, 1]) / settlement) if plug.any() else np.nan)
