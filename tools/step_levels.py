@@ -22,18 +22,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
 from mpile.files import RunFileError  # noqa: E402
 from mpile.history import case  # noqa: E402
-from mpile.snapshots import open_snapshots, read_pvd  # noqa: E402
-
-
-def grid_lines(path):
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOXML import vtkXMLRectilinearGridReader
-
-    reader = vtkXMLRectilinearGridReader()
-    reader.SetFileName(str(path))
-    reader.Update()
-    grid = reader.GetOutput()
-    return vtk_to_numpy(grid.GetXCoordinates()), vtk_to_numpy(grid.GetYCoordinates())
+from mpile.grid import open_grid_snapshots  # noqa: E402
+from mpile.snapshots import open_snapshots  # noqa: E402
 
 
 def unloading_constrained_modulus(material, sigma_3):
@@ -69,12 +59,12 @@ def main():
         material = case(run / "history.h5").get("materials", {}).get(args.material, {})
         if material.get("type") != "hardening_soil":
             raise RunFileError(f"{run}: material {args.material} is not hardening_soil")
-        grids = read_pvd(run / "grid.pvd")
         snapshot = open_snapshots(run)[-1]
+        grid = open_grid_snapshots(run).at(snapshot.time)
     except (RunFileError, OSError) as e:
         print(f"step_levels.py: {e}", file=sys.stderr)
         return 2
-    x_r, x_y = grid_lines(min(grids, key=lambda g: abs(g[0] - snapshot.time))[1])
+    x_r, x_y = grid.r, grid.y
     a = snapshot.arrays
     names = snapshot.material_names
     soil = np.array([names[int(m)] == args.material for m in a["material"]])
@@ -82,7 +72,11 @@ def main():
     cell_r = np.clip(np.searchsorted(x_r, r) - 1, 0, len(x_r) - 2)
     cell_y = np.clip(np.searchsorted(x_y, y) - 1, 0, len(x_y) - 2)
     h = np.minimum(np.diff(x_r)[cell_r], np.diff(x_y)[cell_y])
-    sigma_3 = np.min(-np.stack([a[k][soil] for k in ("sigma_rr", "sigma_yy", "sigma_thth")]), axis=0)
+    # The smallest principal compression of the r-y block and the hoop stress (theta shears left
+    # out: none at K0, where the step is measured).
+    block_minor = (-0.5 * (a["sigma_rr"][soil] + a["sigma_yy"][soil])
+                   - np.hypot(0.5 * (a["sigma_rr"][soil] - a["sigma_yy"][soil]), a["sigma_ry"][soil]))
+    sigma_3 = np.minimum(block_minor, -a["sigma_thth"][soil])
     constrained = unloading_constrained_modulus(material, sigma_3)
     crossing = h / np.sqrt(constrained / a["density"][soil])
     level = levels(crossing)

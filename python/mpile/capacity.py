@@ -104,6 +104,8 @@ def load_test_zone(path, fraction=0.1, body="pile"):
     history = history_path(path)
     table = phases(history)
     start, end = float(table["start"].iloc[-1]), float(table["end"].iloc[-1])
+    if not np.isfinite(end):
+        raise RunFileError(f"{history} has no finished load test (its last phase has not ended)")
     snapshots = open_snapshots(history.parent)
     first, last = snapshots.at(start), snapshots.at(end)
     if not (abs(first.time - start) <= 1e-9 * max(1.0, end) and abs(last.time - end) <= 1e-9 * max(1.0, end)):
@@ -135,4 +137,4 @@ def moved_zone(first, last, fraction, outer, inner):
         return float(values.max()) if values.size else 0.0
 
     return LoadTestZone(fraction, largest(tip - y[zone]), largest(r[outside] - outer), largest(y[outside] - tip),
-                    float(np.mean(-moved[plug, 1]) / settlement) if plug.any() else np.nan)
+                        float(np.mean(-moved[plug, 1]) / settlement) if plug.any() else np.nan)

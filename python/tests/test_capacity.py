@@ -106,3 +106,14 @@ def test_the_zone_a_test_moved_is_measured_from_the_particles():
     assert zone.outside_wall == pytest.approx(0.18, abs=0.01)
     assert zone.above_tip_outside == pytest.approx(0.25, abs=0.01)
     assert zone.plug_follows == pytest.approx(0.5, rel=1e-12)
+
+
+def test_the_zone_of_a_test_still_going_is_refused(tmp_path):
+    from mpile.capacity import load_test_zone
+    path = write_history(tmp_path / "history.h5", {
+        "/time": ([0.0, 1.0], "s"), "/phase": (np.array([0, 1]), "-")},
+        attrs={"case_resolved": CASE},
+        phases=[{"name": "install", "start": 0.0, "end": 1.0, "ended": "at pile penetration 0.1 m"},
+                {"name": "load_test", "start": 1.0}])
+    with pytest.raises(RunFileError, match="has no finished load test"):
+        load_test_zone(path)
