@@ -18,7 +18,8 @@ struct Continuation {
 /// whose status is "interrupted ..." (a signal or --stop-after) or "running" (the process was
 /// killed: its last checkpoint is the way back) continues from DIRECTORY/checkpoint.h5; one whose
 /// status is "complete ..." leaves nothing to do; no run, an unreadable history, a failed run or
-/// a run of another case or other values start afresh.
+/// a run of another case or other values start afresh. A stopped run whose case differs only in
+/// what `--restart` accepts (restart_changes: later end criteria, phases not begun) continues.
 Continuation find_continuation(const std::string& directory, const std::string& resolved_case);
 
 } // namespace mpile

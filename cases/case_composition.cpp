@@ -424,15 +424,26 @@ std::vector<std::string> restart_changes(const std::string& stored_resolved,
       const bool end_criterion =
           parts.size() >= 3 &&
           (parts[2] == "duration" || parts[2] == "equilibrium_tolerance" || parts[2] == "stop_at");
-      allowed =
-          (parts.size() == 2 && index >= stored_phases) || (end_criterion && index >= first_open);
+      // A phase the run has not begun has left nothing in its state: the settings its runner
+      // applies when it begins may change too. Not its name (drives, loads and absorbing faces
+      // name their phase) nor its K0 procedure (the first one a saturated body gets is the
+      // seabed, which the run has used from its start).
+      const bool not_begun = phase < stored_phases && index > phase && index < stored_phases;
+      const bool setting =
+          parts.size() >= 3 &&
+          (parts[2] == "local_damping" || parts[2] == "gravity" || parts[2] == "flip_fraction" ||
+           parts[2] == "xpic_order" || parts[2] == "mass_scaling" || parts[2] == "courant_number" ||
+           parts[2] == "drive");
+      allowed = (parts.size() == 2 && index >= stored_phases) ||
+                (end_criterion && index >= first_open) || (setting && not_begun);
     }
     if (!allowed) {
       throw CaseError(source + ": cannot continue with this case: " + key + " changed (was " +
                       shown(find_path(before, key)) + ", now " + shown(find_path(after, key)) +
                       "). A restart may change the title, [output], the duration, "
                       "equilibrium_tolerance and stop_at of the phase it continues and of later "
-                      "phases, and add phases at the end; start a new run for anything else");
+                      "phases, the settings and drive of phases not begun, and add phases at the "
+                      "end; start a new run for anything else");
     }
   }
   return changed;

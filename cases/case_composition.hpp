@@ -49,7 +49,8 @@ std::vector<std::string> differing_keys(const TomlValue& before, const TomlValue
 /// What a restart may change in its case, so that a finished or stopped run can be extended
 /// without running anything it already ran under other physics: the title, [output], the end
 /// criteria (duration, equilibrium_tolerance, stop_at) of the phase it continues and of later
-/// phases, and phases added at the end. `phase` is the index of the phase the run stopped in (the
+/// phases, the settings and drive of phases not begun (not their names or K0), and phases added
+/// at the end. `phase` is the index of the phase the run stopped in (the
 /// number of phases when it was complete, whose last phase may then be extended). Returns the keys
 /// that changed; throws CaseError naming the first key that may not change, with both values.
 std::vector<std::string> restart_changes(const std::string& stored_resolved,

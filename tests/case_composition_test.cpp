@@ -92,7 +92,8 @@ Files write_files(const std::string& name, const std::string& base = base_text,
   return f;
 }
 
-std::string composition_error_of(const std::string& path, const std::vector<std::string>& overrides = {}) {
+std::string composition_error_of(const std::string& path,
+                                 const std::vector<std::string>& overrides = {}) {
   try {
     read_case_file(path, overrides);
   } catch (const CaseError& e) {
@@ -287,7 +288,8 @@ TEST(CaseComposition, AListOfBasesMergesInOrderAndATableOfAnotherTypeReplacesThe
   f = write_files("base_list_cycle",
                   std::string("base = [\"sand.toml\", \"../case.toml\"]\n") + base_text);
   std::ofstream(f.directory / "shared" / "sand.toml") << sand_text;
-  EXPECT_NE(composition_error_of(f.case_file.string()).find("is already in this chain of bases (a cycle)"),
+  EXPECT_NE(composition_error_of(f.case_file.string())
+                .find("is already in this chain of bases (a cycle)"),
             std::string::npos)
       << composition_error_of(f.case_file.string());
 }
@@ -347,7 +349,8 @@ TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
             "dots, like monopile.embedment)");
   EXPECT_EQ(composition_error_of(path, {"phases.2.duration=1"}),
             "--set phases.2.duration=1: phases.2: the array has 2 elements, numbered from 0");
-  EXPECT_EQ(composition_error_of(path, {"title.text=1"}), "--set title.text=1: title is not a table");
+  EXPECT_EQ(composition_error_of(path, {"title.text=1"}),
+            "--set title.text=1: title is not a table");
   EXPECT_EQ(composition_error_of(path, {"base=\"other.toml\""}),
             "--set base=\"other.toml\": base is the file a case builds on; name it in the case "
             "file");
@@ -390,7 +393,8 @@ TEST(CaseComposition, ASetKeyOfMoreThanSixtyFourPartsIsRefused) {
   for (int k = 1; k < 64; ++k) {
     fits += ".a";
   }
-  EXPECT_NE(composition_error_of(f.case_file.string(), {fits + "=1"}).find("unknown key"), std::string::npos);
+  EXPECT_NE(composition_error_of(f.case_file.string(), {fits + "=1"}).find("unknown key"),
+            std::string::npos);
 }
 
 TEST(CaseComposition, DifferingKeysNameTheChangedValuesAndPhases) {
@@ -441,6 +445,28 @@ TEST(CaseComposition, ARestartMayChangeOutputsAndEndCriteriaButNotPhysics) {
   // A phase's name (drives and loads name their phase) is not an end criterion.
   EXPECT_THROW(restart_changes(before, with("name = \"rest\"", "name = \"pause\""), 1, "c.h5"),
                CaseError);
+  // Stopped in phase 0: phase 1 has not begun, so its settings and drive may change, not its name
+  // or K0 (the seabed of a saturated body comes from the first K0 procedure it gets).
+  const std::string damped = with("duration = 0.05", "duration = 0.05\nlocal_damping = 0.5");
+  EXPECT_EQ(restart_changes(before, damped, 0, "c.h5"),
+            (std::vector<std::string>{"phases.1.local_damping"}));
+  EXPECT_EQ(restart_changes(before,
+                            with("duration = 0.05", "duration = 0.05\nmass_scaling = 10.0\n"
+                                                    "flip_fraction = 0.5"),
+                            0, "c.h5")
+                .size(),
+            2u);
+  EXPECT_THROW(restart_changes(before, with("name = \"rest\"", "name = \"pause\""), 0, "c.h5"),
+               CaseError);
+  EXPECT_THROW(restart_changes(before,
+                               with("duration = 0.05", "duration = 0.05\nk0 = [{ body = "
+                                                       "\"column\", surface = 1.0, k0 = 0.5 }]"),
+                               0, "c.h5"),
+               CaseError);
+  // Once the phase has begun, its settings are part of the state.
+  EXPECT_THROW(restart_changes(before, damped, 1, "c.h5"), CaseError);
+  // Complete: no phase is left unbegun.
+  EXPECT_THROW(restart_changes(before, damped, 2, "c.h5"), CaseError);
 }
 
 } // namespace

@@ -495,7 +495,7 @@ TEST(RunCommand, AMonitorThatFindsNoParticleIsRefusedBeforeAnythingIsWritten) {
 TEST(RunCommand, RestartFromACheckpointIsBitwiseIdentical) {
   const auto directory = fresh_directory("restart");
   const std::string path = write_case(directory);
-  // Stopped inside the settle phase, between checkpoints.
+  // Stopped inside the shake phase (settle reaches equilibrium at step 120), between checkpoints.
   ASSERT_NO_FATAL_FAILURE(run_whole_and_split(path, directory, 137));
 
   Hdf5File a((directory / "whole" / "checkpoint.h5").string(), Hdf5File::Mode::read);
@@ -667,6 +667,63 @@ TEST(RunCommand, APhaseAddedToACompleteRunBeginsAsInARunThatHadItAllAlong) {
     EXPECT_EQ(a.read_doubles("/particles/" + name), b.read_doubles("/particles/" + name)) << name;
   }
   EXPECT_EQ(a.read_doubles("/solver/state"), b.read_doubles("/solver/state"));
+}
+
+// A run stopped in its first phase continues with `--continue` after a phase it has not begun
+// was changed (its damping, step, transfer and mass scaling; how the case evolves after a long
+// installation is often decided while it runs), to what a run of the changed case from the start
+// gives bit for bit. A change to the phase it stopped in starts afresh and names the key.
+TEST(RunCommand, AStoppedRunContinuesAfterAPhaseNotBegunChanged) {
+  const auto directory = fresh_directory("continue_changed");
+  const std::string path = write_case(directory);
+  const std::vector<std::string> changed = {
+      "phases.1.local_damping=0.3", "phases.1.flip_fraction=0.5", "phases.1.courant_number=0.4",
+      "phases.1.mass_scaling=4.0"};
+  std::ostringstream out, err;
+  RunOptions whole;
+  whole.case_path = path;
+  whole.output_directory = (directory / "whole").string();
+  whole.overrides = changed;
+  ASSERT_EQ(run_case(whole, out, err), exit_success) << err.str();
+
+  RunOptions split = whole;
+  split.output_directory = (directory / "split").string();
+  split.overrides = {};
+  split.stop_after_steps = 60; // the settle phase reaches equilibrium at step 120
+  ASSERT_EQ(run_case(split, out, err), exit_interrupted) << err.str();
+  split.stop_after_steps = 0;
+  split.overrides = changed;
+  split.continue_run = true;
+  out.str("");
+  ASSERT_EQ(run_case(split, out, err), exit_success) << err.str();
+  EXPECT_NE(out.str().find("its case differs in what a restart may change: "
+                           "phases.1.courant_number, phases.1.flip_fraction, "
+                           "phases.1.local_damping, phases.1.mass_scaling"),
+            std::string::npos)
+      << out.str();
+  Hdf5File ha((directory / "whole" / "history.h5").string(), Hdf5File::Mode::read);
+  Hdf5File hb((directory / "split" / "history.h5").string(), Hdf5File::Mode::read);
+  ASSERT_EQ(ha.read_doubles("/phase").back(), 1.0);
+  for (const char* series :
+       {"/time", "/dt", "/phase", "/energy/kinetic", "/energy/damping", "/energy/external_work",
+        "/boundaries/base/F_y", "/boundaries/base/M_theta"}) {
+    EXPECT_EQ(ha.read_doubles(series), hb.read_doubles(series)) << series;
+  }
+
+  // The phase it stopped in changed: not this run's state; it starts afresh and says why.
+  split.overrides = {};
+  split.continue_run = false;
+  split.stop_after_steps = 60;
+  ASSERT_EQ(run_case(split, out, err), exit_interrupted) << err.str();
+  split.stop_after_steps = 0;
+  split.overrides = {"phases.0.local_damping=0.6"};
+  split.continue_run = true;
+  out.str("");
+  ASSERT_EQ(run_case(split, out, err), exit_success) << err.str();
+  EXPECT_NE(out.str().find("holds a run of another case or other values (phases.0.local_damping "
+                           "changed (was 0.7, now 0.6)): the run starts from the beginning"),
+            std::string::npos)
+      << out.str();
 }
 
 TEST(RunCommand, StopAfterCountsTheStepThatEndsAPhase) {
