@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <string>
 
@@ -57,6 +58,7 @@ TEST(CoupledSoil, SmallConductivityCarriesTheUndrainedPWave) {
   // And the ledger closes: the piston's work is the two phases' kinetic energy, the skeleton's
   // and the water's stored energy, and what the drag took (2 %, the target).
   EXPECT_LT(run.solver->energy_balance().relative_residual, 0.02);
+  std::cout << "k = 1e-9: residual " << run.solver->energy_balance().relative_residual << '\n';
 }
 
 // Biot: the water lags behind the skeleton as k grows, and the drag between them takes a growing
@@ -73,6 +75,8 @@ TEST(CoupledSoil, WaveDampingGrowsWithConductivity) {
     const double share = balance.drag / balance.external_work;
     EXPECT_GT(share, previous) << "k = " << k;
     EXPECT_LT(balance.relative_residual, 0.02) << "k = " << k;
+    std::cout << "k = " << k << ": drag share " << share << ", residual "
+              << balance.relative_residual << '\n';
     previous = share;
   }
   EXPECT_GT(previous, 0.01); // at k = 1e-3 m/s the drag is no rounding error
@@ -186,6 +190,8 @@ void expect_half_the_drainage_path(const std::string& base, const std::string& m
     }
   }
   EXPECT_LT(worst, 0.02 * q);
+  std::cout << "U at T_v = 0.3 (H / 2): " << measured << " against " << expected
+            << "; mirrored particles within " << worst << " Pa\n";
 }
 
 TEST(CoupledSoil, ADrainedBaseHalvesTheDrainagePath) {
@@ -248,6 +254,9 @@ TEST(CoupledSoil, ABaseDrainedIntoTheFarFieldsWaterHoldsAColumnAtRest) {
   EXPECT_LT(worst, 1e-6 * rho_w * g * height) << "Pa from hydrostatic";
   EXPECT_NEAR(base / (weight - buoyancy), 1.0, 1e-4)
       << "base " << base << " N/rad, weight " << weight << ", the far field's water " << buoyancy;
+  std::cout << "water velocity " << fastest << " m/s, pore pressure off hydrostatic "
+            << worst / (rho_w * g * height) << " of rho_w g H, reaction / buoyant weight - 1 "
+            << base / (weight - buoyancy) - 1.0 << '\n';
 }
 
 // A drained well and a rigid plate's underside, where the water flows along the wall past the
@@ -424,24 +433,25 @@ TEST(CoupledSoil, AFarFieldWithoutADrainGravityOrASurfaceIsRefusedAtItsKey) {
   const std::string drained = "drained = [\"y_min\"]\n" + hydrostatic;
   // The key's line: the column's [boundaries] table, after its faces (and the drained list).
   const std::string key = ": boundaries.drained_pressure: ";
-  std::string error =
-      coupled_error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + hydrostatic));
+  std::string error = coupled_error_of(
+      replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + hydrostatic));
   EXPECT_EQ(error.rfind("test.toml:19" + key + "no face is drained", 0), 0u) << error;
   const std::string at = "test.toml:20" + key;
-  error =
-      coupled_error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
-                        "gravity = [0.0, -9.81]", "gravity = [-9.81, 0.0]"));
+  error = coupled_error_of(
+      replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
+               "gravity = [0.0, -9.81]", "gravity = [-9.81, 0.0]"));
   EXPECT_NE(error.find(at + "the far field's water is hydrostatic under gravity along -y"),
             std::string::npos)
       << error;
-  error =
-      coupled_error_of(replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
-                        "k0 = [{ body = \"column\", surface = 5, k0 = 0.5 }]\n", ""));
+  error = coupled_error_of(
+      replaced(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained),
+               "k0 = [{ body = \"column\", surface = 5, k0 = 0.5 }]\n", ""));
   EXPECT_NE(error.find(at + "body 'column' holds pore water but no phase gives it a K0 procedure"),
             std::string::npos)
       << error;
-  EXPECT_EQ(coupled_error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained)),
-            "accepted");
+  EXPECT_EQ(
+      coupled_error_of(replaced(column, "y_min = \"fixed\"\n", "y_min = \"fixed\"\n" + drained)),
+      "accepted");
 }
 
 // A body given an initial velocity moves whole, its pore water with its grains: a saturated block
@@ -495,6 +505,8 @@ gravity = false
   // A rigid translation strains nothing and the phases move together: round-off only.
   EXPECT_NEAR(end.kinetic, start, 1e-9 * start);
   EXPECT_LT(std::abs(end.drag), 1e-9 * start);
+  std::cout << "thrown block: kinetic energy change " << end.kinetic / start - 1.0 << ", drag "
+            << end.drag / start << '\n';
 }
 
 // An absorbing face holds the water to the skeleton along its normal, so its dashpot takes the
@@ -511,6 +523,9 @@ TEST(CoupledSoil, AnAbsorbingFaceLetsTheSaturatedPulseOut) {
   const EnergyBalance end = run.solver->energy_balance();
   EXPECT_LT(end.kinetic + end.elastic, 0.01 * start);
   EXPECT_LT(std::abs(end.relative_residual), 0.02);
+  std::cout << "k = 1e-5: left " << (end.kinetic + end.elastic) / start << ", drag "
+            << end.drag / start << ", dashpots " << end.radiated / start << ", residual "
+            << end.relative_residual << '\n';
 }
 
 // Nearly incompressible soil (undrained, or coupled with so small a k that its water cannot move
@@ -532,6 +547,9 @@ TEST(CoupledSoil, XpicLetsTheNearlyIncompressiblePulseOut) {
     const EnergyBalance end = run.solver->energy_balance();
     EXPECT_LT(end.kinetic + end.elastic, 0.001 * start);
     EXPECT_LT(std::abs(end.relative_residual), 0.02);
+    std::cout << water.substr(0, water.find('\n')) << ": left "
+              << (end.kinetic + end.elastic) / start << ", dashpots " << end.radiated / start
+              << ", residual " << end.relative_residual << '\n';
   }
 }
 

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -62,6 +63,7 @@ TEST(ImplicitPorePressure, MassScalingKeepsTheConsolidationTime) {
   ASSERT_EQ(report.checks.size(), 7u);
   int late = 0;
   for (const verification::Check& check : report.checks) {
+    std::cout << check.quantity << " = " << check.measured << ", error " << check.error() << '\n';
     if (check.quantity.find("degree of consolidation U at T_v = 0.5") == 0 ||
         check.quantity.find("degree of consolidation U at T_v = 1") == 0) {
       EXPECT_LT(check.error(), 0.005) << check.quantity << " = " << check.measured;
@@ -70,6 +72,7 @@ TEST(ImplicitPorePressure, MassScalingKeepsTheConsolidationTime) {
   }
   EXPECT_EQ(late, 2);
   EXPECT_LT(report.steps, 1787 / 2); // the step grows by sqrt(10)
+  std::cout << "mass scaling x10: " << report.steps << " steps\n";
 }
 
 // The undrained P-wave at sqrt((M + K_w / n) / rho_sat) = 1 685.7 m/s within 2 % (the front
@@ -89,6 +92,8 @@ TEST(ImplicitPorePressure, UndrainedPWaveAtTheSkeletonsStep) {
     expect_undrained_p_wave(run);
     EXPECT_LT(run.solver->energy_balance().relative_residual, 0.02) << water;
     EXPECT_GT(run.solver->energy_balance().damping, 0.0) << water;
+    std::cout << water.substr(0, water.find('\n')) << ": " << run.solver->step_count()
+              << " steps, residual " << run.solver->energy_balance().relative_residual << '\n';
   }
 }
 
@@ -146,6 +151,9 @@ TEST(ImplicitPorePressure, CavitationHoldsTheWaterAtItsLimitInTheSolve) {
     EXPECT_NEAR(sum / count, -precursor, 0.01 * precursor);
     EXPECT_NEAR(highest, 10e3, 1e-9 * 10e3);
     EXPECT_LT(std::abs(run.solver->energy_balance().relative_residual), 0.01);
+    std::cout << water.substr(0, water.find('\n')) << ": precursor "
+              << -sum / count / precursor - 1.0 << " off, residual "
+              << run.solver->energy_balance().relative_residual << '\n';
   }
 }
 
@@ -173,6 +181,8 @@ TEST(ImplicitPorePressure, PorePressureFollowsTheVolumeAsKwOverN) {
   }
   ASSERT_GT(largest, 3e4); // the wave has compressed the water: rho_sat c v_piston B = 33 kPa
   EXPECT_LT(worst, strain_bound);
+  std::cout << "p against (K_w / n) eps_vol: worst " << worst << " Pa of " << largest << ", bound "
+            << strain_bound << '\n';
 }
 
 // The solve's sums are per cell in the block that holds it and Eigen's conjugate gradients run
@@ -236,6 +246,8 @@ TEST(ImplicitPorePressure, SoilAtAStructuresWallStaysStable) {
     }
   }
   EXPECT_LT(largest, 50e3) << run.solver->time();
+  std::cout << "largest excess pore pressure after 50 steps (" << run.solver->time()
+            << " s): " << largest << " Pa\n";
 }
 
 // Darcy's drag is booked at the velocities the pore pressure's work is booked at, the corrected
@@ -266,6 +278,7 @@ TEST(ImplicitPorePressure, CoupledConeLedgerBooksTheDragWhereThePressureWorks) {
     worst = std::max(worst, std::abs(r));
   }
   EXPECT_LT(worst, 0.01);
+  std::cout << "coupled cone to 1 mm: worst ledger residual " << worst << '\n';
 }
 
 // `mpile check` says the pore pressure is solved on the grid and gives the skeleton's step:

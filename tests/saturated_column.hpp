@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 #include <string>
 
@@ -107,6 +108,7 @@ inline void expect_undrained_p_wave(CaseRun& run) {
   run.solver->advance_to(0.012);
   const double y2 = wave_front(run);
   EXPECT_NEAR((y2 - y1) / 0.006, c, 0.02 * c) << "front at " << y1 << " and " << y2 << " m";
+  std::cout << "undrained P wave: " << (y2 - y1) / 0.006 << " m/s against " << c << " m/s\n";
 }
 
 } // namespace mpile

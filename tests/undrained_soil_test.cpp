@@ -20,6 +20,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -137,10 +138,10 @@ ElementTestTable run_undrained_text(const std::string& text) {
 TEST(UndrainedSoil, ElasticTriaxialGivesSkemptonsPorePressure) {
   const ElementTestTable t =
       run_undrained_text("[material]\ntype = \"linear_elastic\"\ndrainage = \"undrained\"\n"
-               "young_modulus = 20e6\npoisson_ratio = 0.3\ndensity = 1800.0\n"
-               "water_bulk_modulus = 2e8\n\n"
-               "[initial_stress]\nisotropic = 100e3\n\n"
-               "[path]\ntype = \"triaxial\"\naxial_strain = 0.01\nincrements = 100\n");
+                         "young_modulus = 20e6\npoisson_ratio = 0.3\ndensity = 1800.0\n"
+                         "water_bulk_modulus = 2e8\n\n"
+                         "[initial_stress]\nisotropic = 100e3\n\n"
+                         "[path]\ntype = \"triaxial\"\naxial_strain = 0.01\nincrements = 100\n");
   const double n = 1.0 - 1800.0 / 2650.0;
   const double bulk = 20e6 / (3.0 * (1.0 - 2.0 * 0.3));
   const double b = (2e8 / n) / (bulk + 2e8 / n);
@@ -199,6 +200,9 @@ TEST(UndrainedSoil, DenseSandHoldsItsMeanEffectiveStressUntilTheCriticalStateAng
   EXPECT_GT(eta(peak), m_cv);
   EXPECT_LT(peak_pore, -30e3);
   EXPECT_GT(t.rows.back()[t.column("pore_pressure")], 0.0);
+  std::cout << "peak excess pore pressure " << peak_pore
+            << " Pa at eps_1 = " << t.rows[peak][t.column("eps_1")] << ", q / p' = " << eta(peak)
+            << "; at the end " << t.rows.back()[t.column("pore_pressure")] << " Pa\n";
 }
 
 // The K0 procedure on a saturated body: the water hydrostatic from the surface, the skeleton under
@@ -234,6 +238,7 @@ TEST(UndrainedSoil, KZeroPutsTheWaterHydrostaticAndTheColumnStaysAtRest) {
     fastest = std::max(fastest, std::hypot(p.v_r[i], p.v_y[i]));
   }
   EXPECT_LT(fastest, 1e-12);
+  std::cout << "K0 column after 0.05 s: fastest particle " << fastest << " m/s\n";
 }
 
 // A velocity step at the base of an undrained column in uniaxial strain: the front (where the
@@ -244,6 +249,7 @@ TEST(UndrainedSoil, KZeroPutsTheWaterHydrostaticAndTheColumnStaysAtRest) {
 TEST(UndrainedSoil, UndrainedPWaveRunsAtTheSaturatedSpeed) {
   CaseRun run(saturated_wave_column("drainage = \"undrained\""));
   expect_undrained_p_wave(run);
+  std::cout << "undrained column to 12 ms: " << run.solver->step_count() << " steps\n";
 }
 
 // `mpile check` names each undrained material's porosity and water stiffness, and the Skempton B
@@ -297,6 +303,7 @@ TEST(UndrainedSoil, CellMeanPorePressureLeavesTheHydrostaticColumnAtRest) {
     fastest = std::max(fastest, std::hypot(p.v_r[i], p.v_y[i]));
   }
   EXPECT_LT(fastest, 1e-12); // as the test above, without the smoothing
+  std::cout << "cell-mean K0 column after 0.05 s: fastest particle " << fastest << " m/s\n";
 }
 
 // A checkerboard of excess pore pressure (+-100 kPa between the particles of each cell, on a mean
@@ -347,6 +354,8 @@ gravity = false
     }
     EXPECT_LT(largest, 1e-6); // Pa
     EXPECT_NEAR(run.solver->energy_balance().kinetic, start, 1e-9 * start);
+    std::cout << "thrown block: largest excess " << largest << " Pa, kinetic energy change "
+              << run.solver->energy_balance().kinetic / start - 1.0 << '\n';
     EXPECT_GT(*std::min_element(p.y.begin(), p.y.end()), 0.35); // it crossed cells and blocks
   }
 }
@@ -443,6 +452,11 @@ TEST(UndrainedSoil, ShaftFrictionActsOnTheEffectiveNormalStress) {
   const double extrapolated =
       2.0 * fine->surface_force("base", 2) - coarse->surface_force("base", 2);
   EXPECT_NEAR(extrapolated, -base, 0.02 * base);
+  std::cout << "shafts " << coarse->surface_force("external_shaft", 2) / (-shaft * 0.6) - 1.0
+            << ", " << coarse->surface_force("internal_shaft", 2) / (-shaft * 0.4) - 1.0
+            << "; base at 20 and 40 cells " << coarse->surface_force("base", 2) / -base - 1.0
+            << ", " << fine->surface_force("base", 2) / -base - 1.0 << ", extrapolated "
+            << extrapolated / -base - 1.0 << '\n';
   // The radial forces on the shafts split into the water's hydrostatic pressure, rho_w g h^2 / 2
   // r per radian (735.8 and 490.5 N/rad), and the effective stress's, K0 gamma' h^2 / 2 r (366.4
   // and 244.3 N/rad), each pushing the soil's side of the wall. Measured at 40 cells: the water's
@@ -455,6 +469,12 @@ TEST(UndrainedSoil, ShaftFrictionActsOnTheEffectiveNormalStress) {
     EXPECT_NEAR(fine->surface_force(surface, 0) - fine->surface_pore_force(surface, 0), effective,
                 0.02 * std::abs(effective))
         << surface;
+    std::cout << surface << ": water " << fine->surface_pore_force(surface, 0) / pore - 1.0
+              << ", effective "
+              << (fine->surface_force(surface, 0) - fine->surface_pore_force(surface, 0)) /
+                         effective -
+                     1.0
+              << '\n';
   }
 }
 
@@ -477,6 +497,10 @@ TEST(UndrainedSoil, CoupledSoilAtAWallMeetsThePileAsUndrainedSoilDoes) {
     EXPECT_NEAR(coupled->surface_pore_force(surface, 0), pore, 0.01 * std::abs(pore)) << surface;
     const double total = undrained->surface_force(surface, 0);
     EXPECT_NEAR(coupled->surface_force(surface, 0), total, 0.01 * std::abs(total)) << surface;
+    std::cout << surface << ", coupled / undrained - 1: friction "
+              << coupled->surface_force(surface, 2) / friction - 1.0 << ", pore "
+              << coupled->surface_pore_force(surface, 0) / pore - 1.0 << ", total "
+              << coupled->surface_force(surface, 0) / total - 1.0 << '\n';
   }
 }
 
