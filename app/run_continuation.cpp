@@ -1,10 +1,11 @@
 #include "app/run_continuation.hpp"
 
 #include "cases/case_composition.hpp"
-#include "cases/case_error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -18,16 +19,6 @@ std::string joined(const std::vector<std::string>& keys) {
     text += (text.empty() ? "" : ", ") + key;
   }
   return text;
-}
-
-/// "KEY changed (was A, now B)" from restart_changes' refusal, without its advice.
-std::string what_changed(const std::string& refusal) {
-  const auto start = refusal.find("with this case: ");
-  const auto end = refusal.find("). ");
-  if (start == std::string::npos || end == std::string::npos || end < start) {
-    return refusal;
-  }
-  return refusal.substr(start + 16, end + 1 - (start + 16));
 }
 
 } // namespace
@@ -60,15 +51,19 @@ Continuation find_continuation(const std::string& directory, const std::string& 
       return c;
     }
     try {
-      const Hdf5File file(checkpoint.string(), Hdf5File::Mode::read);
-      const auto phase = static_cast<std::size_t>(file.read_doubles("/run/counters").at(0));
-      const std::vector<std::string> changed = restart_changes(
-          file.string_attribute("/", "case_resolved"), resolved_case, phase, checkpoint.string());
+      const std::optional<CheckpointCase> stored = checkpoint_case(checkpoint.string());
+      if (!stored) {
+        return c;
+      }
+      const RestartCheck check =
+          check_restart(stored->resolved, resolved_case, stored->phase, checkpoint.string());
+      if (!check.refused.empty()) {
+        c.reason += " (" + check.refused + ")";
+        return c;
+      }
       c.checkpoint = checkpoint.string();
       c.reason = "the run in " + directory + " stopped before its end (" + status +
-                 "); its case differs in what a restart may change: " + joined(changed);
-    } catch (const CaseError& e) {
-      c.reason += " (" + what_changed(e.what()) + ")";
+                 "); its case differs in what a restart may change: " + joined(check.changed);
     } catch (const std::exception& e) {
       c.reason += " (its checkpoint cannot be read: " + std::string(e.what()) + ")";
     }

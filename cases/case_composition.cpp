@@ -395,9 +395,8 @@ std::string shown(const TomlValue* value) {
 
 } // namespace
 
-std::vector<std::string> restart_changes(const std::string& stored_resolved,
-                                         const std::string& resolved, std::size_t phase,
-                                         const std::string& source) {
+RestartCheck check_restart(const std::string& stored_resolved, const std::string& resolved,
+                           std::size_t phase, const std::string& source) {
   const TomlValue before = parse_toml(stored_resolved, source + " (its case)");
   const TomlValue after = parse_toml(resolved, "the case");
   std::size_t stored_phases = 0;
@@ -415,8 +414,9 @@ std::vector<std::string> restart_changes(const std::string& stored_resolved,
     first_open =
         phases_now > stored_phases || stored_phases == 0 ? stored_phases : stored_phases - 1;
   }
-  const std::vector<std::string> changed = differing_keys(before, after);
-  for (const std::string& key : changed) {
+  RestartCheck check;
+  check.changed = differing_keys(before, after);
+  for (const std::string& key : check.changed) {
     const std::vector<std::string> parts = split_key(key);
     bool allowed = parts[0] == "title" || parts[0] == "output";
     if (parts[0] == "phases" && parts.size() >= 2 && is_index(parts[1])) {
@@ -438,15 +438,26 @@ std::vector<std::string> restart_changes(const std::string& stored_resolved,
                 (end_criterion && index >= first_open) || (setting && not_begun);
     }
     if (!allowed) {
-      throw CaseError(source + ": cannot continue with this case: " + key + " changed (was " +
-                      shown(find_path(before, key)) + ", now " + shown(find_path(after, key)) +
-                      "). A restart may change the title, [output], the duration, "
-                      "equilibrium_tolerance and stop_at of the phase it continues and of later "
-                      "phases, the settings and drive of phases not begun, and add phases at the "
-                      "end; start a new run for anything else");
+      check.refused = key + " changed (was " + shown(find_path(before, key)) + ", now " +
+                      shown(find_path(after, key)) + ")";
+      break;
     }
   }
-  return changed;
+  return check;
+}
+
+std::vector<std::string> restart_changes(const std::string& stored_resolved,
+                                         const std::string& resolved, std::size_t phase,
+                                         const std::string& source) {
+  RestartCheck check = check_restart(stored_resolved, resolved, phase, source);
+  if (!check.refused.empty()) {
+    throw CaseError(source + ": cannot continue with this case: " + check.refused +
+                    ". A restart may change the title, [output], the duration, "
+                    "equilibrium_tolerance and stop_at of the phase it continues and of later "
+                    "phases, the settings and drive of phases not begun, and add phases at the "
+                    "end; start a new run for anything else");
+  }
+  return std::move(check.changed);
 }
 
 } // namespace mpile

@@ -46,6 +46,16 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
 /// a table or array present on one side only is one path.
 std::vector<std::string> differing_keys(const TomlValue& before, const TomlValue& after);
 
+/// The keys at which a stored case and this one differ, and the first of them a restart may not
+/// change ("KEY changed (was A, now B)"; empty when there is none): restart_changes' judgement
+/// without the throw, for `run --continue`, which starts afresh instead.
+struct RestartCheck {
+  std::vector<std::string> changed;
+  std::string refused;
+};
+RestartCheck check_restart(const std::string& stored_resolved, const std::string& resolved,
+                           std::size_t phase, const std::string& source);
+
 /// What a restart may change in its case, so that a finished or stopped run can be extended
 /// without running anything it already ran under other physics: the title, [output], the end
 /// criteria (duration, equilibrium_tolerance, stop_at) of the phase it continues and of later

@@ -168,6 +168,14 @@ void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene
 
 namespace {
 
+std::optional<CheckpointCase> stored_case(const Hdf5File& file) {
+  if (H5Aexists_by_name(file.id(), "/", "case_resolved", H5P_DEFAULT) <= 0) {
+    return std::nullopt;
+  }
+  return CheckpointCase{file.string_attribute("/", "case_resolved"),
+                        static_cast<std::size_t>(file.read_doubles("/run/counters").at(0))};
+}
+
 Checkpoint read_checkpoint_file(const std::string& path, const CaseSpec& spec, Scene& scene) {
   Hdf5File file(path, Hdf5File::Mode::read);
   auto refuse = [&](const std::string& why) { throw CaseError(path + ": cannot restart: " + why); };
@@ -182,11 +190,9 @@ Checkpoint read_checkpoint_file(const std::string& path, const CaseSpec& spec, S
            MPILE_VERSION);
   }
   Checkpoint checkpoint;
-  if (H5Aexists_by_name(file.id(), "/", "case_resolved", H5P_DEFAULT) > 0) {
+  if (const std::optional<CheckpointCase> stored = stored_case(file)) {
     // The phase the run stopped in decides which end criteria may still change.
-    const auto phase = static_cast<std::size_t>(file.read_doubles("/run/counters").at(0));
-    checkpoint.changed_keys =
-        restart_changes(file.string_attribute("/", "case_resolved"), spec.resolved, phase, path);
+    checkpoint.changed_keys = restart_changes(stored->resolved, spec.resolved, stored->phase, path);
   } else if (file.string_attribute("/", "case_text") != spec.text) {
     refuse("it belongs to another case (or " + spec.file + " was edited since)");
   }
@@ -358,6 +364,10 @@ Checkpoint read_checkpoint(const std::string& path, const CaseSpec& spec, Scene&
                     "); it was cut short or damaged. Restart from another checkpoint, or run the "
                     "case afresh without --restart or --continue");
   }
+}
+
+std::optional<CheckpointCase> checkpoint_case(const std::string& path) {
+  return stored_case(Hdf5File(path, Hdf5File::Mode::read));
 }
 
 } // namespace mpile

@@ -5,6 +5,7 @@
 #include "solver/explicit_solver.hpp"
 #include "solver/run_phase.hpp"
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,14 @@ struct Checkpoint {
 /// written. The case text and program version are stored to refuse a mismatched restart.
 void write_checkpoint(const std::string& path, const CaseSpec& spec, const Scene& scene,
                       const SolverState& solver, const RunProgress& progress);
+
+/// The case a checkpoint was written with (its resolved text) and the index of the phase the run
+/// was in; nullopt for a checkpoint of a format that stored only the case file's text.
+struct CheckpointCase {
+  std::string resolved;
+  std::size_t phase = 0;
+};
+std::optional<CheckpointCase> checkpoint_case(const std::string& path);
 
 /// Reads a checkpoint into a scene built from the same case. Throws CaseError when the checkpoint
 /// belongs to another case or program version, or does not fit the scene.
