@@ -397,6 +397,7 @@ void Hypoplastic::initialise_state(const Stress& /*stress*/, double* state) cons
       state[H_FIRST + k] = 0.0;
     }
     state[SUBSTEP] = 1.0;
+    state[GAP_RATIO] = 0.0;
   }
 }
 
@@ -416,11 +417,29 @@ double Hypoplastic::update_point(Stress& stress, double* state,
   if (state[VOID_RATIO] <= 0.0) {
     initialise_state(stress, state); // a particle no K0 procedure or water set up
   }
-  const Stress d{strain[RR],       strain[YY],       strain[TT],
-                 0.5 * strain[RY], 0.5 * strain[YT], 0.5 * strain[RT]};
   HypoplasticPoint point;
   point.stress = stress;
   point.e = state[VOID_RATIO];
+  // Open gaps (stretched at the floor pressure past e_i, below) close before any grain is pressed:
+  // while they are open the particle is a loose cluster at the floor, and the increment only
+  // widens or narrows them (the apparent void ratio e + g follows the volume). Forgotten, a
+  // stretched particle pressed back compacted its grains from e_i: beside a resolved pile wall
+  // one reached e = 0.28 (below e_d) at 0.39 of its density, carried 18 MPa of hoop stress and
+  // set a 1.5e-6 s step (docs/hypoplasticity.md, "Void ratio").
+  double gap = state[GAP_RATIO];
+  double share = 1.0; // the part of the increment the grains take
+  if (gap > 0.0) {
+    const double opening = (1.0 + point.e + gap) * (strain[RR] + strain[YY] + strain[TT]);
+    if (gap + opening > 0.0) {
+      state[GAP_RATIO] = gap + opening;
+      stress = Stress{-p_min, -p_min, -p_min, 0.0, 0.0, 0.0};
+      return constrained_modulus(stress, state);
+    }
+    share = 1.0 - gap / -opening;
+    gap = 0.0;
+  }
+  const Stress d{share * strain[RR],       share * strain[YY],       share * strain[TT],
+                 share * 0.5 * strain[RY], share * 0.5 * strain[YT], share * 0.5 * strain[RT]};
   for (int k = 0; k < 6; ++k) {
     point.h[static_cast<std::size_t>(k)] = state[H_FIRST + k];
   }
@@ -502,12 +521,17 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     modulus =
         floor_pressure(point.stress) ? std::numeric_limits<double>::quiet_NaN() : attempt_modulus;
     // No state is looser than e_i(p): sand stretched past it at the floor pressure (beside a
-    // cone's shoulder) opens gaps, not pores. Unbounded, its void ratio reached 15 in the CPT
-    // chamber and f_e = (e_c / e)^beta took its stiffness away (docs/hypoplasticity.md).
+    // cone's shoulder) opens gaps, not pores; they are kept in GAP_RATIO and close first when
+    // pressed (above). Unbounded, its void ratio reached 15 in the CPT chamber and f_e = (e_c /
+    // e)^beta took its stiffness away (docs/hypoplasticity.md).
     // Only there: elsewhere the equations keep e below e_i themselves (the loosest state's
     // compression test checks it).
     if (mean_pressure(point.stress) <= p_min) {
-      point.e = std::min(point.e, limit_void_ratio(q.e_i0, p_min));
+      const double e_loosest = limit_void_ratio(q.e_i0, p_min);
+      if (point.e > e_loosest) {
+        gap += point.e - e_loosest;
+        point.e = e_loosest;
+      }
     }
     // h stays within its sphere |h| <= R (its rate keeps it there; rounding may not).
     const double h_norm = norm(point.h);
@@ -529,6 +553,7 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     state[H_FIRST + k] = point.h[static_cast<std::size_t>(k)];
   }
   state[SUBSTEP] = std::min(dt, 1.0);
+  state[GAP_RATIO] = gap;
   return std::isnan(modulus) ? constrained_modulus(stress, state) : modulus;
 }
 

@@ -92,12 +92,15 @@ public:
   /// M_c = 6 sin phi_c / (3 - sin phi_c), the critical stress ratio q / p in compression.
   double critical_stress_ratio() const;
 
-  enum : int { VOID_RATIO = 0, H_FIRST = 1, SUBSTEP = 7 };
+  /// GAP_RATIO: the void ratio of the gaps a particle stretched at the floor pressure has opened
+  /// beyond e_i(p_min), which hold no grains in contact; the particle's volume is that of 1 + e +
+  /// gap_ratio solid volumes.
+  enum : int { VOID_RATIO = 0, H_FIRST = 1, SUBSTEP = 7, GAP_RATIO = 8 };
 
 private:
   HypoplasticParameters parameters_;
-  std::vector<std::string> names_{"void_ratio", "h_rr",     "h_yy",     "h_thth",
-                                  "h_ry",       "h_ytheta", "h_rtheta", "substep"};
+  std::vector<std::string> names_{"void_ratio", "h_rr",     "h_yy",    "h_thth",   "h_ry",
+                                  "h_ytheta",   "h_rtheta", "substep", "gap_ratio"};
   double a_ = 0.0; // von Wolffersdorff's a from phi_c
   // f_b's constant factor: h_s / n (e_i0 / e_c0)^beta / (3 + a^2 - a sqrt(3) ((e_i0 - e_d0) /
   // (e_c0 - e_d0))^alpha).
