@@ -414,14 +414,16 @@ Stress intergranular_rate(const HypoplasticParameters& q, const Stress& h, const
 /// powers. Integrated with the stress, h's accuracy set the stress's substeps: 4.0 an increment
 /// on the quick GDP scene, where the stress's own error asked 1.16.
 Stress advance_intergranular_strain(const HypoplasticParameters& q, Stress h, const Stress& d,
-                                    double fraction, double& step) {
+                                    double fraction, double& step, const Stress& rate_at_h) {
   constexpr double smallest =
       1e-6; // of the increment: a bounded cost where the error will not fall
   double t = 0.0;
   int guard = 0;
   while (t < fraction) {
     step = std::min(step, fraction - t);
-    const Stress k1 = intergranular_rate(q, h, d);
+    // The rate at the start is the stress's first rate's (hypoplastic_rate's out.h): at rest, where
+    // one step of h does, an evaluation of two.
+    const Stress k1 = t == 0.0 ? rate_at_h : intergranular_rate(q, h, d);
     Stress euler;
     for (std::size_t k = 0; k < 6; ++k) {
       euler[k] = h[k] + step * k1[k];
@@ -563,7 +565,7 @@ double Hypoplastic::update_point(Stress& stress, double* state,
     // h to its own accuracy over the substep (advance_intergranular_strain): the second rate reads
     // it there, so the stress's error below includes what h's change does to the stress.
     if (q.intergranular_strain != 0.0) {
-      euler.h = advance_intergranular_strain(q, point.h, d, dt, h_step);
+      euler.h = advance_intergranular_strain(q, point.h, d, dt, h_step, k1.h);
     }
     // Below the floor pressure the sand has let go (a tension cut): the substep ends there, at
     // the floor, without an error estimate. Shrinking the substep instead cost a hundred
