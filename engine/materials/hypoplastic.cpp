@@ -410,13 +410,13 @@ Stress intergranular_rate(const HypoplasticParameters& q, const Stress& h, const
 /// h after `fraction` of the increment D from `h`, by Heun's method with Euler's embedded error
 /// to the tolerance relative to R, in substeps of its own (`step`: the last accepted one, in
 /// units of the increment, kept between calls). h's rate depends on h and D alone: an evaluation
-/// costs a logarithm and an exponential, where the full rate costs the tangent and the state's
-/// powers. Integrated with the stress, h's accuracy set the stress's substeps: 4.0 an increment
-/// on the quick GDP scene, where the stress's own error asked 1.16.
+/// costs a few dozen operations, where the full rate costs the tangent and the state's powers.
+/// Integrated with the stress, h's accuracy set the stress's substeps: 4.0 an increment while
+/// the quick GDP pile is driven, where the stress's own error asks 1.19.
 Stress advance_intergranular_strain(const HypoplasticParameters& q, Stress h, const Stress& d,
                                     double fraction, double& step, const Stress& rate_at_h) {
-  constexpr double smallest =
-      1e-6; // of the increment: a bounded cost where the error will not fall
+  // The smallest substep, of the increment: a bounded cost where the error will not fall.
+  constexpr double smallest = 1e-6;
   double t = 0.0;
   int guard = 0;
   while (t < fraction) {
