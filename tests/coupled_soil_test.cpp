@@ -7,7 +7,6 @@
 #include "cases/case_error.hpp"
 #include "cases/verification/verification_cases.hpp"
 #include "engine/materials/pore_water.hpp"
-#include "solver/passes.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 #include "tests/saturated_column.hpp"
@@ -511,12 +510,6 @@ gravity = false
             << end.drag / start << '\n';
 }
 
-// Two saturated blocks collide in free space (no gravity, no support): the blow's pressure drives
-// the water against the skeleton, and FLIP keeps each particle's relative flow apart from the
-// grid's, which the drag relaxes on the particles. Nothing outside acts along y, so the momentum
-// sum m_s v + m_w w over the particles must stay the blow's. Relaxing the water alone towards its
-// skeleton made momentum: 2.0e-4 of it by 4 ms at k = 1e-3 m/s (measured). Now 1e-12 of it
-// (measured 2e-15): 4 000 steps' rounding. The ledger closes within 0.5 % (measured 0.03 %).
 // Darcy's drag takes energy and never gives it. The seed's torsion check in saturated soil (the
 // pile turned back and forth at 60 Hz, 2 rad/s, for six cycles, the implicit pore pressure and the
 // cell-mean pore pressure as the installation cases run): FLIP keeps each particle's relative flow
@@ -524,7 +517,7 @@ gravity = false
 // its skeleton's deviation made momentum and booked negative drag here, -0.0046, -0.0087 and
 // -0.0060 J at k = 1e-3, 1e-4 and 1e-5 m/s (of 26.7 J of work); on 60 GDP cycles at k = 1e-4 that
 // energy grew into an instability (-2.8 kJ of drag, the ledger 8.6 % off; 0.006 % now,
-// docs/saturated.md). Relaxing the two phases against each other, their momentum kept, books
+// docs/results.md). Relaxing the two phases against each other, their momentum kept, books
 // +0.0046, +0.0009 and +0.0011 J (measured). The ledger closes within 0.5 % (measured 0.2 %).
 TEST(CoupledSoil, TheDragOnTheParticlesRelativeFlowTakesEnergyAndNeverGivesIt) {
   for (const char* k : {"1e-3", "1e-4", "1e-5"}) {

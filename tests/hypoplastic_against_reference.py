@@ -17,8 +17,9 @@ import hypoplastic_reference as ref  # noqa: E402
 # The engine integrates each increment by Heun's method to a relative tolerance of 1e-5 per
 # substep (the material's default; h in substeps of its own) over increments of 1e-4 axial strain;
 # along these paths its values stay within 3.6e-5 of the reference (measured: the drained cycles'
-# volumetric strain after ten cycles; q within 2.7e-5). 1e-4 leaves room for the order in which rounding falls, and
-# is far below what a wrong term moves (percents: the reference's own mutation tests).
+# volumetric strain after ten cycles; q within 2.7e-5). 1e-4 leaves room for the order in which
+# rounding falls, and is far below what a wrong term moves (percents: the reference's own mutation
+# tests).
 RELATIVE = 1e-4
 
 
