@@ -379,3 +379,14 @@ def test_integrate_points():
     assert mandel.integrate_points(points, 1.0) == pytest.approx(1.0)
     assert mandel.integrate_points(points, 2.0) == pytest.approx(3.0)
     assert mandel.integrate_points(points, 4.0) == pytest.approx(7.0)  # held after the last
+
+
+def test_check_bounds_the_free_faces_displacement():
+    # The free face's u_x at T, relative: 18 % short at bcd423a's one-cell runs (docs/consolidation.md)
+    # fails a bound of 2 %; a run without the face (no monitor there) cannot pass it.
+    summary = {"complete": True, "peak": 1.12, "peak_reference": 1.155, "after_rise": 0.03,
+               "reaction": 0.0002, "residual_peak": 0.035, "free_face": 0.18}
+    assert mandel.check(summary, {"free_face": 0.02}) == ["free_face 0.18 > 0.02"]
+    assert mandel.check(dict(summary, free_face=0.004), {"free_face": 0.02}) == []
+    del summary["free_face"]
+    assert mandel.check(summary, {"free_face": 0.02}) == ["free_face inf > 0.02"]
