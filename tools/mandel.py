@@ -769,8 +769,8 @@ def main():
     else:
         summary = compare(args.compare, args.load_from)
         if args.expect:
-            sys.exit(expect_check("mandel", args.expect, ("peak", "after_rise", "reaction", "residual", "free_face"),
-                                  check, summary))
+            names = ("peak", "after_rise", "reaction", "residual", "free_face")
+            sys.exit(expect_check("mandel", args.expect, names, check, summary))
 
 
 if __name__ == "__main__":
