@@ -376,7 +376,10 @@ set_tests_properties(Hypoplastic.ElementTestsMeetTheIndependentIntegration PROPE
 # 3.0 % low, the pressure lagged by up to 0.041 p0 and the ledger peaked at 3.6 %; with the water
 # flowing along the wall, 2.86 %, 0.0338 p0 and 3.3 % (pure FLIP below: 0.90 %, 0.0129 p0, 1.29 %,
 # were 3 %, 0.041 p0, 1.54 %). Bounds 0.04, 0.05 and 0.05 (FLIP: 0.02, 0.025, 0.03): the wall cells'
-# soil, which the pressure moves and the contact corrects a step later, is what is left.
+# soil, which the pressure moves and the contact corrects a step later, is what is left. The free
+# face's u_x at T: +0.93 % (lid) and +0.55 % (plate) since the water takes PIC under XPIC (18 and 17 %
+# short while its FLIP deviation, the transfer's smoothing of the Darcy flow at the face, was
+# relaxed into the skeleton); bound 2 %, about twice the lid's.
 add_pytest(Mandel.Pytest mandel_test.py)
 foreach(lid_or_plate lid plate)
   set(mandel_output ${CMAKE_CURRENT_BINARY_DIR}/mandel_${lid_or_plate})
@@ -387,10 +390,10 @@ foreach(lid_or_plate lid plate)
                        LABELS study)
   if(lid_or_plate STREQUAL "lid")
     set(mandel_bounds --expect peak=0.01 --expect after_rise=0.01 --expect reaction=0.015
-                      --expect residual=0.025)
+                      --expect residual=0.025 --expect free_face=0.02)
   else()
     set(mandel_bounds --expect peak=0.04 --expect after_rise=0.05 --expect reaction=0.001
-                      --expect residual=0.05)
+                      --expect residual=0.05 --expect free_face=0.02)
   endif()
   add_test(NAME Mandel.MeetsTheClosedForm_${lid_or_plate}
            COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/tools/mandel.py --compare ${mandel_output}
