@@ -407,7 +407,14 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
                                                      const StepParameters& step) {
   const Grid& grid = scene.grid;
   Particles& p = scene.particles;
-  const double flip = settings.flip_fraction;
+  // Under XPIC(m) the skeleton keeps no memory beyond its grid field, and the water starts from
+  // its own field's interpolation (PIC, XPIC(1)): at a skeleton particle its FLIP deviation is not
+  // the memory of water that stays there, and in Darcy-dominated flow it is the transfer's
+  // smoothing renewed every step (at Mandel's drained face +4 % of w, handed to the skeleton at
+  // m_w / m a step: the face's u_x at T 18 % short, docs/consolidation.md). Under FLIP the water
+  // keeps its own: PIC water there takes the skeleton's FLIP memory away at m_w / m a step
+  // (Terzaghi's column drains wrong).
+  const double water_flip = settings.xpic_order >= 2 ? 0.0 : settings.flip_fraction;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
   std::vector<WaterParticleResult> block_results(static_cast<std::size_t>(bins.block_count()));
@@ -445,14 +452,6 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
           // Pulling the water alone towards its skeleton (at g / k) made momentum, and energy
           // where the skeleton's FLIP deviation was the larger: on 60 GDP cycles at k = 1e-4 m/s
           // it booked -2.8 kJ of drag against 28 kJ of work (docs/results.md).
-          // Under XPIC(m) the skeleton keeps no memory beyond its grid field, and the water starts
-          // from its own field's interpolation (PIC, XPIC(1)): at a skeleton particle its FLIP
-          // deviation is not the memory of water that stays there, and in Darcy-dominated flow it
-          // is the transfer's smoothing renewed every step (at Mandel's drained face +4 % of w,
-          // handed to the skeleton at m_w / m a step: the face's u_x at T 18 % short,
-          // docs/consolidation.md). Under FLIP the water keeps its own: PIC water there takes the
-          // skeleton's FLIP memory away at m_w / m a step (Terzaghi's column drains wrong).
-          const double water_flip = settings.xpic_order >= 2 ? 0.0 : flip;
           const double w_pic[3] = {velocity[0], velocity[1], r * velocity[2]};
           double* v[3] = {&p.v_r[i], &p.v_y[i], has_theta(mode) ? &p.v_theta[i] : nullptr};
           const double water_mass = phase.water_fraction(state[phase.porosity_slot]) * p.mass[i];

@@ -382,7 +382,7 @@ def test_integrate_points():
 
 
 def test_check_bounds_the_free_faces_displacement():
-    # The free face's u_x at T, relative: 18 % short at bcd423a's one-cell runs (docs/consolidation.md)
+    # The free face's u_x at T, relative: 18 % short at bcd423a on 0.1 m cells (docs/consolidation.md)
     # fails a bound of 2 %; a run without the face (no monitor there) cannot pass it.
     summary = {"complete": True, "peak": 1.12, "peak_reference": 1.155, "after_rise": 0.03,
                "reaction": 0.0002, "residual_peak": 0.035, "free_face": 0.18}
