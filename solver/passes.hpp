@@ -74,7 +74,9 @@ double drained_face_water_work(const Scene& scene, const StepParameters& step);
 /// excess pore pressure (the total stress following, the effective stress kept); the stored energy
 /// this changes is the ledger's plastic term (solver/pore_pressure_to_grid.cpp).
 void smooth_excess_pore_pressure(Scene& scene, const ParticleBins& bins);
-/// ... the particles' water velocity ...
+/// ... the particles' water velocity (under XPIC(m) with the water's own correction, xpic.hpp;
+/// null otherwise) ...
+struct WaterXpic;
 struct WaterParticleResult {
   double external_work = 0.0; // gravity on the water's path beyond the skeleton's
   double transfer = 0.0;      // the water's kinetic energy a FLIP/PIC blend takes
@@ -84,7 +86,8 @@ template <GeometryMode mode, ShapeFunctions shape>
 WaterParticleResult update_water_particle_velocities(Scene& scene, const ParticleBins& bins,
                                                      const std::vector<const LiquidPhase*>& phases,
                                                      const SolverSettings& settings,
-                                                     const StepParameters& step);
+                                                     const StepParameters& step,
+                                                     const WaterXpic* xpic);
 /// ... with MUSL, the skeleton's remapped velocities as the mixture's mass-weighted mean, and
 /// the water's remapped ...
 template <GeometryMode mode> void rescale_remapped_skeleton(Scene& scene);

@@ -162,8 +162,17 @@ EnergyIncrement PoreWaterCoupling::to_particles(const passes::StepParameters& st
     return {};
   }
   PassTimer timer(timings_.grid_to_particle);
+  // Under XPIC(m) the water takes its own field's XPIC(m) velocity as the skeleton takes its
+  // field's (XPIC(1), PIC: no correction).
+  const bool xpic = settings_.xpic_order >= 1;
+  if (settings_.xpic_order >= 2) {
+    passes::extrapolate_water_xpic<mode, shape>(scene_, bins_, phases_, settings_.xpic_order, step,
+                                                xpic_);
+  } else {
+    xpic_.correction.clear();
+  }
   const passes::WaterParticleResult water = passes::update_water_particle_velocities<mode, shape>(
-      scene_, bins_, phases_, settings_, step);
+      scene_, bins_, phases_, settings_, step, xpic ? &xpic_ : nullptr);
   return {.external_work = water.external_work, .transfer = water.transfer, .drag = water.drag};
 }
 

@@ -29,6 +29,7 @@
 #include "solver/pore_pressure_method.hpp"
 #include "solver/run_log.hpp"
 #include "solver/solver_settings.hpp"
+#include "solver/xpic.hpp"
 
 #include <memory>
 #include <variant>
@@ -93,6 +94,8 @@ private:
   bool at_contact_ = false;
   /// Chosen once, from implicit_pore_pressure (the materials are built for one of the two).
   std::variant<FlowPorePressure, ProjectedPorePressure> pressure_;
+  /// The water's own XPIC(m) correction and scratch, under XPIC (empty otherwise).
+  passes::WaterXpic xpic_;
   /// Whether report_tension has warned (not in checkpoints: a restart warns again).
   bool tension_reported_ = false;
 };

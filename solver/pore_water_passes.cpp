@@ -12,8 +12,9 @@
 //                           it sets no time step); at a structure's wall the phases are tied
 //   update_water_velocities after the skeleton's supports and contact: w^{n+1} from the skeleton's
 //                           v^{n+1}, the drag again implicit
-//   update_water_particle_velocities  the particles' w (FLIP/PIC, as the skeleton's v; their own
-//                           relative flow relaxed by the drag)
+//   update_water_particle_velocities  the particles' w (FLIP/PIC, as the skeleton's v, their own
+//                           relative flow relaxed by the drag; under XPIC(m) the water's own
+//                           field's, solver/water_xpic.cpp)
 //   rescale_remapped_skeleton, remap_water  MUSL: both phases' nodal velocities from the
 //                           particles' (the skeleton's remap weighted by the mixture's masses)
 //   pore_pressure_from_flow the pore pressure's share from div w, from the velocities the
@@ -25,6 +26,7 @@
 #include "engine/shape_functions.hpp"
 #include "solver/cell_slots.hpp"
 #include "solver/passes.hpp"
+#include "solver/xpic.hpp"
 
 #include <algorithm>
 #include <array>
@@ -404,17 +406,22 @@ template <GeometryMode mode, ShapeFunctions shape>
 WaterParticleResult update_water_particle_velocities(Scene& scene, const ParticleBins& bins,
                                                      const std::vector<const LiquidPhase*>& phases,
                                                      const SolverSettings& settings,
-                                                     const StepParameters& step) {
+                                                     const StepParameters& step,
+                                                     const WaterXpic* xpic) {
   const Grid& grid = scene.grid;
+  const NodeVector* water_correction =
+      xpic != nullptr && !xpic->correction.empty() ? xpic->correction.data() : nullptr;
   Particles& p = scene.particles;
-  // Under XPIC(m) the skeleton keeps no memory beyond its grid field, and the water starts from
-  // its own field's interpolation (PIC, XPIC(1)): at a skeleton particle its FLIP deviation is not
-  // the memory of water that stays there, and in Darcy-dominated flow it is the transfer's
-  // smoothing renewed every step (at Mandel's drained face +4 % of w, handed to the skeleton at
-  // m_w / m a step: the face's u_x at T 18 % short, docs/consolidation.md). Under FLIP the water
-  // keeps its own: PIC water there takes the skeleton's FLIP memory away at m_w / m a step
-  // (Terzaghi's column drains wrong).
-  const double water_flip = settings.xpic_order >= 2 ? 0.0 : settings.flip_fraction;
+  // Under XPIC(m) each phase's particle velocity is its own grid field's XPIC(m) extrapolation
+  // (the water's from `xpic`), which keeps no memory the grid does not see: the next step's nodal
+  // drag acts on all of it, and nothing is relaxed on the particle. A FLIP deviation of the water
+  // at a skeleton particle is not the memory of water that stays there: at Mandel's drained face
+  // it is the transfer's smoothing of the steep Darcy flow, renewed every step (+4 % of w), and
+  // relaxed into the skeleton it left the face 18 % short (docs/consolidation.md). Under FLIP the
+  // water keeps its own deviation, relaxed below; PIC water there would take the skeleton's FLIP
+  // memory away at m_w / m a step (Terzaghi's column drains wrong).
+  const bool memoryless = xpic != nullptr;
+  const double water_flip = memoryless ? 0.0 : settings.flip_fraction;
   const double g_r = settings.gravity[0];
   const double g_y = settings.gravity[1];
   std::vector<WaterParticleResult> block_results(static_cast<std::size_t>(bins.block_count()));
@@ -431,6 +438,9 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
             const LiquidNode& water = grid.liquid[node];
             for (int d = 0; d < dofs; ++d) {
               velocity[d] += weights.N[a] * water.velocity()[d];
+              if (water_correction != nullptr) {
+                velocity[d] += weights.N[a] * water_correction[node][static_cast<std::size_t>(d)];
+              }
               increment[d] += weights.N[a] * water.velocity_increment()[d];
             }
             for (int d = 0; d < dofs; ++d) {
@@ -458,7 +468,7 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
           const double grain_mass = p.mass[i] - water_mass;
           const double relative_rate = state[phase.porosity_slot] * phase.drag_per_mass *
                                        (1.0 + water_mass / grain_mass) / settings.mass_scaling;
-          const double decay = 1.0 / (1.0 + step.dt * relative_rate);
+          const double decay = memoryless ? 1.0 : 1.0 / (1.0 + step.dt * relative_rate);
           const double water_part = grain_mass / p.mass[i];          // of the relative change
           const double inertia = settings.mass_scaling * water_mass; // what the kinetic energy sees
           const double grain_inertia = settings.mass_scaling * grain_mass;
@@ -711,7 +721,7 @@ double water_kinetic_energy(const Particles& p, std::size_t i, const LiquidPhase
       Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&); \
   template WaterParticleResult update_water_particle_velocities<MODE, SHAPE>(                      \
       Scene&, const ParticleBins&, const std::vector<const LiquidPhase*>&, const SolverSettings&,  \
-      const StepParameters&);                                                                      \
+      const StepParameters&, const WaterXpic*);                                                    \
   template void remap_water<MODE, SHAPE>(Scene&, const ParticleBins&,                              \
                                          const std::vector<const LiquidPhase*>&, double);          \
   template void pore_pressure_from_flow<MODE, SHAPE>(                                              \

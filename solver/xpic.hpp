@@ -22,6 +22,7 @@
 #include "solver/passes.hpp"
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace mpile::passes {
@@ -51,5 +52,25 @@ struct XpicFields {
 template <GeometryMode mode, bool contact, ShapeFunctions shape>
 void extrapolate_xpic(const Scene& scene, const ParticleBins& bins, int order,
                       const StepParameters& step, XpicFields& fields);
+
+/// The pore water's own XPIC(m) over Grid::liquid (solver/water_xpic.cpp): the correction its
+/// particles add to their water's interpolated nodal velocity, and the iteration's scratch.
+struct WaterXpic {
+  std::vector<NodeVector> correction;
+  std::vector<NodeVector> term;
+  std::vector<NodeVector> smoothed;
+  /// Per node, the DOFs whose water velocity the step decided (DofBit mask).
+  std::vector<std::uint8_t> decided;
+};
+
+/// Fills `water` with the XPIC(order) correction of the coupled soil's water, from its nodal
+/// velocity and increment after update_water_velocities: the series above with the water's
+/// weights, rho_w V = m_w / n a particle (r^2 times it for the theta DOF), as its nodal mass and
+/// inertia sum them. Reads the coupled particles' position, cell, mass and porosity; writes only
+/// `water`.
+template <GeometryMode mode, ShapeFunctions shape>
+void extrapolate_water_xpic(const Scene& scene, const ParticleBins& bins,
+                            const std::vector<const LiquidPhase*>& phases, int order,
+                            const StepParameters& step, WaterXpic& water);
 
 } // namespace mpile::passes
