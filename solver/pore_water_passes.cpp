@@ -461,7 +461,7 @@ WaterParticleResult update_water_particle_velocities(Scene& scene, const Particl
           // particle's momentum m_s v + m_w w is kept, so the drag only takes kinetic energy.
           // Pulling the water alone towards its skeleton (at g / k) made momentum, and energy
           // where the skeleton's FLIP deviation was the larger: on 60 GDP cycles at k = 1e-4 m/s
-          // it booked -2.8 kJ of drag against 28 kJ of work (docs/results.md).
+          // it booked -2.8 kJ of drag against 28 kJ of work (docs/physics.md 9b).
           const double w_pic[3] = {velocity[0], velocity[1], r * velocity[2]};
           double* v[3] = {&p.v_r[i], &p.v_y[i], has_theta(mode) ? &p.v_theta[i] : nullptr};
           const double water_mass = phase.water_fraction(state[phase.porosity_slot]) * p.mass[i];
