@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Capacity after installation: the load-settlement curves of load-test runs in one figure, and a
-Markdown table of each run's capacity at a settlement of 10 % of the diameter (docs/results.md,
-"Capacity after installation").
+Markdown table of each run's load at 0, 10, 25 and 50 mm of settlement and its capacity at a
+settlement of 10 % of the diameter (docs/results.md, "Capacity after installation").
 
   tools/capacity.py out/jacked_quick_capacity:jacked out/gdp_quick_capacity:GDP --out capacity.png
 
@@ -40,14 +40,16 @@ def main():
         print(f"capacity.py: {e}", file=sys.stderr)
         return 2
     surfaces = ("tip", "external_shaft", "internal_shaft")
-    print("| run | settlement reached (m) | load at 10 % of D (kN/rad) | whole pile (MN) | "
-          "tip / external / internal F_y there (kN/rad) | ended |")
-    print("|---|---|---|---|---|---|")
+    print("| run | settlement reached (m) | load at 0 / 10 / 25 / 50 mm (kN/rad) | load at 10 % of D (kN/rad) | "
+          "whole pile (MN) | tip / external / internal F_y there (kN/rad) | ended |")
+    print("|---|---|---|---|---|---|---|")
     for t in tests:
         q = t.capacity
         shares = t.shares
         split = " / ".join(f"{shares[name]:.1f}" if name in shares else "-" for name in surfaces)
-        print(f"| {t.label} | {t.settlement.max():.4f} | {q:.1f} | {2 * math.pi * q / 1e3:.3g} | {split} | {t.ended} |")
+        curve = " / ".join(f"{t.load_at(s):.1f}" for s in (0.0, 0.010, 0.025, 0.050))
+        print(f"| {t.label} | {t.settlement.max():.4f} | {curve} | {q:.1f} | {2 * math.pi * q / 1e3:.3g} | {split} "
+              f"| {t.ended} |")
     if zones:
         print()
         print(f"| run | moved by {args.zone:g} of the settlement: below the tip (m) | out from the wall (m) | "

@@ -62,9 +62,10 @@ def test_the_tool_prints_the_capacity_and_draws_the_curve(tmp_path):
     figure = tmp_path / "capacity.png"
     done = subprocess.run([sys.executable, str(REPOSITORY / "tools" / "capacity.py"), f"{path}:known",
                            "--out", str(figure)], capture_output=True, text=True, check=True)
-    # 50 kN/rad, 2 pi x 50 kN = 0.314 MN for the whole pile.
-    assert ("| known | 0.0600 | 50.0 | 0.314 | 26.0 / 12.5 / 12.5 | at pile settlement 0.06 m |"
-            in done.stdout.splitlines())
+    # The load at 0 / 10 / 25 / 50 mm: the first row's (the test's first row lies at 10 mm here),
+    # then 1 kN/rad per mm; 50 kN/rad at 0.1 D, 2 pi x 50 kN = 0.314 MN for the whole pile.
+    assert ("| known | 0.0600 | 10.0 / 10.0 / 25.0 / 50.0 | 50.0 | 0.314 | 26.0 / 12.5 / 12.5 "
+            "| at pile settlement 0.06 m |" in done.stdout.splitlines())
     assert figure.stat().st_size > 10000
 
 
