@@ -10,7 +10,9 @@ A run is a directory or history.h5 whose last phase is the load test, optionally
 beside it the soil's upward force on the tip and each shaft there (their sum is the load plus the
 pile's weight). With --zone F, a second table: how far the sand the test moved by at least F of
 its settlement reaches (below the tip, out from the wall, above the tip outside it) and how much
-of the settlement the plug followed, from the snapshots at the test's start and end.
+of the settlement the plug followed, from the snapshots at the test's start and end. With --installed
+as well, a third: how deep below the final tip and how far out from the wall the installation (the
+phase named installation) moved sand by that same distance.
 """
 import argparse
 import math
@@ -19,7 +21,7 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 
-from mpile.capacity import CAPACITY_SETTLEMENT, load_test, load_test_zone  # noqa: E402
+from mpile.capacity import CAPACITY_SETTLEMENT, installation_reach, load_test, load_test_zone  # noqa: E402
 from mpile.files import RunFileError  # noqa: E402
 
 
@@ -28,14 +30,19 @@ def main():
     parser.add_argument("runs", nargs="+", help="run directory or history.h5, optionally :label")
     parser.add_argument("--out", default="capacity.png", help="the figure (PNG)")
     parser.add_argument("--zone", type=float, metavar="F", help="also the zone the test moved by F of its settlement")
+    parser.add_argument("--installed", action="store_true",
+                        help="with --zone, also where the installation moved the sand by as much")
     args = parser.parse_args()
-    tests, zones = [], []
+    tests, zones, reaches = [], [], []
     try:
         for run in args.runs:
             path, _, label = run.partition(":")
             tests.append(load_test(path, label=label or None))
             if args.zone is not None:
                 zones.append(load_test_zone(path, args.zone))
+            if args.zone is not None and args.installed:
+                distance = args.zone * tests[-1].settlement.max()
+                reaches.append(installation_reach(path, distance))
     except (RunFileError, KeyError) as e:
         print(f"capacity.py: {e}", file=sys.stderr)
         return 2
@@ -57,6 +64,12 @@ def main():
         print("|---|---|---|---|---|")
         for t, z in zip(tests, zones):
             print(f"| {t.label} | {z.below_tip:.2f} | {z.outside_wall:.2f} | {z.above_tip_outside:.2f} | {z.plug_follows:.2f} |")
+    if reaches:
+        print()
+        print("| run | the installation moved by as much (mm): below the tip at its end (m) | out from the wall (m) |")
+        print("|---|---|---|")
+        for t, z in zip(tests, reaches):
+            print(f"| {t.label} | {1e3 * z.distance:.1f}: {z.below_tip:.2f} | {z.outside_wall:.2f} |")
 
     import matplotlib
     matplotlib.use("Agg")

@@ -54,6 +54,8 @@ _EXPORTS = {
     "LoadTest": "capacity",
     "load_test_zone": "capacity",
     "LoadTestZone": "capacity",
+    "installation_reach": "capacity",
+    "InstallationReach": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",
     "Case": "cases",

@@ -9,7 +9,9 @@ soil's upward force on the tip and on each shaft, whose sum is the load plus the
 
 `load_test_zone` measures the soil the test moved, from the particle snapshots at the test's start and
 end: how far below the tip and out from the wall the sand moved by a given fraction of the
-settlement, and how much of it the plug followed.
+settlement, and how much of it the plug followed. `installation_reach` measures, the same way, the
+sand the installation moved by a given distance: whether the test loads ground the installation
+disturbed or ground it never reached.
 """
 from dataclasses import dataclass, field
 
@@ -138,3 +140,50 @@ def moved_zone(first, last, fraction, outer, inner):
 
     return LoadTestZone(fraction, largest(tip - y[zone]), largest(r[outside] - outer), largest(y[outside] - tip),
                         float(np.mean(-moved[plug, 1]) / settlement) if plug.any() else np.nan)
+
+
+@dataclass
+class InstallationReach:
+    """The sand an installation moved by at least `distance` (m), where it lies at the
+    installation's end: how deep below the tip then and how far out from the outer wall."""
+
+    distance: float
+    below_tip: float
+    outside_wall: float
+
+
+def installation_reach(path, distance, phase="installation"):
+    """The `InstallationReach` of the run's phase named `phase`, from the particle snapshots at its
+    start and end (a run writes one at every phase end)."""
+    from .snapshots import open_snapshots
+
+    history = history_path(path)
+    table = phases(history)
+    named = table[table["name"] == phase]
+    if named.empty or not np.isfinite(float(named["end"].iloc[0])):
+        raise RunFileError(f"{history} has no finished phase named '{phase}'")
+    start, end = float(named["start"].iloc[0]), float(named["end"].iloc[0])
+    snapshots = open_snapshots(history.parent)
+    first, last = snapshots.at(start), snapshots.at(end)
+    if not (abs(first.time - start) <= 1e-9 * max(1.0, end) and abs(last.time - end) <= 1e-9 * max(1.0, end)):
+        raise RunFileError(f"{history.parent} has no particle snapshots at the {phase}'s start ({start:g} s) "
+                           f"and end ({end:g} s)")
+    outer = 0.5 * float(case_of(history).get("monopile", {}).get("diameter", np.nan))
+    return moved_reach(first, last, distance, outer)
+
+
+def moved_reach(first, last, distance, outer):
+    """The `InstallationReach` between two snapshots (as `moved_zone` reads them) of a pile whose
+    outer wall is at radius `outer`: soil particles that moved by at least `distance`, at their
+    positions in the second snapshot, against the pile's lowest particle there (its tip)."""
+    ids_first, ids_last = first.arrays["id"].astype(np.int64), last.arrays["id"].astype(np.int64)
+    _, a, b = np.intersect1d(ids_first, ids_last, return_indices=True)
+    rigid = [k for k, name in enumerate(first.material_names) if name.endswith("(rigid)")]
+    is_rigid = np.isin(first.arrays["material"].astype(int)[a], rigid)
+    now = last.positions[b]
+    moved = np.hypot(*(now - first.positions[a]).T)
+    tip = now[is_rigid, 1].min()
+    zone = ~is_rigid & (moved >= distance)
+    below, out = tip - now[zone, 1], now[zone, 0] - outer
+    return InstallationReach(distance, float(below.max()) if below.size else 0.0,
+                             float(out[out > 0].max()) if (out > 0).any() else 0.0)

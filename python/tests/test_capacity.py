@@ -118,3 +118,37 @@ def test_the_zone_of_a_test_still_going_is_refused(tmp_path):
                 {"name": "load_test", "start": 1.0}])
     with pytest.raises(RunFileError, match="has no finished load test"):
         load_test_zone(path)
+
+
+def test_the_sand_an_installation_moved_is_measured_below_the_final_tip():
+    # The lattice above, the wall pushed 0.3 m down to its tip at y = 2.005 m. The sand below the
+    # tip moves down by 0.02 m (1 - d / 1 m)(1 - x / 0.2 m) (d below the tip before it moved, x out
+    # from the wall, 0 under it), the rest not at all. Moved by 5 mm or more: to d = 0.75 m under
+    # the wall (0.755 m below the tip where that sand now lies) and x = 0.15 m out (just below the
+    # tip, where it moved 5 mm). Each reach is known to a lattice spacing, 0.01 m.
+    from mpile.capacity import moved_reach
+    centres = 0.005 + 0.01 * np.arange(300)
+    r, y = (a.ravel() for a in np.meshgrid(centres[:100], centres))
+    pile = (r > 0.35) & (r < 0.37) & (y > 2.0)
+    tip = 2.005
+    d, x = np.maximum(tip - y, 0.0), np.maximum(r - 0.37, 0.0)
+    drop = np.where(y < tip, 0.02 * np.maximum(1.0 - d, 0.0) * np.maximum(1.0 - x / 0.2, 0.0), 0.0)
+    drop[pile] = 0.0
+    ids = np.arange(r.size)
+    material = pile.astype(int)
+    first = LatticeSnapshot(np.column_stack([r, np.where(pile, y + 0.3, y)]), ids, material)
+    last = LatticeSnapshot(np.column_stack([r, y - drop]), ids, material)
+    reach = moved_reach(first, last, 0.005, outer=0.37)
+    assert reach.below_tip == pytest.approx(0.755, abs=0.01)
+    assert reach.outside_wall == pytest.approx(0.15, abs=0.01)
+
+
+def test_a_run_without_the_installation_phase_is_refused(tmp_path):
+    from mpile.capacity import installation_reach
+    path = write_history(tmp_path / "history.h5", {
+        "/time": ([0.0, 1.0], "s"), "/phase": (np.array([0, 1]), "-")},
+        attrs={"case_resolved": CASE},
+        phases=[{"name": "install", "start": 0.0, "end": 1.0, "ended": "at pile penetration 0.1 m"},
+                {"name": "load_test", "start": 1.0, "end": 2.0}])
+    with pytest.raises(RunFileError, match="no finished phase named 'installation'"):
+        installation_reach(path, 0.0075)
