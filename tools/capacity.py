@@ -33,6 +33,8 @@ def main():
     parser.add_argument("--installed", action="store_true",
                         help="with --zone, also where the installation moved the sand by as much")
     args = parser.parse_args()
+    if args.installed and args.zone is None:
+        parser.error("--installed measures at the distance --zone F sets: give --zone")
     tests, zones, reaches = [], [], []
     try:
         for run in args.runs:
