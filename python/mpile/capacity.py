@@ -101,31 +101,42 @@ def load_test_zone(path, fraction=0.1, body="pile"):
     """The `LoadTestZone` of the run's load test (its last phase), from the particle snapshots at the
     phase's start and at its end (a run writes one at every phase end). Particles are followed by
     id; rigid bodies' particles are left out."""
-    from .snapshots import open_snapshots
-
     history = history_path(path)
     table = phases(history)
     start, end = float(table["start"].iloc[-1]), float(table["end"].iloc[-1])
     if not np.isfinite(end):
         raise RunFileError(f"{history} has no finished load test (its last phase has not ended)")
-    snapshots = open_snapshots(history.parent)
-    first, last = snapshots.at(start), snapshots.at(end)
-    if not (abs(first.time - start) <= 1e-9 * max(1.0, end) and abs(last.time - end) <= 1e-9 * max(1.0, end)):
-        raise RunFileError(f"{history.parent} has no particle snapshots at the load test's start ({start:g} s) "
-                           f"and end ({end:g} s)")
+    first, last = _snapshots_at(history, start, end, "load test")
     monopile = case_of(history).get("monopile", {})
     outer = 0.5 * float(monopile.get("diameter", np.nan))
     return moved_zone(first, last, fraction, outer, outer - float(monopile.get("wall_thickness", np.nan)))
+
+
+def _snapshots_at(history, start, end, what):
+    """The particle snapshots at a phase's start and end (a run writes one at every phase end)."""
+    from .snapshots import open_snapshots
+
+    snapshots = open_snapshots(history.parent)
+    first, last = snapshots.at(start), snapshots.at(end)
+    if not (abs(first.time - start) <= 1e-9 * max(1.0, end) and abs(last.time - end) <= 1e-9 * max(1.0, end)):
+        raise RunFileError(f"{history.parent} has no particle snapshots at the {what}'s start ({start:g} s) "
+                           f"and end ({end:g} s)")
+    return first, last
+
+
+def _matched(first, last):
+    """The two snapshots' particles matched by id (indices into each) and which are rigid."""
+    ids_first, ids_last = first.arrays["id"].astype(np.int64), last.arrays["id"].astype(np.int64)
+    _, a, b = np.intersect1d(ids_first, ids_last, return_indices=True)
+    rigid = [k for k, name in enumerate(first.material_names) if name.endswith("(rigid)")]
+    return a, b, np.isin(first.arrays["material"].astype(int)[a], rigid)
 
 
 def moved_zone(first, last, fraction, outer, inner):
     """The `LoadTestZone` between two snapshots (objects with positions, arrays id and material, and
     material_names) of a pile whose wall spans radii inner to outer: the pile's settlement is its
     particles' mean downward movement, its tip their lowest point at the start."""
-    ids_first, ids_last = first.arrays["id"].astype(np.int64), last.arrays["id"].astype(np.int64)
-    _, a, b = np.intersect1d(ids_first, ids_last, return_indices=True)
-    rigid = [k for k, name in enumerate(first.material_names) if name.endswith("(rigid)")]
-    is_rigid = np.isin(first.arrays["material"].astype(int)[a], rigid)
+    a, b, is_rigid = _matched(first, last)
     r, y = first.positions[a, 0], first.positions[a, 1]
     moved = last.positions[b] - first.positions[a]
     tip = y[is_rigid].min()
@@ -154,20 +165,13 @@ class InstallationReach:
 
 def installation_reach(path, distance, phase="installation"):
     """The `InstallationReach` of the run's phase named `phase`, from the particle snapshots at its
-    start and end (a run writes one at every phase end)."""
-    from .snapshots import open_snapshots
-
+    start and end."""
     history = history_path(path)
     table = phases(history)
     named = table[table["name"] == phase]
     if named.empty or not np.isfinite(float(named["end"].iloc[0])):
         raise RunFileError(f"{history} has no finished phase named '{phase}'")
-    start, end = float(named["start"].iloc[0]), float(named["end"].iloc[0])
-    snapshots = open_snapshots(history.parent)
-    first, last = snapshots.at(start), snapshots.at(end)
-    if not (abs(first.time - start) <= 1e-9 * max(1.0, end) and abs(last.time - end) <= 1e-9 * max(1.0, end)):
-        raise RunFileError(f"{history.parent} has no particle snapshots at the {phase}'s start ({start:g} s) "
-                           f"and end ({end:g} s)")
+    first, last = _snapshots_at(history, float(named["start"].iloc[0]), float(named["end"].iloc[0]), phase)
     outer = 0.5 * float(case_of(history).get("monopile", {}).get("diameter", np.nan))
     return moved_reach(first, last, distance, outer)
 
@@ -176,10 +180,7 @@ def moved_reach(first, last, distance, outer):
     """The `InstallationReach` between two snapshots (as `moved_zone` reads them) of a pile whose
     outer wall is at radius `outer`: soil particles that moved by at least `distance`, at their
     positions in the second snapshot, against the pile's lowest particle there (its tip)."""
-    ids_first, ids_last = first.arrays["id"].astype(np.int64), last.arrays["id"].astype(np.int64)
-    _, a, b = np.intersect1d(ids_first, ids_last, return_indices=True)
-    rigid = [k for k, name in enumerate(first.material_names) if name.endswith("(rigid)")]
-    is_rigid = np.isin(first.arrays["material"].astype(int)[a], rigid)
+    a, b, is_rigid = _matched(first, last)
     now = last.positions[b]
     moved = np.hypot(*(now - first.positions[a]).T)
     tip = now[is_rigid, 1].min()
