@@ -4,19 +4,24 @@
 #include "app/run_command.hpp"
 #include "app/sweep_command.hpp"
 #include "app/verify_command.hpp"
+#include "cases/case_error.hpp"
 #include "io/source_commit.hpp"
 #include "solver/solver_settings.hpp"
 
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include <tbb/task_arena.h>
 
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 namespace {
 
@@ -49,6 +54,26 @@ CLI::Validator finite_within(double low, double high) {
       "NUMBER");
 }
 
+/// At most this many worker threads: more would only spend the memory of their stacks.
+constexpr long long max_threads = 1024;
+
+/// A whole number in [low, high]: CLI::PositiveNumber named the largest double as its bound
+/// (`--threads 0`: "not in range 0.000000 to 1797...").
+CLI::Validator count_within(long long low, long long high) {
+  return CLI::Validator(
+      [low, high](std::string& text) -> std::string {
+        char* end = nullptr;
+        errno = 0;
+        const long long n = std::strtoll(text.c_str(), &end, 10);
+        if (text.empty() || *end != '\0' || errno == ERANGE || n < low || n > high) {
+          return "expected a whole number from " + std::to_string(low) + " to " +
+                 std::to_string(high) + ", got " + text;
+        }
+        return "";
+      },
+      "INT");
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -62,13 +87,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int threads = 0;
   app.add_option("--threads", threads, "worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(count_within(1, max_threads));
 
   mpile::RunOptions run_options;
   auto* run = app.add_subcommand("run", "run a case file");
   run->add_option("case", run_options.case_path, "the case file (TOML)")->required();
   run->add_option("--threads", threads, "worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(count_within(1, max_threads));
   run->add_option("--out", run_options.output_directory,
                   "output directory (default: [output].directory, else out/<case name>)");
   auto* restart =
@@ -83,7 +108,7 @@ int main(int argc, char** argv) {
   run->add_option("--set", run_options.overrides, set_help)->allow_extra_args(false);
   run->add_option("--stop-after", run_options.stop_after_steps,
                   "stop after N steps as if interrupted, writing a checkpoint")
-      ->check(CLI::PositiveNumber);
+      ->check(count_within(1, std::numeric_limits<long>::max()));
   const char* strict_help = "refuse the case (exit status 2) on any plausibility warning of units "
                             "(a torque in kN m, a density in g/cm^3, ...) instead of printing it";
   run->add_flag("--strict", run_options.strict, strict_help);
@@ -91,7 +116,7 @@ int main(int argc, char** argv) {
   auto* check = app.add_subcommand("check", "validate a case and estimate its cost");
   check->add_option("case", run_options.case_path, "the case file (TOML)")->required();
   check->add_option("--threads", threads, "worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(count_within(1, max_threads));
   check->add_option("--set", run_options.overrides, set_help)->allow_extra_args(false);
   check
       ->add_option("--pilot", run_options.pilot_seconds,
@@ -111,7 +136,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--out", sweep_options.output_directory,
                     "output directory (default: out/sweeps/<sweep file name>)");
   sweep->add_option("--cores", sweep_options.cores, "cores to fill with runs (default: all)")
-      ->check(CLI::PositiveNumber);
+      ->check(count_within(1, max_threads));
   sweep->add_option("--profile", sweep_options.profile,
                     "a Snakemake profile directory (a cluster's submission settings)");
   sweep->add_flag("--strict", sweep_options.strict,
@@ -146,15 +171,17 @@ int main(int argc, char** argv) {
   mpile::verification::Options options;
   verify->add_option("cases", ids, "case ids (V1, V2, ...), or all")->capture_default_str();
   verify->add_option("--threads", threads, "worker threads (default: all cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(count_within(1, max_threads));
   verify->add_flag("--list", list, "list the cases and exit");
+  // A zone of the verification cases has at most a few hundred cells, so that the refined count
+  // stays an int; the case format's own bound on a zone's cells then names the zone.
   verify->add_option("--refinement", options.refinement, "cells per direction multiplier")
-      ->check(CLI::PositiveNumber)
+      ->check(count_within(1, 1000))
       ->capture_default_str();
   verify
       ->add_option("--ppc", options.particles_per_direction,
                    "particles per cell direction (default: the case file's)")
-      ->check(CLI::PositiveNumber);
+      ->check(count_within(1, 8)); // as particles_per_cell in a case file: 100 000 filled memory
   verify->add_option("--bbar", options.bbar, "B-bar on (1) or off (0); default on");
   verify->add_option("--flip", options.flip_fraction, "FLIP fraction in [0, 1]")
       ->check(finite_within(0.0, 1.0));
@@ -186,40 +213,57 @@ int main(int argc, char** argv) {
 
   const int cores = tbb::info::default_concurrency();
   run_options.threads = threads > 0 ? threads : cores;
+  if (run_options.threads > cores) {
+    std::cerr << "mpile: note: " << run_options.threads << " threads on " << cores
+              << " cores: they take turns, and the run is no faster than on " << cores << '\n';
+  }
+  // The commands run in an arena of exactly the threads asked for: the default arena holds one
+  // thread a core whatever max_allowed_parallelism allows, so that `--threads 6` on two cores ran
+  // on two while the run's log and history said six.
   const tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism,
                                          static_cast<std::size_t>(run_options.threads));
-  try {
-    if (run->parsed()) {
-      return mpile::run_case(run_options, std::cout, std::cerr);
-    }
-    if (check->parsed()) {
-      return mpile::check_case(run_options, std::cout, std::cerr);
-    }
-    if (sweep->parsed()) {
-      return mpile::sweep_command(sweep_options, std::cout, std::cerr);
-    }
-    if (describe->parsed()) {
-      return mpile::describe_command(describe_options, std::cout, std::cerr);
-    }
-    if (element->parsed()) {
-      return mpile::element_test_command(element_options, std::cout, std::cerr);
-    }
-    if (list) {
-      for (const auto& c : mpile::verification::all_cases()) {
-        std::cout << c.id << "\t" << c.title << '\n';
+  tbb::task_arena arena(run_options.threads);
+  return arena.execute([&]() -> int {
+    try {
+      if (run->parsed()) {
+        return mpile::run_case(run_options, std::cout, std::cerr);
       }
-      return 0;
+      if (check->parsed()) {
+        return mpile::check_case(run_options, std::cout, std::cerr);
+      }
+      if (sweep->parsed()) {
+        return mpile::sweep_command(sweep_options, std::cout, std::cerr);
+      }
+      if (describe->parsed()) {
+        return mpile::describe_command(describe_options, std::cout, std::cerr);
+      }
+      if (element->parsed()) {
+        return mpile::element_test_command(element_options, std::cout, std::cerr);
+      }
+      if (list) {
+        for (const auto& c : mpile::verification::all_cases()) {
+          std::cout << c.id << "\t" << c.title << '\n';
+        }
+        return 0;
+      }
+      if (!scheme.empty()) {
+        options.musl = scheme == "musl";
+      }
+      if (!csv) {
+        std::cout << "mpile verify on " << run_options.threads << " thread(s)\n";
+      }
+      return mpile::run_verification(ids, options, std::cout, csv) == 0 ? mpile::exit_success
+                                                                        : mpile::exit_failure;
+    } catch (const mpile::CaseError& e) {
+      // An unknown case id or a refinement the case format refuses: the command line is wrong.
+      std::cerr << "mpile: " << e.what() << '\n';
+      return mpile::exit_bad_input;
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "mpile: " << e.what() << '\n';
+      return mpile::exit_bad_input;
+    } catch (const std::exception& e) {
+      std::cerr << "mpile: " << e.what() << '\n';
+      return mpile::exit_failure;
     }
-    if (!scheme.empty()) {
-      options.musl = scheme == "musl";
-    }
-    if (!csv) {
-      std::cout << "mpile verify on " << run_options.threads << " thread(s)\n";
-    }
-    return mpile::run_verification(ids, options, std::cout, csv) == 0 ? mpile::exit_success
-                                                                      : mpile::exit_failure;
-  } catch (const std::exception& e) {
-    std::cerr << "mpile: " << e.what() << '\n';
-    return mpile::exit_failure;
-  }
+  });
 }

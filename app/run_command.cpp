@@ -16,6 +16,8 @@
 #include "io/vtk_writer.hpp"
 #include "solver/phase_runner.hpp"
 
+#include <tbb/task_arena.h>
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -139,6 +141,9 @@ public:
 
 private:
   bool restarting() const { return !restart_.empty(); }
+  /// The threads the run has, as recorded in its log and history: the arena's, not the number
+  /// asked for (they differed when the arena was the default one of a thread a core).
+  static int threads_running() { return tbb::this_task_arena::max_concurrency(); }
 
   /// Open: the case read (bases, --set), what --continue continues, the scene built, a fresh
   /// run's monitors found and a continued run's checkpoint read. Bad input: exit 2.
@@ -235,7 +240,7 @@ private:
       to_log_file(std::string("mpile ") + MPILE_VERSION + ": " +
                   (restarting() ? "continuing " + spec_.file + " from " + restart_
                                 : "running " + spec_.file) +
-                  " on " + std::to_string(options_.threads) + " threads");
+                  " on " + std::to_string(threads_running()) + " threads");
       if (!continuation_reason_.empty()) {
         to_log_file("--continue: " + continuation_reason_);
       }
@@ -251,7 +256,7 @@ private:
   Stop open_history() {
     try {
       history_ = std::make_unique<HistoryWriter>(directory_ + "/history.h5", spec_, *scene_,
-                                                 options_.threads,
+                                                 threads_running(),
                                                  restarting() ? progress_.history_rows : 0);
     } catch (const NoRoomForOutput&) {
       throw; // a full disk, not a checkpoint that does not fit its history

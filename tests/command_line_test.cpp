@@ -1,9 +1,12 @@
 // The command line's own checks, through the program itself.
+#include "io/hdf5_file.hpp"
 #include "tests/run_program.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -42,6 +45,52 @@ TEST(CommandLine, VerifyOptionsRefuseNanAndValuesOutOfRange) {
     ASSERT_TRUE(verify.exited) << option << " " << value;
     EXPECT_EQ(verify.status, 2) << option << " " << value;
     EXPECT_EQ(verify.err.rfind(option + ": expected a finite number in [", 0), 0u) << verify.err;
+  }
+}
+
+TEST(CommandLine, ARunHasTheThreadsAskedForEvenAboveTheCores) {
+  // The default arena holds one thread a core whatever max_allowed_parallelism allows: `--threads
+  // 6` on two cores ran on two while the log and the history said six. One thread more than the
+  // machine's cores must be what the run has and records.
+  const int asked = static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) + 1;
+  const auto directory = fresh_directory("threads_above_cores");
+  const std::string path = (source / "cases/verification/single_point.toml").string();
+  const Finished run =
+      run_mpile({"--threads", std::to_string(asked), "run", path, "--out", directory.string()}, 0,
+                directory / "err.txt");
+  ASSERT_TRUE(run.exited);
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.err.find("mpile: note: " + std::to_string(asked) + " threads on "),
+            std::string::npos)
+      << run.err;
+  const std::string log = read_text(directory / "run.log");
+  EXPECT_NE(log.find(" on " + std::to_string(asked) + " threads\n"), std::string::npos) << log;
+  const Hdf5File history((directory / "history.h5").string(), Hdf5File::Mode::read);
+  EXPECT_EQ(history.number_attribute("/", "threads"), asked);
+}
+
+TEST(CommandLine, CountsOutOfRangeAreRefusedWithTheirRange) {
+  // CLI::PositiveNumber refused 0 naming the largest double as the bound; `verify --ppc 100000`
+  // filled memory for a minute before anything was said; an unknown verification case exited 1.
+  const auto directory = fresh_directory("count_options");
+  const std::string path = (source / "cases/verification/single_point.toml").string();
+  for (const auto& [arguments, start] :
+       std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--threads", "0", "check", path},
+            "--threads: expected a whole number from 1 to 1024, got 0"},
+           {{"check", path, "--threads", "2000"},
+            "--threads: expected a whole number from 1 to 1024, got 2000"},
+           {{"verify", "V3", "--ppc", "100000"},
+            "--ppc: expected a whole number from 1 to 8, got 100000"},
+           {{"verify", "V3", "--refinement", "1.5"},
+            "--refinement: expected a whole number from 1 to 1000, got 1.5"},
+           {{"run", path, "--stop-after", "-3"},
+            "--stop-after: expected a whole number from 1 to "},
+           {{"verify", "V99"}, "mpile: unknown verification case 'V99'"}}) {
+    const Finished command = run_mpile(arguments, 0, directory / "err.txt");
+    ASSERT_TRUE(command.exited) << start;
+    EXPECT_EQ(command.status, 2) << command.err;
+    EXPECT_EQ(command.err.rfind(start, 0), 0u) << command.err;
   }
 }
 
