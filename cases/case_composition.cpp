@@ -13,28 +13,30 @@
 
 namespace mpile {
 
-std::string read_case_text_file(const std::string& path) {
+std::string read_case_text_file(const std::string& path, std::string_view kind) {
   // Only a regular file of bounded size: a directory would read as empty, a FIFO would block and
   // /dev/zero would be read without end.
+  const std::string what(kind);
+  const std::string a_what = (what.find_first_of("aeiou") == 0 ? "an " : "a ") + what;
   std::error_code error;
   const std::filesystem::file_status status = std::filesystem::status(path, error);
   if (error) {
-    throw CaseError(path + ": cannot open the case file: " + error.message());
+    throw CaseError(path + ": cannot open the " + what + ": " + error.message());
   }
   if (std::filesystem::is_directory(status)) {
-    throw CaseError(path + ": is a directory, not a case file");
+    throw CaseError(path + ": is a directory, not " + a_what);
   }
   if (!std::filesystem::is_regular_file(status)) {
-    throw CaseError(path + ": is not a regular file (a case file is a TOML text file)");
+    throw CaseError(path + ": is not a regular file (" + a_what + " is a TOML text file)");
   }
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (!error && size > max_case_file_bytes) {
-    throw CaseError(path + ": is " + std::to_string(size) + " bytes; a case file is at most " +
+    throw CaseError(path + ": is " + std::to_string(size) + " bytes; " + a_what + " is at most " +
                     std::to_string(max_case_file_bytes) + " bytes");
   }
   std::ifstream in(path);
   if (!in) {
-    throw CaseError(path + ": cannot open the case file: " + std::strerror(errno));
+    throw CaseError(path + ": cannot open the " + what + ": " + std::strerror(errno));
   }
   std::ostringstream text;
   text << in.rdbuf();

@@ -8,6 +8,7 @@
 #include "cases/toml_reader.hpp"
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mpile {
@@ -23,8 +24,9 @@ struct ComposedCase {
 constexpr int max_base_depth = 8;
 
 /// Reads a case file of bounded size (a regular file, at most max_case_file_bytes); CaseError with
-/// the operating system's reason otherwise.
-std::string read_case_text_file(const std::string& path);
+/// the operating system's reason otherwise. `kind` names the file in the errors: the sweep and
+/// element-test files are read here too.
+std::string read_case_text_file(const std::string& path, std::string_view kind = "case file");
 
 /// Merges `top` over `base`: a table merges key by key (recursively), unless `top` names a `type`
 /// other than the base's (a material of another model), which replaces the base's table; any

@@ -1,16 +1,14 @@
 #include "cases/element_test_file.hpp"
 
+#include "cases/case_composition.hpp"
 #include "cases/case_error.hpp"
 #include "cases/case_spec.hpp"
 #include "cases/toml_reader.hpp"
 #include "engine/parameter_range.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -250,13 +248,7 @@ ElementTestSpec read_element_test_text(const std::string& text, const std::strin
 }
 
 ElementTestSpec read_element_test_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) {
-    throw CaseError(path + ": cannot open the element-test file: " + std::strerror(errno));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return read_element_test_text(text.str(), path);
+  return read_element_test_text(read_case_text_file(path, "element-test file"), path);
 }
 
 void write_csv(const ElementTestTable& table, std::ostream& out) {

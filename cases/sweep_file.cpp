@@ -148,7 +148,7 @@ std::vector<GatherSpec> read_gather(TomlTable& top) {
 } // namespace
 
 SweepSpec read_sweep_file(const std::string& path) {
-  const std::string text = read_case_text_file(path);
+  const std::string text = read_case_text_file(path, "sweep file");
   const TomlValue root = parse_toml(text, path);
   TomlTable top(root, "", path);
   SweepSpec sweep;

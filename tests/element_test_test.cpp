@@ -14,6 +14,9 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -297,7 +300,8 @@ increments = 10
   options.csv = (std::filesystem::temp_directory_path() / "mpile_element_tension.csv").string();
   std::ostringstream out, err;
   EXPECT_EQ(element_test_command(options, out, err), exit_failure);
-  const std::string location = file.string() + ":" + std::to_string(element_line_of(text, "[path]"));
+  const std::string location =
+      file.string() + ":" + std::to_string(element_line_of(text, "[path]"));
   EXPECT_NE(err.str().find(location + ": path: increment"), std::string::npos) << err.str();
 }
 
@@ -428,6 +432,17 @@ TEST(ElementTest, CommandExitsWithStatusTwoOnBadInput) {
                                "such file or directory"),
             std::string::npos)
       << missing.str();
+  // Read as a case file is: /dev/zero was read without end (a hang that filled memory), a
+  // directory read as an empty file ("material: missing").
+  for (const auto& [path, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"/dev/zero", ": is not a regular file (an element-test file is a TOML text file)"},
+           {std::filesystem::temp_directory_path().string(),
+            ": is a directory, not an element-test file"}}) {
+    options.file = path;
+    std::ostringstream refused;
+    EXPECT_EQ(element_test_command(options, out, refused), exit_bad_input) << path;
+    EXPECT_NE(refused.str().find(path + reason), std::string::npos) << refused.str();
+  }
 }
 
 } // namespace
