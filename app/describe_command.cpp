@@ -18,6 +18,7 @@
 #include "engine/materials/material_registry.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <set>
@@ -476,6 +477,12 @@ int describe_command(const DescribeOptions& options, std::ostream& out, std::ost
   try {
     if (!options.update_doc.empty() || !options.check_doc.empty()) {
       const std::string& path = options.update_doc.empty() ? options.check_doc : options.update_doc;
+      // A regular file only: /dev/zero was read without end, a FIFO would block.
+      std::error_code not_regular;
+      if (!std::filesystem::is_regular_file(path, not_regular)) {
+        err << "mpile describe: " << path << ": not a regular file (a Markdown page)\n";
+        return exit_bad_input;
+      }
       std::ifstream in(path);
       if (!in) {
         err << "mpile describe: cannot read " << path << '\n';

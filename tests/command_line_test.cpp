@@ -94,5 +94,17 @@ TEST(CommandLine, CountsOutOfRangeAreRefusedWithTheirRange) {
   }
 }
 
+TEST(CommandLine, DescribeReadsOnlyARegularFileAsItsPage) {
+  // `describe --check-doc /dev/zero` read without end.
+  const auto directory = fresh_directory("describe_page");
+  for (const std::string& page : std::vector<std::string>{"/dev/zero", directory.string()}) {
+    const Finished describe =
+        run_mpile({"describe", "--check-doc", page}, 0, directory / "err.txt");
+    ASSERT_TRUE(describe.exited) << page;
+    EXPECT_EQ(describe.status, 2) << describe.err;
+    EXPECT_EQ(describe.err, "mpile describe: " + page + ": not a regular file (a Markdown page)\n");
+  }
+}
+
 } // namespace
 } // namespace mpile
