@@ -48,7 +48,7 @@ TEST(CommandLine, VerifyOptionsRefuseNanAndValuesOutOfRange) {
   }
 }
 
-TEST(CommandLine, ARunHasTheThreadsAskedForEvenAboveTheCores) {
+TEST(CommandLine, ARunHasTheWorkersAskedForEvenAboveTheCores) {
   // The default arena holds one thread a core whatever max_allowed_parallelism allows: `--threads
   // 6` on two cores ran on two while the log and the history said six. One thread more than the
   // machine's cores must be what the run has and records.

@@ -6,6 +6,7 @@ bound, and never crashes, hangs or reports an internal error.
   tools/fuzz_cases.py --mutants 300                 # a seeded run, as the test suite does
   tools/fuzz_cases.py --mutants 100000 --seed 7     # a long run; failures are kept for replay
   tools/fuzz_cases.py --mutants 100000 --seed 7 --first 80000   # the same run's last 20 000
+  tools/fuzz_cases.py --element-tests --mutants 200 # the element-test files, by `mpile element-test`
 
 Each mutant applies one to three edits to a case file chosen at random: a number replaced by an
 extreme or invalid one, a line deleted, duplicated or swapped, a key misspelt, a string value
@@ -106,9 +107,14 @@ def limits(memory_mib, cpu_seconds):
 
 def command(mpile, path):
     """How a mutant is read: a case with `mpile check`; a sweep file (cases/sweeps/) with
-    `mpile sweep --prepare`, which reads it and every variant's case and writes the workflow."""
-    if os.path.basename(os.path.dirname(path)) == "sweeps":
+    `mpile sweep --prepare`, which reads it and every variant's case and writes the workflow; an
+    element-test file (cases/element_tests/) with `mpile element-test`, which reads and runs it
+    (its path at most 1e7 increments)."""
+    folder = os.path.basename(os.path.dirname(path))
+    if folder == "sweeps":
         return [mpile, "sweep", path, "--prepare", "--out", path + ".workflow"]
+    if folder == "element_tests":
+        return [mpile, "element-test", path, "--out", path + ".csv"]
     return [mpile, "check", path]
 
 
@@ -158,7 +164,7 @@ def run_bounded(argv, timeout, memory_mib):
 
 
 def check(mpile, path, timeout, memory_mib):
-    """One mutant read: ("accepted" | "refused", None), or ("failed", what went wrong)."""
+    """One mutant read: ("accepted" | "refused" | "stopped", None), or ("failed", what went wrong)."""
     done = run_bounded(command(mpile, path), timeout, memory_mib)
     if done is None:
         return "failed", f"no answer: it waited {IDLE_SECONDS:g} s without computing"
@@ -170,17 +176,21 @@ def check(mpile, path, timeout, memory_mib):
         return "failed", f"killed by signal {-returncode}: {err.strip()[-300:]}"
     if returncode == 0:
         return "accepted", None
-    if returncode != 2:
+    # An element test runs its path: one the material cannot follow stops it with exit 1 and a
+    # message naming the file, line and increment, as a run that goes wrong does; a check has no
+    # such outcome.
+    stopped = returncode == 1 and command(mpile, path)[1] == "element-test"
+    if returncode != 2 and not stopped:
         return "failed", f"exit {returncode}: {err.strip()[-300:]}"
     # Notes (a one-cell wall, say) go before the refusal and may name an included file; the
     # refusal's first line names the file (a TOML syntax error then shows the line with a caret).
     lines = [line for line in err.splitlines()
              if line.strip() and not line.startswith("mpile: note: ")]
     if not lines or not lines[0].startswith("mpile: ") or "internal error" in err:
-        return "failed", f"exit 2 without a message: {err.strip()[-300:]}"
+        return "failed", f"exit {returncode} without a message: {err.strip()[-300:]}"
     if os.path.basename(path) not in lines[0]:
-        return "failed", f"exit 2 without naming the file: {lines[0][:300]}"
-    return "refused", None
+        return "failed", f"exit {returncode} without naming the file: {lines[0][:300]}"
+    return ("stopped" if stopped else "refused"), None
 
 
 def draw_mutants(cases, seed, count, first=0):
@@ -216,6 +226,9 @@ def main():
                              "whose address space cannot be limited: 768 refuses what --memory "
                              "1024 does (0: none)")
     parser.add_argument("--all-cases", action="store_true", help="include the slow case files")
+    parser.add_argument("--element-tests", action="store_true",
+                        help="mutate the element-test files (cases/element_tests/) instead of the "
+                             "cases")
     parser.add_argument("--keep", default=os.path.join(tempfile.gettempdir(), "mpile-fuzz-failures"))
     args = parser.parse_args()
     if args.budget > 0:
@@ -225,8 +238,8 @@ def main():
 
     cases = []
     for directory, _, files in os.walk(os.path.join(ROOT, "cases")):
-        if os.path.basename(directory) == "element_tests":
-            continue  # element-test files, not cases
+        if (os.path.basename(directory) == "element_tests") != args.element_tests:
+            continue  # element-test files, or cases
         if os.path.basename(directory) == "base":
             continue  # parts of cases, read through the cases that name them
         for name in sorted(files):
@@ -261,7 +274,7 @@ def main():
         print(f"FAIL {kept} ({name}; {', '.join(edits)}): {problem}")
         print(f"     replay: {' '.join(command(args.mpile, kept))}", flush=True)
 
-    counts = {"accepted": 0, "refused": 0, "failed": 0}
+    counts = {"accepted": 0, "refused": 0, "stopped": 0, "failed": 0}
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         outcomes = pool.map(lambda job: check(args.mpile, job[0], args.timeout, args.memory), jobs)
         for done, ((path, name, edits), (outcome, problem)) in enumerate(zip(jobs, outcomes), 1):
@@ -275,8 +288,10 @@ def main():
                       f"{counts['accepted']} accepted, {counts['refused']} refused, "
                       f"{len(failures)} failures so far", flush=True)
     elapsed = time.monotonic() - start
-    print(f"{len(jobs)} mutants (from {args.first} to {args.mutants - 1}) of {len(cases)} case files (seed {args.seed}) in {elapsed:.0f} s: "
-          f"{counts['accepted']} accepted, {counts['refused']} refused, {len(failures)} failures")
+    print(f"{len(jobs)} mutants (from {args.first} to {args.mutants - 1}) of {len(cases)} {'element-test' if args.element_tests else 'case'} files (seed {args.seed}) in {elapsed:.0f} s: "
+          f"{counts['accepted']} accepted, {counts['refused']} refused, "
+          + (f"{counts['stopped']} stopped, " if args.element_tests else "")
+          + f"{len(failures)} failures")
     shutil.rmtree(work)
     sys.exit(1 if failures else 0)
 
