@@ -13,6 +13,11 @@ its settlement reaches (below the tip, out from the wall, above the tip outside 
 of the settlement the plug followed, from the snapshots at the test's start and end. With --installed
 as well, a third: how deep below the final tip and how far out from the wall the installation (the
 phase named installation) moved sand by that same distance.
+
+With --curves DIR each run's curve is also written as DIR/<label>.csv (settlement, load and the
+surfaces' forces, with the run's commit and command in its header); such a CSV is a run too, for
+the figure and the first table, so that a figure of runs that take hours is drawn again without
+them (the zone tables need the run's snapshots and leave it out).
 """
 import argparse
 import math
@@ -21,7 +26,9 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 
-from mpile.capacity import CAPACITY_SETTLEMENT, installation_reach, load_test, load_test_zone  # noqa: E402
+from mpile.capacity import (CAPACITY_SETTLEMENT, installation_reach, load_test, load_test_zone,  # noqa: E402
+                            write_load_test_csv)
+from mpile.history import attributes  # noqa: E402
 from mpile.files import RunFileError  # noqa: E402
 
 
@@ -32,6 +39,7 @@ def main():
     parser.add_argument("--zone", type=float, metavar="F", help="also the zone the test moved by F of its settlement")
     parser.add_argument("--installed", action="store_true",
                         help="with --zone, also where the installation moved the sand by as much")
+    parser.add_argument("--curves", metavar="DIR", help="also write each history run's curve as DIR/<label>.csv")
     args = parser.parse_args()
     if args.installed and args.zone is None:
         parser.error("--installed measures at the distance --zone F sets: give --zone")
@@ -40,11 +48,20 @@ def main():
         for run in args.runs:
             path, _, label = run.partition(":")
             tests.append(load_test(path, label=label or None))
+            if path.endswith(".csv"):
+                continue
+            if args.curves:
+                os.makedirs(args.curves, exist_ok=True)
+                name = "".join(c if c.isalnum() else "_" for c in tests[-1].label).strip("_") + ".csv"
+                attrs = attributes(path)
+                sets = " ".join(f"--set {o}" for o in str(attrs.get("overrides", "")).split("\n") if o)
+                write_load_test_csv(tests[-1], os.path.join(args.curves, name),
+                                    f"mpile run {attrs.get('case_file', '?')} {sets} at {attrs.get('commit', '?')}")
             if args.zone is not None:
-                zones.append(load_test_zone(path, args.zone))
+                zones.append((tests[-1], load_test_zone(path, args.zone)))
             if args.zone is not None and args.installed:
                 distance = args.zone * tests[-1].settlement.max()
-                reaches.append(installation_reach(path, distance))
+                reaches.append((tests[-1], installation_reach(path, distance)))
     except (RunFileError, KeyError) as e:
         print(f"capacity.py: {e}", file=sys.stderr)
         return 2
@@ -64,13 +81,13 @@ def main():
         print(f"| run | moved by {args.zone:g} of the settlement: below the tip (m) | out from the wall (m) | "
               "above the tip outside (m) | plug's settlement / pile's |")
         print("|---|---|---|---|---|")
-        for t, z in zip(tests, zones):
+        for t, z in zones:
             print(f"| {t.label} | {z.below_tip:.2f} | {z.outside_wall:.2f} | {z.above_tip_outside:.2f} | {z.plug_follows:.2f} |")
     if reaches:
         print()
         print("| run | the installation moved by as much (mm): below the tip at its end (m) | out from the wall (m) |")
         print("|---|---|---|")
-        for t, z in zip(tests, reaches):
+        for t, z in reaches:
             print(f"| {t.label} | {1e3 * z.distance:.1f}: {z.below_tip:.2f} | {z.outside_wall:.2f} |")
 
     import matplotlib

@@ -49,6 +49,7 @@ _EXPORTS = {
     "shaft_ratios": "monopile",
     "radiation": "vibration",
     "load_test": "capacity",
+    "write_load_test_csv": "capacity",
     "friction_fatigue": "fatigue",
     "shaft_bands": "bands",
     "LoadTest": "capacity",

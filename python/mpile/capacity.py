@@ -65,8 +65,58 @@ class LoadTest:
         return self.load_at(CAPACITY_SETTLEMENT * self.diameter)
 
 
+def write_load_test_csv(test, path, source=""):
+    """Writes a `LoadTest` as CSV: a header of `# key: value` lines (label, diameter, how the test
+    ended, `source`: the run's commit and command), then settlement (m), load and each surface's
+    upward F_y (kN/rad) at every row, in full precision. The curves of runs that take hours are
+    kept this way beside the page that shows them, so that a figure can be drawn again without
+    the runs."""
+    names = sorted(test.surfaces)
+    columns = [test.settlement, test.load] + [test.surfaces[n] for n in names]
+    with open(path, "w", encoding="utf-8") as f:
+        for key, value in (("label", test.label), ("diameter_m", repr(test.diameter)),
+                           ("ended", test.ended), ("source", source)):
+            f.write(f"# {key}: {' '.join(str(value).split())}\n")
+        f.write(",".join(["settlement_m", "load_kN_per_rad"] + [f"{n}_kN_per_rad" for n in names]) + "\n")
+        for row in zip(*columns):
+            f.write(",".join(repr(float(v)) for v in row) + "\n")
+
+
+def read_load_test_csv(path, label=None):
+    """A `LoadTest` from a CSV that `write_load_test_csv` wrote; RunFileError names what is wrong."""
+    header, rows, columns = {}, [], None
+    try:
+        with open(path, encoding="utf-8") as f:
+            for number, line in enumerate(f, 1):
+                line = line.rstrip("\n")
+                if line.startswith("# "):
+                    key, _, value = line[2:].partition(": ")
+                    header[key] = value
+                elif columns is None:
+                    columns = line.split(",")
+                elif line:
+                    values = [float(v) for v in line.split(",")]
+                    if len(values) != len(columns):
+                        raise RunFileError(f"{path}:{number}: {len(values)} values for {len(columns)} columns")
+                    rows.append(values)
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        raise RunFileError(f"{path}: not a load-test curve: {e}") from e
+    if columns is None or columns[:2] != ["settlement_m", "load_kN_per_rad"]:
+        raise RunFileError(f"{path}: not a load-test curve (its columns are not settlement_m, load_kN_per_rad, ...)")
+    data = np.array(rows, dtype=float).reshape(len(rows), len(columns))
+    surfaces = {name[:-len("_kN_per_rad")]: data[:, k] for k, name in enumerate(columns) if k >= 2}
+    return LoadTest(label or header.get("label", str(path)), data[:, 0], data[:, 1],
+                    float(header.get("diameter_m", "nan")), header.get("ended", ""), surfaces)
+
+
 def load_test(path, body="pile", diameter=None, label=None):
-    """The last phase of a run (its directory or history.h5) as a `LoadTest`."""
+    """The last phase of a run (its directory or history.h5) as a `LoadTest`; a `.csv` path is a
+    curve `write_load_test_csv` kept."""
+    if str(path).endswith(".csv"):
+        test = read_load_test_csv(path, label)
+        if diameter is not None:
+            test.diameter = diameter
+        return test
     path = history_path(path)
     attrs = attributes(path)
     prefix = f"/reactions/{body}/"

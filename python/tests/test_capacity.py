@@ -69,6 +69,35 @@ def test_the_tool_prints_the_capacity_and_draws_the_curve(tmp_path):
     assert figure.stat().st_size > 10000
 
 
+def test_a_curve_kept_as_csv_reads_back_as_the_run_and_is_a_run_for_the_tool(tmp_path):
+    # --curves writes the run's curve; the CSV, given as a run, gives the tool's row exactly as
+    # the history did (the values written in full precision), beside the history itself.
+    import subprocess
+    import sys
+    from conftest import REPOSITORY
+    from mpile.capacity import read_load_test_csv, write_load_test_csv
+
+    path = history(tmp_path)
+    t = load_test(path)
+    write_load_test_csv(t, tmp_path / "kept.csv", source="mpile run x.toml at abc1234")
+    back = read_load_test_csv(tmp_path / "kept.csv")
+    assert (back.label, back.diameter, back.ended) == ("known", 0.5, "at pile settlement 0.06 m")
+    assert np.array_equal(back.settlement, t.settlement) and np.array_equal(back.load, t.load)
+    assert back.capacity == t.capacity and back.shares == t.shares
+    tool = [sys.executable, str(REPOSITORY / "tools" / "capacity.py")]
+    subprocess.run(tool + [f"{path}:known", "--curves", str(tmp_path / "curves"), "--out",
+                           str(tmp_path / "a.png")], capture_output=True, text=True, check=True)
+    kept = tmp_path / "curves" / "known.csv"
+    assert "# source: mpile run ? " in kept.read_text()
+    again = subprocess.run(tool + [f"{kept}:again", f"{path}:history", "--out", str(tmp_path / "b.png")],
+                           capture_output=True, text=True, check=True)
+    row = " | 0.0600 | 10.0 / 10.0 / 25.0 / 50.0 | 50.0 | 0.314 | 26.0 / 12.5 / 12.5 | at pile settlement 0.06 m |"
+    assert f"| again{row}" in again.stdout.splitlines() and f"| history{row}" in again.stdout.splitlines()
+    (tmp_path / "bad.csv").write_text("settlement_m,load_kN_per_rad\n0.1\n")
+    with pytest.raises(RunFileError, match="bad.csv:2: 1 values for 2 columns"):
+        read_load_test_csv(tmp_path / "bad.csv")
+
+
 class LatticeSnapshot:
     """What moved_zone reads of a snapshot."""
 
