@@ -14,8 +14,8 @@ of the settlement the plug followed, from the snapshots at the test's start and 
 as well, a third: how deep below the final tip and how far out from the wall the installation (the
 phase named installation) moved sand by that same distance.
 
-With --curves DIR each run's curve is also written as DIR/<label>.csv (settlement, load and the
-surfaces' forces, with the run's commit and command in its header); such a CSV is a run too, for
+With --curves DIR each run's curve is also written as DIR/<label>.csv.gz (settlement, load and the
+surfaces' forces, with the run's case and commit in its header); such a CSV is a run too, for
 the figure and the first table, so that a figure of runs that take hours is drawn again without
 them (the zone tables need the run's snapshots and leave it out).
 """
@@ -39,7 +39,7 @@ def main():
     parser.add_argument("--zone", type=float, metavar="F", help="also the zone the test moved by F of its settlement")
     parser.add_argument("--installed", action="store_true",
                         help="with --zone, also where the installation moved the sand by as much")
-    parser.add_argument("--curves", metavar="DIR", help="also write each history run's curve as DIR/<label>.csv")
+    parser.add_argument("--curves", metavar="DIR", help="also write each history run's curve as DIR/<label>.csv.gz")
     args = parser.parse_args()
     if args.installed and args.zone is None:
         parser.error("--installed measures at the distance --zone F sets: give --zone")
@@ -48,11 +48,11 @@ def main():
         for run in args.runs:
             path, _, label = run.partition(":")
             tests.append(load_test(path, label=label or None))
-            if path.endswith(".csv"):
+            if path.endswith((".csv", ".csv.gz")):
                 continue
             if args.curves:
                 os.makedirs(args.curves, exist_ok=True)
-                name = "".join(c if c.isalnum() else "_" for c in tests[-1].label).strip("_") + ".csv"
+                name = "".join(c if c.isalnum() else "_" for c in tests[-1].label).strip("_") + ".csv.gz"
                 attrs = attributes(path)
                 sets = " ".join(f"--set {o}" for o in str(attrs.get("overrides", "")).split("\n") if o)
                 write_load_test_csv(tests[-1], os.path.join(args.curves, name),
