@@ -127,6 +127,14 @@ void ElementPoint::apply(const MixedIncrement& increment) {
       }
     }
   }
+  // A stiffness near the largest double overflows the update: its NaN stresses were written to
+  // the end of the path with exit status 0.
+  for (const double component : stress) {
+    if (!std::isfinite(component)) {
+      throw std::runtime_error("the stress is not finite (a stiffness or strength beyond what a "
+                               "double carries); check the material's parameters");
+    }
+  }
   stress_ = stress;
   state_ = std::move(state);
   for (std::size_t c = 0; c < 6; ++c) {

@@ -488,5 +488,28 @@ TEST(ElementTest, HardeningSoilOedometerFileGivesK0ncAndTheStrains) {
   }
 }
 
+// A stiffness near the largest double (eur_ref = 1e308, a fuzzed mutant) overflows Hardening
+// Soil's update: the path ran 27 s and wrote NaN stresses with exit status 0. It stops at the
+// first increment, exit 1, naming it.
+TEST(ElementTest, AStressThatIsNotFiniteStopsThePathNamingTheIncrement) {
+  std::ifstream shipped(std::string(MPILE_SOURCE_DIR) +
+                        "/cases/element_tests/hardening_soil_triaxial.toml");
+  std::stringstream text;
+  text << shipped.rdbuf();
+  std::string mutant = text.str();
+  const std::string stiffness = "eur_ref = 132e6";
+  ASSERT_NE(mutant.find(stiffness), std::string::npos);
+  mutant.replace(mutant.find(stiffness), stiffness.size(), "eur_ref = 1e308");
+  const auto file = std::filesystem::temp_directory_path() / "mpile_element_overflow.toml";
+  std::ofstream(file) << mutant;
+  ElementTestOptions options;
+  options.file = file.string();
+  options.csv = (std::filesystem::temp_directory_path() / "mpile_element_overflow.csv").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(element_test_command(options, out, err), exit_failure);
+  EXPECT_NE(err.str().find(": path: increment 1: the stress is not finite"), std::string::npos)
+      << err.str();
+}
+
 } // namespace
 } // namespace mpile
