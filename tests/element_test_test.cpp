@@ -31,6 +31,26 @@ int element_line_of(const std::string& text, const std::string& needle) {
                        text.begin(), text.begin() + static_cast<long>(at_position), '\n'));
 }
 
+/// What the element-test command did with `text`, written as `name`.toml in the temporary
+/// directory (its CSV beside it): the exit status, the error output and the file's path.
+struct CommandRun {
+  int status;
+  std::string err;
+  std::string file;
+};
+
+CommandRun element_command_on(const std::string& text, const std::string& name) {
+  const auto directory = std::filesystem::temp_directory_path();
+  const auto file = directory / (name + ".toml");
+  std::ofstream(file) << text;
+  ElementTestOptions options;
+  options.file = file.string();
+  options.csv = (directory / (name + ".csv")).string();
+  std::ostringstream out, err;
+  const int status = element_test_command(options, out, err);
+  return {status, err.str(), file.string()};
+}
+
 ElementTestTable run_element_text(const std::string& text) {
   return run_element_test(read_element_test_text(text, "test.toml"));
 }
@@ -293,16 +313,10 @@ type = "isotropic"
 mean_stress = -10e3
 increments = 10
 )";
-  const auto file = std::filesystem::temp_directory_path() / "mpile_element_tension.toml";
-  std::ofstream(file) << text;
-  ElementTestOptions options;
-  options.file = file.string();
-  options.csv = (std::filesystem::temp_directory_path() / "mpile_element_tension.csv").string();
-  std::ostringstream out, err;
-  EXPECT_EQ(element_test_command(options, out, err), exit_failure);
-  const std::string location =
-      file.string() + ":" + std::to_string(element_line_of(text, "[path]"));
-  EXPECT_NE(err.str().find(location + ": path: increment"), std::string::npos) << err.str();
+  const CommandRun run = element_command_on(text, "mpile_element_tension");
+  EXPECT_EQ(run.status, exit_failure);
+  const std::string location = run.file + ":" + std::to_string(element_line_of(text, "[path]"));
+  EXPECT_NE(run.err.find(location + ": path: increment"), std::string::npos) << run.err;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -500,15 +514,10 @@ TEST(ElementTest, AStressThatIsNotFiniteStopsThePathNamingTheIncrement) {
   const std::string stiffness = "eur_ref = 132e6";
   ASSERT_NE(mutant.find(stiffness), std::string::npos);
   mutant.replace(mutant.find(stiffness), stiffness.size(), "eur_ref = 1e308");
-  const auto file = std::filesystem::temp_directory_path() / "mpile_element_overflow.toml";
-  std::ofstream(file) << mutant;
-  ElementTestOptions options;
-  options.file = file.string();
-  options.csv = (std::filesystem::temp_directory_path() / "mpile_element_overflow.csv").string();
-  std::ostringstream out, err;
-  EXPECT_EQ(element_test_command(options, out, err), exit_failure);
-  EXPECT_NE(err.str().find(": path: increment 1: the stress is not finite"), std::string::npos)
-      << err.str();
+  const CommandRun run = element_command_on(mutant, "mpile_element_overflow");
+  EXPECT_EQ(run.status, exit_failure);
+  EXPECT_NE(run.err.find(": path: increment 1: the stress is not finite"), std::string::npos)
+      << run.err;
 }
 
 } // namespace
