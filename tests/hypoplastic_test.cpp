@@ -633,6 +633,10 @@ TEST(Hypoplastic, ParametersOutsideTheModelsRangeAreRefusedByName) {
   p.alpha = 0.9; // 3 + a^2 - a sqrt(3) (...)^alpha turns negative
   p.e_c0 = 0.7;
   refused(p, "alpha");
+  // A denormal R: its substeps' error, relative to R, never fell; a path ran past a minute.
+  p = karlsruhe_fine_sand(0.8, true);
+  p.r_max = 5e-324;
+  refused(p, "r_max");
 }
 
 } // namespace

@@ -82,7 +82,9 @@ struct StateFactors {
 std::span<const HypoplasticField> hypoplastic_fields() {
   // Ranges: the model's own (von Wolffersdorff 1996; Herle and Gudehus 1999 give the parameters'
   // meaning and typical values), and the intergranular strain's (Niemunis and Herle 1997: m_R >=
-  // m_T > 1, R of order 1e-5 to 1e-4).
+  // m_T > 1, R of order 1e-5 to 1e-4). R is bounded below an order under the smallest published
+  // calibration: at R = 1e-100 the intergranular strain's substeps, error relative to R, fell to
+  // their floor and one simple-shear path ran past a minute (at 1e-20, 0.17 s).
   static const HypoplasticField fields[] = {
       {"critical_friction_angle", &HypoplasticParameters::critical_friction_angle, false, "degrees",
        between(10.0, true, 60.0, true), "phi_c, the critical state friction angle"},
@@ -104,7 +106,7 @@ std::span<const HypoplasticField> hypoplastic_fields() {
        "e0, the initial void ratio, at most e_i0"},
       {"intergranular_strain", &HypoplasticParameters::intergranular_strain, true, "-",
        between(0.0, true, 1.0, true), "1: with the intergranular strain, 0: without"},
-      {"r_max", &HypoplasticParameters::r_max, true, "-", between(0.0, false, 1e-2, true),
+      {"r_max", &HypoplasticParameters::r_max, true, "-", between(1e-6, true, 1e-2, true),
        "R, the size of the intergranular strain's elastic range"},
       {"m_r", &HypoplasticParameters::m_r, true, "-", at_least(1.0),
        "m_R, the stiffness multiplier after a 180 degree reversal, at least m_T"},
