@@ -1,10 +1,12 @@
 # The Python package (python/mpile) and the ParaView script's decisions: pytest on histories and
 # snapshots whose values are known (the synthetic run, files written with h5py and VTK) and on a
-# real run of V7 made by this build's mpile (MPILE). docs/python.md.
+# real run of V7 made by this build's mpile (MPILE). docs/python.md. Labelled python: under ASan it
+# cost 36 s for its one run of V7, which VerificationFiles.V7BlockSlidesAsCoulombFrictionSays makes.
 add_test(NAME PythonPackage.Pytest
          COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider -m "not install"
                  ${PROJECT_SOURCE_DIR}/python/tests)
-set_tests_properties(PythonPackage.Pytest PROPERTIES ENVIRONMENT "MPILE=$<TARGET_FILE:mpile>"
+set_tests_properties(PythonPackage.Pytest PROPERTIES LABELS python
+                     ENVIRONMENT "MPILE=$<TARGET_FILE:mpile>"
                      PASS_REGULAR_EXPRESSION " passed" FAIL_REGULAR_EXPRESSION " (failed|skipped|error)")
 
 # pip install into a temporary virtual environment, offline, then `import mpile` from outside the
