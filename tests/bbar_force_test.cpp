@@ -51,7 +51,7 @@ TEST(BbarConsistentForce, ResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
                "duration = 0.505", "duration = 0.02") +
       "[solver]\nimplicit_pore_pressure = true\nbbar_consistent_force = true\n";
   std::vector<Particles> runs;
-  for (const int threads : {1, 2, 3}) {
+  for (const int threads : compared_thread_counts()) {
     with_threads(threads, [&] {
       CaseRun run(text);
       ASSERT_TRUE(run.solver->settings().bbar_consistent_force);

@@ -88,7 +88,7 @@ TEST(CoupledSoil, WaveDampingGrowsWithConductivity) {
 void expect_bitwise_for_one_two_and_three_threads(const std::string& text, double until) {
   std::vector<Particles> runs;
   std::vector<double> drag;
-  for (const int threads : {1, 2, 3}) {
+  for (const int threads : compared_thread_counts()) {
     with_threads(threads, [&] {
       CaseRun run(text);
       run.solver->advance_to(until);

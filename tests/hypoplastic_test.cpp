@@ -321,7 +321,7 @@ TEST(Hypoplastic, ATwistedDiscOnSandIsBitwiseIdenticalForOneTwoAndThreeThreads) 
     std::vector<std::vector<RigidBody>> bodies;
     std::vector<std::unique_ptr<Material>> materials;
     const Material* scene_material = nullptr;
-    for (const int threads : {1, 2, 3}) {
+    for (const int threads : compared_thread_counts()) {
       with_threads(threads, [&] {
         // As `mpile run` starts: the K0 stresses first, then the solver, whose first step
         // follows from the stiffness they give the sand.
@@ -479,7 +479,7 @@ TEST(Hypoplastic, ASandRingTwistedInCyclesLosesItsEffectiveStressAsItsElementTes
 
 TEST(Hypoplastic, TheSandRingIsBitwiseIdenticalForOneTwoAndThreeThreads) {
   std::vector<Particles> runs;
-  for (const int threads : {1, 2, 3}) {
+  for (const int threads : compared_thread_counts()) {
     runs.push_back(twist_ring(0.05, threads, [](const Scene&, ExplicitSolver&) {})->particles);
   }
   for (std::size_t k = 1; k < runs.size(); ++k) {

@@ -510,7 +510,7 @@ TEST(UndrainedSoil, CoupledSoilAtAWallMeetsThePileAsUndrainedSoilDoes) {
 TEST(UndrainedSoil, ResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
   std::vector<Particles> runs;
   std::vector<std::array<double, 3>> forces;
-  for (const int threads : {1, 2, 3}) {
+  for (const int threads : compared_thread_counts()) {
     with_threads(threads, [&] {
       const auto run = spun_pile_in_saturated_soil(20);
       runs.push_back(run->scene->particles);
