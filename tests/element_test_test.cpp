@@ -6,6 +6,7 @@
 #include "cases/case_error.hpp"
 #include "cases/element_test_file.hpp"
 #include "engine/materials/material_registry.hpp"
+#include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
 
@@ -506,14 +507,9 @@ TEST(ElementTest, HardeningSoilOedometerFileGivesK0ncAndTheStrains) {
 // Soil's update: the path ran 27 s and wrote NaN stresses with exit status 0. It stops at the
 // first increment, exit 1, naming it.
 TEST(ElementTest, AStressThatIsNotFiniteStopsThePathNamingTheIncrement) {
-  std::ifstream shipped(std::string(MPILE_SOURCE_DIR) +
-                        "/cases/element_tests/hardening_soil_triaxial.toml");
-  std::stringstream text;
-  text << shipped.rdbuf();
-  std::string mutant = text.str();
-  const std::string stiffness = "eur_ref = 132e6";
-  ASSERT_NE(mutant.find(stiffness), std::string::npos);
-  mutant.replace(mutant.find(stiffness), stiffness.size(), "eur_ref = 1e308");
+  const std::string mutant =
+      replaced(read_text(source / "cases/element_tests/hardening_soil_triaxial.toml"),
+               "eur_ref = 132e6", "eur_ref = 1e308");
   const CommandRun run = element_command_on(mutant, "mpile_element_overflow");
   EXPECT_EQ(run.status, exit_failure);
   EXPECT_NE(run.err.find(": path: increment 1: the stress is not finite"), std::string::npos)
