@@ -898,7 +898,13 @@ int substep_count(const StrainIncrement& strain, double young, double nu, double
   }
   trial_size = std::sqrt(trial_size);
   const double scale = 0.1 * (std::max(sigma_3, 0.0) + confinement_offset);
-  return std::clamp(static_cast<int>(std::ceil(trial_size / scale)), 1, 100);
+  // Bounded before the cast: an infinite or huge ratio converted to int is undefined (on x86 it
+  // read INT_MIN and took one substep where 100 were asked); a NaN ratio takes one.
+  const double count = std::ceil(trial_size / scale);
+  if (count >= 100.0) {
+    return 100;
+  }
+  return count > 1.0 ? static_cast<int>(count) : 1;
 }
 
 /// Mobilised dilatancy (Rowe, as in PLAXIS), explicit from the start of the step: sin psi_m from
