@@ -207,6 +207,17 @@ private:
     return std::nullopt;
   }
 
+  /// Where the output directory's path came from, for its messages.
+  std::string output_directory_source() const {
+    if (!options_.output_directory.empty()) {
+      return "--out";
+    }
+    if (!spec_.output.directory.empty()) {
+      return "[output] directory in " + spec_.file;
+    }
+    return "the default out/<case name>";
+  }
+
   /// The output directory made and locked (one run at a time in it), an earlier run's outputs
   /// removed for a fresh run, and the run's log opened beside them.
   Stop prepare_outputs() {
@@ -214,6 +225,12 @@ private:
     checkpoint_path_ = directory_ + "/checkpoint.h5";
     std::error_code error;
     std::filesystem::create_directories(directory_, error);
+    if (error == std::errc::file_exists || error == std::errc::not_a_directory) {
+      // The path, or a folder on it, is a file: the user's choice of path, not the machine's.
+      err_ << "mpile: the output directory " << directory_ << " (" << output_directory_source()
+           << ") cannot be made: it or a folder on its path is a file\n";
+      return exit_bad_input;
+    }
     if (error) {
       err_ << "mpile: cannot create the output directory " << directory_ << ": " << error.message()
            << '\n';

@@ -1243,6 +1243,28 @@ TEST(RunCommand, OneRunAtATimeWritesToADirectory) {
   EXPECT_EQ(run_case(options, out, err), exit_interrupted) << err.str(); // released
 }
 
+// An output path that is a file, or runs through one, is the user's mistake (exit status 2), named
+// with where the path came from; nothing is written beside or into the file.
+TEST(RunCommand, AnOutputPathThatIsAFileIsRefusedAsBadInput) {
+  const auto directory = fresh_directory("out_is_a_file");
+  const std::string path = write_case(directory);
+  const auto file = directory / "taken";
+  std::ofstream(file) << "not a directory\n";
+  for (const auto& out_path : {file, file / "below"}) {
+    RunOptions options;
+    options.case_path = path;
+    options.output_directory = out_path.string();
+    options.stop_after_steps = 5;
+    std::ostringstream out, err;
+    EXPECT_EQ(run_case(options, out, err), exit_bad_input) << err.str();
+    EXPECT_NE(
+        err.str().find("the output directory " + out_path.string() + " (--out) cannot be made"),
+        std::string::npos)
+        << err.str();
+  }
+  EXPECT_EQ(read_text(file), "not a directory\n");
+}
+
 TEST(RunCommand, AFreshRunRemovesOnlyWhatTheEarlierRunWrote) {
   const auto directory = fresh_directory("manifest");
   const std::string path = write_case(directory);
