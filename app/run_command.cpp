@@ -63,14 +63,21 @@ private:
   void (*previous_terminate_)(int) = SIG_DFL;
 };
 
-std::string output_directory(const RunOptions& options, const CaseSpec& spec) {
+/// The run's output directory and where its path came from (named in its messages): --out, else
+/// the case's [output] directory, else out/<case stem>.
+struct OutputDirectory {
+  std::string path;
+  std::string source;
+};
+
+OutputDirectory output_directory(const RunOptions& options, const CaseSpec& spec) {
   if (!options.output_directory.empty()) {
-    return options.output_directory;
+    return {options.output_directory, "--out"};
   }
   if (!spec.output.directory.empty()) {
-    return spec.output.directory;
+    return {spec.output.directory, "[output] directory in " + spec.file};
   }
-  return "out/" + std::filesystem::path(spec.file).stem().string();
+  return {"out/" + std::filesystem::path(spec.file).stem().string(), "the default out/<case name>"};
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -152,7 +159,8 @@ private:
     try {
       spec_ = read_case_file(options_.case_path, options_.overrides);
       if (options_.continue_run && restart_.empty()) {
-        const Continuation c = find_continuation(output_directory(options_, spec_), spec_.resolved);
+        const Continuation c =
+            find_continuation(output_directory(options_, spec_).path, spec_.resolved);
         if (c.complete) {
           out_ << "mpile: " << c.reason << "; nothing to continue\n";
           return exit_success;
@@ -207,27 +215,17 @@ private:
     return std::nullopt;
   }
 
-  /// Where the output directory's path came from, for its messages.
-  std::string output_directory_source() const {
-    if (!options_.output_directory.empty()) {
-      return "--out";
-    }
-    if (!spec_.output.directory.empty()) {
-      return "[output] directory in " + spec_.file;
-    }
-    return "the default out/<case name>";
-  }
-
   /// The output directory made and locked (one run at a time in it), an earlier run's outputs
   /// removed for a fresh run, and the run's log opened beside them.
   Stop prepare_outputs() {
-    directory_ = output_directory(options_, spec_);
+    const OutputDirectory output = output_directory(options_, spec_);
+    directory_ = output.path;
     checkpoint_path_ = directory_ + "/checkpoint.h5";
     std::error_code error;
     std::filesystem::create_directories(directory_, error);
     if (error == std::errc::file_exists || error == std::errc::not_a_directory) {
       // The path, or a folder on it, is a file: the user's choice of path, not the machine's.
-      err_ << "mpile: the output directory " << directory_ << " (" << output_directory_source()
+      err_ << "mpile: the output directory " << directory_ << " (" << output.source
            << ") cannot be made: it or a folder on its path is a file\n";
       return exit_bad_input;
     }
