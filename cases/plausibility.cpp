@@ -45,6 +45,17 @@ std::size_t stiffest_particle(const CaseSpec& spec, const Scene& scene) {
 
 void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double first_step) {
   const double run = spec.end_time();
+  // Steps land on snapshot times, so an interval shorter than the stable step sets the step.
+  const double snapshot_interval = spec.output.snapshot_interval;
+  if (snapshot_interval > 0.0 && !(run / snapshot_interval <= max_run_steps)) {
+    std::ostringstream s;
+    s << spec.file << ": output.snapshot_interval = " << snapshot_interval
+      << " s: steps land on snapshot times, so the phases' " << run << " s would take about "
+      << run / snapshot_interval << " steps (more than " << max_run_steps
+      << ") and as many snapshots; the first stable step is " << first_step
+      << " s (0 writes the first and last snapshots only)";
+    throw CaseError(s.str());
+  }
   const double steps = run / first_step;
   const bool too_many = !(steps <= max_run_steps);
   const bool too_long = first_step > run;

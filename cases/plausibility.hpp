@@ -11,7 +11,8 @@ namespace mpile {
 inline constexpr double max_run_steps = 1e9;
 
 /// Refuses (CaseError) a run that cannot be carried out as written, from its first stable step:
-/// more than max_run_steps steps for the phases' durations, or one step longer than the whole run
+/// more than max_run_steps steps for the phases' durations (at the first stable step, or at a
+/// shorter snapshot interval, on whose times steps land), or one step longer than the whole run
 /// (waves that cannot cross a cell in the run). The message names the material, the particle and
 /// the cell that set the step, and the keys to check. Needs the particles located in their cells.
 void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double first_step);

@@ -19,6 +19,22 @@ bool reached(double time, double target, double dt) {
   return time >= target - 1e-9 * dt;
 }
 
+/// A schedule's next time once `next` is reached at t: one interval on, as long as that is past t
+/// (an interval longer than the step, the usual case); else the first whole interval past t,
+/// counted at once. Adding a short interval one at a time would take dt / interval additions a
+/// step, and for ever where the interval is below the rounding of t (1e-300 s).
+double next_due(double next, double interval, double t, double dt) {
+  next += interval;
+  if (reached(t, next, dt)) {
+    const double past = t + 1e-9 * dt;
+    next += std::ceil((past - next) / interval) * interval;
+    if (reached(t, next, dt)) {
+      next = std::nextafter(past, std::numeric_limits<double>::infinity());
+    }
+  }
+  return next;
+}
+
 /// Below this vertical speed (m/s) a pile counts as at rest between blows.
 constexpr double rest_speed = 1e-3;
 
@@ -188,15 +204,17 @@ void PhaseRunner::outputs_after_step() {
   const double dt = solver_.last_time_step();
   if (schedule_.history_interval == 0.0 || reached(t, progress_.next_history_time, dt)) {
     check_energy_residual(record_row(), true);
-    while (schedule_.history_interval > 0.0 && reached(t, progress_.next_history_time, dt)) {
-      progress_.next_history_time += schedule_.history_interval;
+    if (schedule_.history_interval > 0.0) {
+      progress_.next_history_time =
+          next_due(progress_.next_history_time, schedule_.history_interval, t, dt);
     }
   } else if (solver_.step_count() % guard_steps == 0) {
     check_energy_residual(solver_.energy_balance(), false);
   }
   bool snapshot_due = reached(t, progress_.next_snapshot_time, dt);
-  while (schedule_.snapshot_interval > 0.0 && reached(t, progress_.next_snapshot_time, dt)) {
-    progress_.next_snapshot_time += schedule_.snapshot_interval;
+  if (snapshot_due && schedule_.snapshot_interval > 0.0) {
+    progress_.next_snapshot_time =
+        next_due(progress_.next_snapshot_time, schedule_.snapshot_interval, t, dt);
   }
   const auto& listed = schedule_.snapshot_times;
   while (progress_.next_listed_snapshot < listed.size() &&
@@ -211,8 +229,9 @@ void PhaseRunner::outputs_after_step() {
     take_snapshot(t);
   }
   if (reached(t, progress_.next_checkpoint_time, dt)) {
-    while (schedule_.checkpoint_interval > 0.0 && reached(t, progress_.next_checkpoint_time, dt)) {
-      progress_.next_checkpoint_time += schedule_.checkpoint_interval;
+    if (schedule_.checkpoint_interval > 0.0) {
+      progress_.next_checkpoint_time =
+          next_due(progress_.next_checkpoint_time, schedule_.checkpoint_interval, t, dt);
     }
     for (RunObserver* observer : observers_) {
       observer->checkpoint_due();

@@ -3,6 +3,7 @@
 #include "app/run_command.hpp"
 #include "cases/case_error.hpp"
 #include "cases/case_spec.hpp"
+#include "cases/plausibility.hpp"
 #include "tests/case_run.hpp"
 
 #include <gtest/gtest.h>
@@ -963,6 +964,35 @@ TEST(CaseReader, ARunThatWouldStepForEverOrNotAtAllIsRefusedBeforeAnythingIsWrit
     EXPECT_NE(run_err.str().find(reason), std::string::npos) << run_err.str();
     EXPECT_FALSE(std::filesystem::exists(directory / "out")) << to;
   }
+}
+
+TEST(CaseReader, ASnapshotIntervalThatWouldSetTheStepIsRefusedBeforeAnythingIsWritten) {
+  // Steps land on snapshot times: at 1e-12 s this case's 0.2 s would take 2e11 steps and write as
+  // many snapshots (a run did start, cut to steps of 1e-12 s). The bound that refuses a mistyped
+  // material's step count (max_run_steps) refuses it, naming the key; 1e-5 s, 2e4 steps of a
+  // debugging run, is allowed.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_snapshot_interval_test";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const std::string path = (directory / "case.toml").string();
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  std::ofstream(path) << edited("snapshot_interval = 0.05", "snapshot_interval = 1e-12");
+  std::ostringstream out, err;
+  EXPECT_EQ(check_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("case.toml: output.snapshot_interval = 1e-12 s: steps land on "
+                           "snapshot times"),
+            std::string::npos)
+      << err.str();
+  EXPECT_NE(err.str().find("(more than 1e+09)"), std::string::npos) << err.str();
+  std::ostringstream run_out, run_err;
+  EXPECT_EQ(run_case(options, run_out, run_err), exit_bad_input);
+  EXPECT_FALSE(std::filesystem::exists(directory / "out"));
+  std::ofstream(path) << edited("snapshot_interval = 0.05", "snapshot_interval = 1e-5");
+  const CaseSpec spec = read_case_file(path);
+  const auto scene = build_scene(spec);
+  EXPECT_NO_THROW(refuse_implausible_run(spec, *scene, 1e-3));
 }
 
 TEST(CaseReader, AnImplausibleRunBesideARigidBodyNamesTheCasesOwnMaterial) {

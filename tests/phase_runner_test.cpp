@@ -231,6 +231,35 @@ TEST(PhaseRunner, ARunContinuedWithChangedIntervalsFollowsTheNewOnes) {
   }
 }
 
+// Intervals shorter than a step (1e-3 s against the bar's 0.08 s) or below the rounding of the
+// time itself (1e-300 s): a row and a checkpoint at every step, as an interval of 0 gives rows.
+// At 1e-300 s the schedule was kept by adding the interval until it passed t, which never
+// happened: the run spun in its first step.
+TEST(PhaseRunner, IntervalsShorterThanAStepGiveAnOutputEveryStepAndEnd) {
+  for (const double interval : {1e-3, 1e-300}) {
+    CaseRun run(read_text(source / "cases/verification/vibrating_bar.toml"));
+    RunProgress progress;
+    begin_phase(progress, bar_phases, *run.scene, 0, 0.0);
+    OutputSchedule every_step = bar_schedule();
+    every_step.history_interval = interval;
+    every_step.checkpoint_interval = interval;
+    Recorder recorder(*run.solver);
+    PhaseRunner runner(*run.solver, bar_phases, every_step, progress, run.log);
+    runner.add_observer(recorder);
+    runner.start();
+    ASSERT_EQ(runner.run([](std::size_t, double) {}, [](long) { return false; }),
+              PhaseRunner::Outcome::complete);
+    const auto steps = static_cast<std::size_t>(run.solver->step_count());
+    // A row at the start and one after each step; the first phase's end adds none (its step's
+    // row is it).
+    std::vector<double> rows = recorder.times_of("row");
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+    EXPECT_EQ(rows.size(), steps + 1) << interval;
+    EXPECT_EQ(recorder.times_of("checkpoint").size(), steps) << interval;
+    EXPECT_NEAR(run.solver->time(), 16.4, 1e-12 * 16.4) << interval;
+  }
+}
+
 TEST(PhaseRunner, APhaseEndsAtEquilibriumOnTheCheckStepWhereTheMeasurePasses) {
   // The damped self-weight column: equilibrium within 1e-5 long before its 4 s.
   CaseRun run(read_text(source / "cases/verification/self_weight_column.toml"));
