@@ -822,7 +822,12 @@ std::vector<TableSpec> declare() {
             .length(2),
         integer("particle", "the particle with this id; or position")
             .at_least(0)
-            .into(&MonitorSpec::particle)},
+            .into(&MonitorSpec::particle),
+        boolean("fixed",
+                "true: position is a point fixed in space (a transducer), read as the soil "
+                "particles' average around it at every row")
+            .or_default(false)
+            .into(&MonitorSpec::fixed)},
        false});
   return t;
 }

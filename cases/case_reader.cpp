@@ -962,6 +962,10 @@ MonitorSpec read_monitor(TomlTable& table, const Axes& axes,
     table.fail(particle,
                "must be a particle id (0 or more), got " + std::to_string(*monitor.particle));
   }
+  if (monitor.fixed && monitor.particle) {
+    table.fail(table.key_of(&MonitorSpec::fixed),
+               "a fixed monitor is a point in space: give position = [r, y], not particle");
+  }
   monitor.where = location(table, key) + ": " + table.key_path(key);
   table.finish();
   return monitor;

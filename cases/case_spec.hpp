@@ -157,6 +157,9 @@ struct MonitorSpec {
   std::string where; // "file:line: output.monitor.<key>", for errors found once particles exist
   std::optional<std::array<double, 2>> position;
   std::optional<long> particle;
+  /// A point fixed in space (a transducer), sampled from the soil particles around it at every
+  /// row, instead of the particle nearest it followed.
+  bool fixed = false;
 };
 
 struct OutputSpec {

@@ -233,6 +233,9 @@ void HistoryWriter::add_monitors(Hdf5File& file, const CaseSpec& spec, const Sce
   for (const MonitorSpec& spec_monitor : spec.output.monitors) {
     Monitor monitor;
     monitor.group = "/monitors/" + spec_monitor.name;
+    if (spec_monitor.fixed) {
+      monitor.fixed_point = spec_monitor.position;
+    }
     const bool known = reopened_ && file.exists(monitor.group + "/r");
     if (known) {
       monitor.id = static_cast<std::int32_t>(file.number_attribute(monitor.group, "particle_id"));
@@ -259,6 +262,8 @@ void HistoryWriter::add_monitors(Hdf5File& file, const CaseSpec& spec, const Sce
       file.set_attribute(monitor.group, "material", static_cast<double>(monitor.material));
       file.set_attribute(monitor.group, "material_name", scene.material_names[monitor.material]);
       file.set_attribute(monitor.group, "followed_from_row", static_cast<double>(rows_));
+      // A fixed monitor samples the material of the particle nearest its point at the start.
+      file.set_attribute(monitor.group, "fixed", spec_monitor.fixed ? 1.0 : 0.0);
       if (spec_monitor.position) {
         std::ostringstream position;
         position << "[" << (*spec_monitor.position)[0] << ", " << (*spec_monitor.position)[1]
@@ -387,7 +392,9 @@ void HistoryWriter::record(const ExplicitSolver& solver, std::size_t phase,
     series_.at(base + "/driving_torque").append(body.driving[RIGID_ROTATION]);
   }
   for (const Monitor& monitor : monitors_) {
-    const std::vector<double> values = monitor_values(scene, monitor.id, monitor.material);
+    const std::vector<double> values =
+        monitor.fixed_point ? fixed_point_values(scene, *monitor.fixed_point, monitor.material)
+                            : monitor_values(scene, monitor.id, monitor.material);
     for (std::size_t k = 0; k < values.size(); ++k) {
       series_.at(monitor.datasets[k]).append(values[k]);
     }

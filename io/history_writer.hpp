@@ -5,6 +5,7 @@
 #include "io/hdf5_file.hpp"
 #include "solver/explicit_solver.hpp"
 
+#include <array>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -82,6 +83,7 @@ private:
     std::string group;
     std::int32_t id = 0;
     std::uint16_t material = 0;
+    std::optional<std::array<double, 2>> fixed_point; // a fixed monitor's point, else none
     std::vector<std::string> datasets;
   };
   std::vector<Monitor> monitors_;

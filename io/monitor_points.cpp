@@ -80,13 +80,11 @@ std::vector<MonitorQuantity> monitor_quantities(const Scene& scene, std::uint16_
   return q;
 }
 
-std::vector<double> monitor_values(const Scene& scene, std::int32_t id, std::uint16_t material) {
+namespace {
+
+/// The quantities of particle i, in monitor_quantities' order.
+std::vector<double> particle_values(const Scene& scene, std::size_t i, std::uint16_t material) {
   const Particles& p = scene.particles;
-  const std::size_t i = index_of(p, id);
-  const std::size_t count = monitor_quantities(scene, material).size();
-  if (i == p.size()) {
-    return std::vector<double>(count, std::numeric_limits<double>::quiet_NaN());
-  }
   const bool theta = has_theta(scene.mode);
   std::vector<double> v{p.r[i], p.y[i], p.r[i] - p.r0[i], p.y[i] - p.y0[i], p.v_r[i], p.v_y[i]};
   if (theta) {
@@ -109,6 +107,47 @@ std::vector<double> monitor_values(const Scene& scene, std::int32_t id, std::uin
                                      p.state[i * static_cast<std::size_t>(p.state_stride) + s]));
   }
   return v;
+}
+
+} // namespace
+
+std::vector<double> monitor_values(const Scene& scene, std::int32_t id, std::uint16_t material) {
+  const std::size_t i = index_of(scene.particles, id);
+  if (i == scene.particles.size()) {
+    return std::vector<double>(monitor_quantities(scene, material).size(),
+                               std::numeric_limits<double>::quiet_NaN());
+  }
+  return particle_values(scene, i, material);
+}
+
+std::vector<double> fixed_point_values(const Scene& scene, std::array<double, 2> point,
+                                       std::uint16_t material) {
+  const Particles& p = scene.particles;
+  const Grid& grid = scene.grid;
+  // The tent of the grid cell the point lies in, one cell wide each way: the reach of the linear
+  // shape functions, through which the solver itself sees the particles at a node there.
+  const double reach_r = grid.r_axis().cell_size(grid.r_axis().locate(point[0]));
+  const double reach_y = grid.y_axis().cell_size(grid.y_axis().locate(point[1]));
+  std::vector<double> sum(monitor_quantities(scene, material).size(), 0.0);
+  double weights = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double wr = 1.0 - std::abs(p.r[i] - point[0]) / reach_r;
+    const double wy = 1.0 - std::abs(p.y[i] - point[1]) / reach_y;
+    if (p.material[i] != material || wr <= 0.0 || wy <= 0.0) {
+      continue;
+    }
+    // Volume-weighted, so that a particle stands for the soil it holds (a stretched one for more).
+    const double w = p.volume[i] * wr * wy;
+    const std::vector<double> v = particle_values(scene, i, material);
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      sum[k] += w * v[k];
+    }
+    weights += w;
+  }
+  for (double& value : sum) {
+    value = weights > 0.0 ? value / weights : std::numeric_limits<double>::quiet_NaN();
+  }
+  return sum;
 }
 
 } // namespace mpile

@@ -6,6 +6,7 @@
 #include "engine/materials/mohr_coulomb.hpp"
 #include "engine/particle_fill.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/monitor_points.hpp"
 #include "io/output_directory.hpp"
 #include "io/source_commit.hpp"
 #include "io/vtk_writer.hpp"
@@ -458,6 +459,90 @@ TEST(RunCommand, AMonitorFollowsItsParticleAndRecordsItsStress) {
     EXPECT_EQ(history.read_doubles(series), split.read_doubles(series)) << series;
   }
   EXPECT_EQ(history.read_doubles("/monitors/middle/volumetric_strain").size(), y.size());
+}
+
+// A fixed monitor is a transducer: it stays at its point and reads the soil particles around it,
+// weighted by their volume and by the tent of the grid cell the point is in (docs/case-format.md,
+// output.monitor.fixed). Checked against the same average taken from the last snapshot, against the
+// K0 state at the start, at a point above the surface (no soil: NaN), and across a restart.
+TEST(RunCommand, AFixedMonitorReadsTheSoilAroundItsPoint) {
+  const auto directory = fresh_directory("fixed_monitor");
+  const std::string path = (directory / "column.toml").string();
+  std::ofstream(path) << std::string(shaking_column) +
+                             "[[output.monitor]]\nname = \"probe\"\nposition = [0.3, 0.5]\n"
+                             "fixed = true\n";
+  ASSERT_NO_FATAL_FAILURE(run_whole_and_split(path, directory, 137));
+  Hdf5File history((directory / "whole" / "history.h5").string(), Hdf5File::Mode::read);
+  EXPECT_EQ(history.number_attribute("/monitors/probe", "fixed"), 1.0);
+  const auto y = history.read_doubles("/monitors/probe/y");
+  const auto r = history.read_doubles("/monitors/probe/r");
+  const auto sigma_yy = history.read_doubles("/monitors/probe/sigma_yy");
+  // At t = 0 the particles (2 x 2 per cell of 0.1 m) lie symmetric about y = 0.5 within the
+  // tent, so its centre is 0.5 to round-off; in r the volumes grow with r (axisymmetry) and pull
+  // it outward, by less than a quarter cell. sigma_yy is linear in y (K0 state), so its weighted
+  // mean is its value at the centre: round-off only.
+  EXPECT_NEAR(y.front(), 0.5, 1e-12);
+  EXPECT_GT(r.front(), 0.3);
+  EXPECT_LT(r.front(), 0.325);
+  EXPECT_NEAR(sigma_yy.front(), -1800.0 * 9.81 * (1.0 - y.front()), 1e-9 * 1800.0 * 9.81);
+  // Above the surface there is no soil within the tent: NaN. (A run refuses a monitor with no
+  // soil particle near its point at the start, fixed or not.)
+  const CaseRun column(shaking_column);
+  for (const double value : fixed_point_values(*column.scene, {0.3, 1.15}, 0)) {
+    EXPECT_TRUE(std::isnan(value));
+  }
+
+  // The last row is the tent average of the last snapshot's particles (written at the same time).
+  std::filesystem::path last;
+  for (const auto& entry : std::filesystem::directory_iterator(directory / "whole")) {
+    if (entry.path().extension() == ".vtu" && entry.path() > last) {
+      last = entry.path();
+    }
+  }
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(last.string().c_str());
+  reader->Update();
+  vtkUnstructuredGrid* grid = reader->GetOutput();
+  vtkDataArray* volume = grid->GetPointData()->GetArray("volume");
+  vtkDataArray* stress = grid->GetPointData()->GetArray("sigma_yy");
+  ASSERT_NE(volume, nullptr);
+  ASSERT_NE(stress, nullptr);
+  double weighted = 0.0, weights = 0.0, centre = 0.0;
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i) {
+    const double* x = grid->GetPoint(i);
+    // The point's cell is 0.1 m in r (the zone [0, 0.4]) and in y.
+    const double w = volume->GetTuple1(i) * std::max(0.0, 1.0 - std::abs(x[0] - 0.3) / 0.1) *
+                     std::max(0.0, 1.0 - std::abs(x[1] - 0.5) / 0.1);
+    weighted += w * stress->GetTuple1(i);
+    centre += w * x[1];
+    weights += w;
+  }
+  ASSERT_GT(weights, 0.0);
+  // The same sum in another order (the snapshot's): round-off of the sum only.
+  EXPECT_NEAR(sigma_yy.back(), weighted / weights, 1e-9 * 1800.0 * 9.81);
+  EXPECT_NEAR(y.back(), centre / weights, 1e-12);
+
+  // Stopped and restarted: every value equals the whole run's.
+  Hdf5File split((directory / "split" / "history.h5").string(), Hdf5File::Mode::read);
+  for (const char* series :
+       {"/monitors/probe/sigma_yy", "/monitors/probe/r", "/monitors/probe/volumetric_strain"}) {
+    EXPECT_EQ(history.read_doubles(series), split.read_doubles(series)) << series;
+  }
+}
+
+TEST(RunCommand, AFixedMonitorNeedsAPosition) {
+  const auto directory = fresh_directory("fixed_monitor_particle");
+  const std::string path = (directory / "column.toml").string();
+  std::ofstream(path) << std::string(shaking_column) +
+                             "[[output.monitor]]\nname = \"probe\"\nparticle = 3\nfixed = true\n";
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("output.monitor[0].fixed: a fixed monitor is a point in space"),
+            std::string::npos)
+      << err.str();
 }
 
 TEST(RunCommand, AMonitorThatFindsNoParticleIsRefusedBeforeAnythingIsWritten) {
