@@ -377,6 +377,20 @@ std::vector<std::string> particle_datasets() {
 
 /// Runs a case whole (into directory/whole) and split (into directory/split: stopped after
 /// stop_after steps, then restarted from a copy of its checkpoint).
+/// The particles of a run's last snapshot (the .vtu last by name in its directory), read by reader.
+vtkUnstructuredGrid* last_snapshot(const std::filesystem::path& directory,
+                                   vtkXMLUnstructuredGridReader* reader) {
+  std::filesystem::path last;
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    if (entry.path().extension() == ".vtu" && entry.path() > last) {
+      last = entry.path();
+    }
+  }
+  reader->SetFileName(last.string().c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
 void run_whole_and_split(const std::string& path, const std::filesystem::path& directory,
                          long stop_after) {
   std::ostringstream out, err;
@@ -424,16 +438,8 @@ TEST(RunCommand, AMonitorFollowsItsParticleAndRecordsItsStress) {
   EXPECT_NEAR(p.front(), -(sigma_yy.front() + 2.0 * sigma_rr.front()) / 3.0, 1e-9 * 1800.0 * 9.81);
 
   // The last row is the particle with that id in the last snapshot (written at the same time).
-  std::filesystem::path last;
-  for (const auto& entry : std::filesystem::directory_iterator(directory / "whole")) {
-    if (entry.path().extension() == ".vtu" && entry.path() > last) {
-      last = entry.path();
-    }
-  }
   vtkNew<vtkXMLUnstructuredGridReader> reader;
-  reader->SetFileName(last.string().c_str());
-  reader->Update();
-  vtkUnstructuredGrid* grid = reader->GetOutput();
+  vtkUnstructuredGrid* grid = last_snapshot(directory / "whole", reader.GetPointer());
   vtkDataArray* ids = grid->GetPointData()->GetArray("id");
   vtkDataArray* sigma_ry = grid->GetPointData()->GetArray("sigma_ry");
   ASSERT_NE(ids, nullptr);
@@ -493,16 +499,8 @@ TEST(RunCommand, AFixedMonitorReadsTheSoilAroundItsPoint) {
   }
 
   // The last row is the tent average of the last snapshot's particles (written at the same time).
-  std::filesystem::path last;
-  for (const auto& entry : std::filesystem::directory_iterator(directory / "whole")) {
-    if (entry.path().extension() == ".vtu" && entry.path() > last) {
-      last = entry.path();
-    }
-  }
   vtkNew<vtkXMLUnstructuredGridReader> reader;
-  reader->SetFileName(last.string().c_str());
-  reader->Update();
-  vtkUnstructuredGrid* grid = reader->GetOutput();
+  vtkUnstructuredGrid* grid = last_snapshot(directory / "whole", reader.GetPointer());
   vtkDataArray* volume = grid->GetPointData()->GetArray("volume");
   vtkDataArray* stress = grid->GetPointData()->GetArray("sigma_yy");
   ASSERT_NE(volume, nullptr);
