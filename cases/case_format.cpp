@@ -827,7 +827,12 @@ std::vector<TableSpec> declare() {
                 "true: position is a point fixed in space (a transducer), read as the soil "
                 "particles' average around it at every row")
             .or_default(false)
-            .into(&MonitorSpec::fixed)},
+            .into(&MonitorSpec::fixed),
+        string("material",
+               "a fixed monitor's material; named, its point may lie where that soil arrives "
+               "later (NaN rows until then)")
+            .or_computed("that of the soil particle nearest position at the start")
+            .into(&MonitorSpec::material)},
        false});
   return t;
 }

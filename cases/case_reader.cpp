@@ -928,7 +928,7 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
   return cpt;
 }
 
-MonitorSpec read_monitor(TomlTable& table, const Axes& axes,
+MonitorSpec read_monitor(TomlTable& table, const Axes& axes, const CaseSpec& spec,
                          const std::vector<MonitorSpec>& earlier) {
   MonitorSpec monitor;
   table.read_into(monitor); // its name and particle
@@ -965,6 +965,21 @@ MonitorSpec read_monitor(TomlTable& table, const Axes& axes,
   if (monitor.fixed && monitor.particle) {
     table.fail(table.key_of(&MonitorSpec::fixed),
                "a fixed monitor is a point in space: give position = [r, y], not particle");
+  }
+  if (!monitor.material.empty()) {
+    if (!monitor.fixed) {
+      table.fail(&MonitorSpec::material,
+                 "names the material of a fixed monitor (fixed = true); a followed one reads its "
+                 "particle's");
+    }
+    // Only a deformable body's particles carry the stress and state a monitor records.
+    const bool soil = std::any_of(spec.bodies.begin(), spec.bodies.end(), [&](const BodySpec& b) {
+      return b.material == monitor.material && !b.rigid;
+    });
+    if (!soil) {
+      table.fail(&MonitorSpec::material, "no body that is not rigid is made of a material named '" +
+                                             monitor.material + "'");
+    }
   }
   monitor.where = location(table, key) + ": " + table.key_path(key);
   table.finish();
@@ -1014,7 +1029,7 @@ void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     out.cpt = read_cpt_output(*cpt, spec);
   }
   for (TomlTable& monitor : table->tables("monitor")) {
-    out.monitors.push_back(read_monitor(monitor, axes, out.monitors));
+    out.monitors.push_back(read_monitor(monitor, axes, spec, out.monitors));
   }
   table->finish();
 }

@@ -160,6 +160,9 @@ struct MonitorSpec {
   /// A point fixed in space (a transducer), sampled from the soil particles around it at every
   /// row, instead of the particle nearest it followed.
   bool fixed = false;
+  /// The material a fixed monitor reads; empty: that of the soil particle nearest its point at
+  /// the start. Named, the point may lie where soil arrives later (NaN rows until then).
+  std::string material;
 };
 
 struct OutputSpec {

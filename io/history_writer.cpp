@@ -243,12 +243,7 @@ void HistoryWriter::add_monitors(Hdf5File& file, const CaseSpec& spec, const Sce
           static_cast<std::uint16_t>(file.number_attribute(monitor.group, "material"));
     } else {
       monitor.id = monitored_particle(spec_monitor, scene);
-      const Particles& p = scene.particles;
-      for (std::size_t i = 0; i < p.size(); ++i) {
-        if (p.id[i] == monitor.id) {
-          monitor.material = p.material[i];
-        }
-      }
+      monitor.material = monitored_material(spec_monitor, scene, monitor.id);
     }
     const std::vector<MonitorQuantity> quantities = monitor_quantities(scene, monitor.material);
     for (const MonitorQuantity& q : quantities) {
@@ -262,7 +257,8 @@ void HistoryWriter::add_monitors(Hdf5File& file, const CaseSpec& spec, const Sce
       file.set_attribute(monitor.group, "material", static_cast<double>(monitor.material));
       file.set_attribute(monitor.group, "material_name", scene.material_names[monitor.material]);
       file.set_attribute(monitor.group, "followed_from_row", static_cast<double>(rows_));
-      // A fixed monitor samples the material of the particle nearest its point at the start.
+      // A fixed monitor samples its named material, else that of the particle nearest its point
+      // at the start (particle_id -1: it follows none).
       file.set_attribute(monitor.group, "fixed", spec_monitor.fixed ? 1.0 : 0.0);
       if (spec_monitor.position) {
         std::ostringstream position;

@@ -3,6 +3,7 @@
 #include "cases/case_error.hpp"
 #include "engine/tensor.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -27,6 +28,9 @@ std::size_t index_of(const Particles& p, std::int32_t id) {
 std::int32_t monitored_particle(const MonitorSpec& monitor, const Scene& scene) {
   const Particles& p = scene.particles;
   const std::string where = monitor.where + ": ";
+  if (monitor.fixed && !monitor.material.empty()) {
+    return -1; // it reads the named material wherever that is; no particle marks its place
+  }
   if (monitor.particle) {
     if (index_of(p, static_cast<std::int32_t>(*monitor.particle)) == p.size()) {
       throw CaseError(where + "no particle has id " + std::to_string(*monitor.particle) +
@@ -56,6 +60,16 @@ std::int32_t monitored_particle(const MonitorSpec& monitor, const Scene& scene) 
     throw CaseError(s.str());
   }
   return p.id[nearest];
+}
+
+std::uint16_t monitored_material(const MonitorSpec& monitor, const Scene& scene, std::int32_t id) {
+  if (!monitor.material.empty()) {
+    const auto& names = scene.material_names;
+    return static_cast<std::uint16_t>(std::find(names.begin(), names.end(), monitor.material) -
+                                      names.begin());
+  }
+  const Particles& p = scene.particles;
+  return p.material[index_of(p, id)];
 }
 
 std::vector<MonitorQuantity> monitor_quantities(const Scene& scene, std::uint16_t material) {

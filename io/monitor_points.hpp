@@ -17,9 +17,13 @@
 namespace mpile {
 
 /// The particle id a monitor follows: the one given, or the soil particle nearest the position
-/// given (rigid bodies left out). CaseError when the id does not exist, or when no soil particle
-/// lies within reach of the position (two of its half-diagonals).
+/// given (rigid bodies left out); -1 for a fixed monitor whose material is named, which follows
+/// none. CaseError when the id does not exist, or when no soil particle lies within reach of the
+/// position (two of its half-diagonals).
 std::int32_t monitored_particle(const MonitorSpec& monitor, const Scene& scene);
+
+/// The material a monitor records: a fixed monitor's named one, else that of the particle id.
+std::uint16_t monitored_material(const MonitorSpec& monitor, const Scene& scene, std::int32_t id);
 
 /// The names of the quantities recorded for a particle of a material, with their units, in the
 /// order monitor_values writes them.

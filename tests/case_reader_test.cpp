@@ -859,6 +859,29 @@ TEST(CaseReader, RejectsEachBadInputWithFileLineKeyAndReason) {
   expect_rejected(table);
 }
 
+// A fixed monitor may name the material it reads, so that its point can lie where that soil
+// arrives later; the name must be a deformable body's material, and a followed monitor reads its
+// particle's.
+TEST(CaseReader, AMonitorsMaterialIsASoilsAndOnlyAFixedMonitorNamesIt) {
+  const std::string monitor = "[[output.monitor]]\nname = \"probe\"\nposition = [0.1, 0.9]\n";
+  expect_rejected({
+      {"a followed monitor with a material",
+       valid_case + monitor + "material = \"soil\" # the probe's\n",
+       "output.monitor[0].material: names the material of a fixed monitor (fixed = true)",
+       "material = \"soil\" # the probe's"},
+      {"a material no body is made of",
+       valid_case + monitor + "fixed = true\nmaterial = \"steel\"\n" +
+           "[materials.steel]\ntype = \"linear_elastic\"\nyoung_modulus = 2e11\n"
+           "poisson_ratio = 0.3\ndensity = 7850.0\n",
+       "output.monitor[0].material: no body that is not rigid is made of a material named 'steel'",
+       "material = \"steel\""},
+  });
+  const CaseSpec spec =
+      read_case_text(valid_case + monitor + "fixed = true\nmaterial = \"soil\"\n", "case.toml");
+  ASSERT_EQ(spec.output.monitors.size(), 1u);
+  EXPECT_EQ(spec.output.monitors[0].material, "soil");
+}
+
 TEST(CaseReader, NamesThatBecomeOneHistoryGroupAreRefusedWhereTheLaterIsWritten) {
   // "top cap" and "top_cap" both became /boundaries/top_cap in history.h5, their rows interleaved.
   const std::string two_motions =

@@ -528,6 +528,76 @@ TEST(RunCommand, AFixedMonitorReadsTheSoilAroundItsPoint) {
   }
 }
 
+// A fixed monitor that names its material may stand where no soil is at the start: a block
+// falls freely from 0.6 m towards a transducer at y = 0.15 m. Its rows are NaN until the block's
+// lowest particles (centres 0.025 m above its base, 2 per cell of 0.1 m) enter the point's tent,
+// 0.1 m above it: after a free fall of 0.6 + 0.025 - 0.25 = 0.375 m, t = sqrt(2 0.375 / g) =
+// 0.2765 s. A free block carries no stress, so the fall is gravity's alone; the explicit update
+// moves a particle within a step of the closed form, so the first row read lies within two steps.
+TEST(RunCommand, AFixedMonitorOfANamedMaterialWaitsForItsSoil) {
+  const auto directory = fresh_directory("fixed_monitor_arrival");
+  const std::string path = (directory / "fall.toml").string();
+  const std::string fall = R"(title = "falling block"
+[grid]
+r = [{ start = 0.0, end = 1.0, cells = 10 }]
+y = [{ start = 0.0, end = 1.2, cells = 12 }]
+[materials.soil]
+type = "linear_elastic"
+young_modulus = 2e6
+poisson_ratio = 0.3
+density = 1800.0
+[[bodies]]
+name = "block"
+material = "soil"
+region = { r = [0.0, 0.6], y = [0.6, 1.0] }
+particles_per_cell = 2
+[solver]
+gravity = [0.0, -9.81]
+[[phases]]
+name = "fall"
+duration = 0.32
+[output]
+history_interval = 0.0
+[[output.monitor]]
+name = "transducer"
+position = [0.3, 0.15]
+fixed = true
+material = "soil"
+)";
+  std::ofstream(path) << fall;
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  ASSERT_EQ(run_case(options, out, err), exit_success) << err.str();
+  Hdf5File history((directory / "out" / "history.h5").string(), Hdf5File::Mode::read);
+  EXPECT_EQ(history.number_attribute("/monitors/transducer", "particle_id"), -1.0);
+  const auto time = history.read_doubles("/time");
+  const auto y = history.read_doubles("/monitors/transducer/y");
+  ASSERT_EQ(time.size(), y.size());
+  const auto first = std::find_if(y.begin(), y.end(), [](double v) { return !std::isnan(v); });
+  ASSERT_NE(first, y.end()) << "the block never reached the transducer";
+  const std::size_t row = static_cast<std::size_t>(first - y.begin());
+  ASSERT_GT(row, 1u);
+  const double step = time[row] - time[row - 1];
+  EXPECT_NEAR(time[row], std::sqrt(2.0 * 0.375 / 9.81), 2.0 * step);
+  // Where the weights centre: within the tent's upper half, below the lowest particles' reach.
+  EXPECT_GT(*first, 0.15);
+  EXPECT_LT(*first, 0.25);
+  // The falling block is stress-free (rho g 0.4 m would be 7 kPa at its base): round-off only.
+  EXPECT_NEAR(history.read_doubles("/monitors/transducer/sigma_yy")[row], 0.0, 1e-6);
+
+  // Without its material named the same monitor is refused before anything is written.
+  const std::string unnamed = (directory / "unnamed.toml").string();
+  std::ofstream(unnamed) << fall.substr(0, fall.rfind("material = \"soil\"")); // the monitor's
+  options.case_path = unnamed;
+  options.output_directory = (directory / "unnamed").string();
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("no soil particle near position [0.3, 0.15]"), std::string::npos)
+      << err.str();
+  EXPECT_FALSE(std::filesystem::exists(directory / "unnamed" / "history.h5"));
+}
+
 TEST(RunCommand, AFixedMonitorNeedsAPosition) {
   const auto directory = fresh_directory("fixed_monitor_particle");
   const std::string path = (directory / "column.toml").string();
