@@ -1294,9 +1294,6 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   }
   read_phases(top, spec, declared_rigid);
   read_water(top, spec, axes.y.start());
-  if (spec.solver.gravity[1] != 0.0 && !(spec.water && spec.water->phreatic)) {
-    note_dry_soil_over_saturated(spec, body_tables, spec.warnings);
-  }
   if (hydrostatic_drains) {
     read_drained_water(*drained_table, spec);
   }
@@ -1312,6 +1309,10 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   }
   for (auto& [index, table] : rigid_tables) {
     read_rigid_body(table, spec.bodies[index], spec, spec.warnings);
+  }
+  // After the rigid bodies are known: a pile resting on saturated sand is no dry layer.
+  if (spec.solver.gravity[1] != 0.0 && !(spec.water && spec.water->phreatic)) {
+    note_dry_soil_over_saturated(spec, body_tables, spec.warnings);
   }
   read_contacts(top, spec);
   read_motions_and_loads(top, spec, axes);

@@ -387,7 +387,8 @@ TEST(CaseWarnings, ADrainedFaceUnderGravityIsNoted) {
 // procedure would start the saturated body's water and vertical stress from its own k0 surface
 // without the dry layer's weight. The same column split at 3 m into a dry top and a saturated
 // bottom is noted at the dry body's material; the column saturated whole, or dry whole, is not,
-// nor the split column with the table given (Sea.AWaterTableInsideTheSoil... checks its start).
+// nor the split column with the table given (Sea.AWaterTableInsideTheSoil... checks its start),
+// nor a rigid body resting on the saturated sand (a pile: it carries no K0 state).
 TEST(CaseWarnings, DrySoilOnSaturatedSoilWithoutAWaterTableIsNoted) {
   const std::string saturated =
       "type = \"linear_elastic\"\nyoung_modulus = 50e6\npoisson_ratio = 0.3\n"
@@ -419,6 +420,11 @@ TEST(CaseWarnings, DrySoilOnSaturatedSoilWithoutAWaterTableIsNoted) {
   EXPECT_EQ(notes(column), "");
   EXPECT_EQ(notes(replaced(split, "material = \"dry\"", "material = \"sand\"")), "");
   EXPECT_EQ(notes(split + "[water]\ntable = 3.0\n"), "");
+  std::string pile = replaced(split, "region = { r = [0.0, 0.5], y = [3.0, 5.0] }",
+                              "region = { r = [0.0, 0.1], y = [3.0, 5.0] }\n[bodies.rigid]\n"
+                              "mass = 100.0");
+  pile = replaced(pile, ", { body = \"crust\", surface = 5.0, k0 = 0.5 }", "");
+  EXPECT_EQ(notes(pile + "[[contact]]\nstructure = \"crust\"\n"), "");
 }
 
 } // namespace
