@@ -537,16 +537,9 @@ TEST(RunCommand, AFixedMonitorReadsTheSoilAroundItsPoint) {
 TEST(RunCommand, AFixedMonitorOfANamedMaterialWaitsForItsSoil) {
   const auto directory = fresh_directory("fixed_monitor_arrival");
   const std::string path = (directory / "fall.toml").string();
-  const std::string fall = R"(title = "falling block"
-[grid]
-r = [{ start = 0.0, end = 1.0, cells = 10 }]
-y = [{ start = 0.0, end = 1.2, cells = 12 }]
-[materials.soil]
-type = "linear_elastic"
-young_modulus = 2e6
-poisson_ratio = 0.3
-density = 1800.0
-[[bodies]]
+  // The shaking column's grid (0.1 m cells out to r = 0.4 m) and soil, its body lifted free.
+  const std::string column = shaking_column;
+  const std::string fall = column.substr(0, column.find("[[bodies]]")) + R"([[bodies]]
 name = "block"
 material = "soil"
 region = { r = [0.0, 0.6], y = [0.6, 1.0] }
