@@ -1096,6 +1096,8 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
                                        ", got " + format_bound(x));
       }
       material.parameters[parameter.name] = x;
+      material.where[parameter.name] =
+          location(table, parameter.name) + ": " + table.key_path(parameter.name);
     } else if (!parameter.default_value) {
       table.missing(parameter.name, parameter.meaning + ", in " + parameter.unit);
     }

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ struct MaterialSpec {
   std::string type;
   MaterialParameters parameters;
   PoreWater water; // drained unless the table says otherwise
+  /// "file:line: materials.<name>.<key>" of each parameter written, for errors found once the
+  /// particles carry their initial stress.
+  std::map<std::string, std::string> where;
 };
 
 /// An initial velocity component varying along r or y, added to the body's uniform velocity.

@@ -116,6 +116,10 @@ void read_initial_stress(TomlTable& top, ElementTestSpec& spec) {
                                   " Pa, sigma_3 = " + format_number(-after[RR]) + " Pa");
     }
   }
+  const Material::Inadmissible why = material->inadmissible_state(initial, point.state().data());
+  if (!why.key.empty()) {
+    table.fail(checked_key, "gives a state the material does not admit: " + why.reason);
+  }
 }
 
 void read_path(TomlTable& top, ElementTestSpec& spec) {

@@ -43,7 +43,32 @@ std::size_t stiffest_particle(const CaseSpec& spec, const Scene& scene) {
 
 } // namespace
 
+void refuse_inadmissible_states(const CaseSpec& spec, const Scene& scene) {
+  const Particles& p = scene.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.material[i] >= spec.materials.size()) {
+      continue; // a rigid body's
+    }
+    const Material::Inadmissible why = scene.materials[p.material[i]]->inadmissible_state(
+        p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
+    if (why.key.empty()) {
+      continue;
+    }
+    const MaterialSpec& material = spec.materials[p.material[i]];
+    const auto written = material.where.find(why.key);
+    std::ostringstream s;
+    s << (written != material.where.end()
+              ? written->second
+              : spec.file + ": materials." + material.name + "." + why.key)
+      << ": " << why.reason << "; found at the start in particle " << i << " of body '"
+      << scene.body_names[p.body[i]] << "' at (r, y) = (" << p.r[i] << ", " << p.y[i]
+      << "), the first such";
+    throw CaseError(s.str());
+  }
+}
+
 void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double first_step) {
+  refuse_inadmissible_states(spec, scene);
   const double run = spec.end_time();
   // Steps land on snapshot times, so an interval shorter than the stable step sets the step.
   const double snapshot_interval = spec.output.snapshot_interval;

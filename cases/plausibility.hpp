@@ -15,6 +15,12 @@ inline constexpr double max_run_steps = 1e9;
 /// shorter snapshot interval, on whose times steps land), or one step longer than the whole run
 /// (waves that cannot cross a cell in the run). The message names the material, the particle and
 /// the cell that set the step, and the keys to check. Needs the particles located in their cells.
+/// First refuses, through refuse_inadmissible_states, a start no material admits.
 void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double first_step);
+
+/// Refuses (CaseError) particles whose initial stress and state their material does not admit
+/// (a hypoplastic sand looser than its loosest state at its pressure: a void ratio or a stress off
+/// by a unit), naming the parameter where it was written, the first such particle and why.
+void refuse_inadmissible_states(const CaseSpec& spec, const Scene& scene);
 
 } // namespace mpile

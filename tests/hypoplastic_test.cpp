@@ -7,6 +7,7 @@
 #include "cases/case_error.hpp"
 #include "cases/case_phases.hpp"
 #include "cases/element_test_file.hpp"
+#include "cases/plausibility.hpp"
 #include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "engine/materials/principal_stress.hpp"
@@ -637,6 +638,73 @@ TEST(Hypoplastic, ParametersOutsideTheModelsRangeAreRefusedByName) {
   p = karlsruhe_fine_sand(0.8, true);
   p.r_max = 5e-324;
   refused(p, "r_max");
+}
+
+// No state is looser than Bauer's e_i(p) = e_i0 exp(-(3 p / h_s)^n): the model's equations keep e
+// below it from an admissible start, but a start above it (a surcharge a thousand times too large)
+// has no meaning in them and is refused before anything runs. For e0 = 0.85 the bound is crossed at
+// p* = h_s / 3 (ln(e_i0 / e0))^(1/n) = 28.7 MPa (closed form). A start within 1e-5 of e_i counts as
+// on it (the integration's accuracy): 0.1 % either side of p* moves e_i by 1e-4 (d ln e_i / d ln
+// p = -n ln(e_i0 / e0) = -0.096), so one side is admitted and the other refused.
+TEST(Hypoplastic, AStartLooserThanTheLoosestStateAtItsPressureIsRefused) {
+  const HypoplasticParameters p = karlsruhe_fine_sand(0.85, true);
+  const Hypoplastic model(p);
+  std::vector<double> state(model.state_size(), 0.0);
+  model.initialise_state(Stress{}, state.data());
+  const double p_star =
+      p.granular_hardness / 3.0 * std::pow(std::log(p.e_i0 / 0.85), 1.0 / p.exponent);
+  const auto isotropic = [](double pressure) {
+    return Stress{-pressure, -pressure, -pressure, 0.0, 0.0, 0.0};
+  };
+  EXPECT_EQ(model.inadmissible_state(isotropic(p_star * (1.0 - 1e-3)), state.data()).key, "");
+  EXPECT_EQ(model.inadmissible_state(isotropic(p_star * (1.0 + 1e-3)), state.data()).key,
+            "void_ratio");
+  EXPECT_EQ(model.inadmissible_state(isotropic(100e3), state.data()).key, "");
+
+  // The torsion ring (undrained: the skeleton judges the effective stress) loaded by 100e6 for
+  // 100e3: refused where void_ratio is written, naming the particle; as written it starts.
+  const std::string ring = read_text(source / "cases/verification/hypoplastic_torsion_ring.toml");
+  const auto start = [](const std::string& text) {
+    const CaseSpec spec = read_case_text(text, "ring.toml");
+    const std::unique_ptr<Scene> scene = build_scene(spec);
+    RunProgress progress;
+    RunLog log;
+    const auto solver = CasePhases(spec, *scene).start(progress, log);
+    refuse_inadmissible_states(spec, *scene);
+  };
+  EXPECT_NO_THROW(start(ring));
+  const std::string heavy = replaced(ring, "surcharge = 100e3", "surcharge = 100e6");
+  const auto line =
+      1 + std::count(heavy.begin(), heavy.begin() + static_cast<long>(heavy.find("void_ratio = ")),
+                     '\n');
+  try {
+    start(heavy);
+    ADD_FAILURE() << "a start looser than e_i(p) was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "ring.toml:" + std::to_string(line) +
+                  ": materials.sand.void_ratio: void_ratio 0.85 is looser than the loosest state "
+                  "at the mean stress p = 1e+08 Pa"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("of body 'sand'"), std::string::npos) << e.what();
+  }
+
+  // An element test's initial stress likewise (e0 = 0.8: p* = 51.5 MPa; 30 MPa passes).
+  const std::string cycles =
+      read_text(source / "cases/element_tests/hypoplastic_drained_cycles.toml");
+  EXPECT_NO_THROW(read_element_test_text(replaced(cycles, "isotropic = 100e3", "isotropic = 30e6"),
+                                         "cycles.toml"));
+  try {
+    read_element_test_text(replaced(cycles, "isotropic = 100e3", "isotropic = 100e6"),
+                           "cycles.toml");
+    ADD_FAILURE() << "an element test looser than e_i(p) was accepted";
+  } catch (const CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("initial_stress.isotropic: gives a state the material "
+                                         "does not admit: void_ratio 0.8 is looser"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 } // namespace

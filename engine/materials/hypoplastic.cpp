@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -476,6 +477,26 @@ void Hypoplastic::initialise_state(const Stress& /*stress*/, double* state) cons
     state[SUBSTEP] = 1.0;
     state[GAP_RATIO] = 0.0;
   }
+}
+
+Material::Inadmissible Hypoplastic::inadmissible_state(const Stress& stress,
+                                                       const double* state) const {
+  // e_i(p) bounds every state the model's equations reach from an admissible one (the loosest
+  // state's compression test checks it); a start above it, as a void ratio meant for shallower
+  // ground or a stress a thousand times too large, has no meaning in them. A start on e_i written
+  // to six digits lies up to 5e-7 above it: within 1e-5, the integration's own accuracy there
+  // (that test's path stays within 6e-7), it counts as on it.
+  const double p = mean_pressure(stress);
+  const double e_i = limit_void_ratio(parameters_.e_i0, std::max(p, 0.0));
+  const double e = state[VOID_RATIO];
+  if (!(e <= e_i * (1.0 + 1e-5))) {
+    std::ostringstream s;
+    s << "void_ratio " << e << " is looser than the loosest state at the mean stress p = " << p
+      << " Pa, e_i = e_i0 exp(-(3 p / h_s)^n) = " << e_i
+      << ": no sand exists there (lower void_ratio, or check the stress)";
+    return {"void_ratio", s.str()};
+  }
+  return {};
 }
 
 void Hypoplastic::update_stress(const StressUpdateBatch& batch) const {

@@ -68,6 +68,7 @@ public:
   std::span<const std::string> state_names() const override { return names_; }
   int void_ratio_index() const override { return VOID_RATIO; }
   void initialise_state(const Stress& stress, double* state) const override;
+  Inadmissible inadmissible_state(const Stress& stress, const double* state) const override;
   void update_stress(const StressUpdateBatch& batch) const override;
   /// The largest normal stiffness of the tangent after a reversal, m_R (L_yyyy + |N|): the time
   /// step's modulus.

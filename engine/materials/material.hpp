@@ -83,6 +83,16 @@ public:
   /// Sets the state consistent with a given initial stress (for example after a K0 procedure).
   virtual void initialise_state(const Stress& /*stress*/, double* /*state*/) const {}
 
+  /// A state no soil can be in (a sand looser than its loosest at its pressure): the parameter
+  /// that sets it and why; an empty key for a state the model admits.
+  struct Inadmissible {
+    std::string key;
+    std::string reason;
+  };
+  virtual Inadmissible inadmissible_state(const Stress& /*stress*/, const double* /*state*/) const {
+    return {};
+  }
+
   /// Advances stress and state of every particle of the batch by its strain increment, and writes
   /// the current constrained modulus used by the time step.
   virtual void update_stress(const StressUpdateBatch& batch) const = 0;

@@ -36,6 +36,9 @@ public:
   }
   /// The skeleton's state from the effective stress: the pore pressure must already be in state.
   void initialise_state(const Stress& stress, double* state) const override;
+  Inadmissible inadmissible_state(const Stress& stress, const double* state) const override {
+    return skeleton_->inadmissible_state(effective(stress, state), state);
+  }
   void update_stress(const StressUpdateBatch& batch) const override;
   double constrained_modulus(const Stress& stress, const double* state) const override;
   double shear_modulus(const Stress& stress, const double* state) const override;
