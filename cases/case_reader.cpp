@@ -889,6 +889,12 @@ OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
     cpt.body = outlined.size() == 1 ? outlined[0] : "";
   }
   table.finish(); // a misspelt key is named before what its absence caused
+  // "" marks an edge that is no contact surface: a cone named so would read the force on none.
+  for (std::string OutputSpec::Cpt::*surface : {&OutputSpec::Cpt::cone, &OutputSpec::Cpt::sleeve}) {
+    if ((cpt.*surface).empty()) {
+      table.fail(surface, "names no surface (\"\" marks an edge that is no contact surface)");
+    }
+  }
   if (spec.mode != GeometryMode::axisymmetric) {
     table.fail(&OutputSpec::Cpt::cone, "a cone penetration test is axisymmetric: set geometry to "
                                        "\"axisymmetric\"");
@@ -965,6 +971,10 @@ MonitorSpec read_monitor(TomlTable& table, const Axes& axes, const CaseSpec& spe
   if (monitor.fixed && monitor.particle) {
     table.fail(table.key_of(&MonitorSpec::fixed),
                "a fixed monitor is a point in space: give position = [r, y], not particle");
+  }
+  if (table.has(&MonitorSpec::material) && monitor.material.empty()) {
+    table.fail(&MonitorSpec::material, "names no material (leave it out for the one nearest "
+                                       "position at the start)");
   }
   if (!monitor.material.empty()) {
     if (!monitor.fixed) {

@@ -464,6 +464,12 @@ std::vector<BadInput> bad_contact_inputs() {
        "output.cpt.body: must name the contact structure that is the cone, with outline normals "
        "(got 'soil')",
        "body = \"soil\""},
+      {"CPT cone named \"\", the name of an edge that is no surface",
+       contact_case + "\n[output.cpt]\ncone = \"\"\nsleeve = \"outer_shaft\"\n",
+       "output.cpt.cone: names no surface (\"\" marks an edge that is no contact surface)",
+       "cone = "},
+      {"CPT sleeve named \"\"", contact_case + "\n[output.cpt]\ncone = \"tip\"\nsleeve = \"\"\n",
+       "output.cpt.sleeve: names no surface", "sleeve = "},
       {"CPT cone and sleeve one surface",
        contact_case + "\n[output.cpt]\ncone = \"tip\"\nsleeve = \"tip\"\n",
        "output.cpt.sleeve: must be another surface than the cone's ('tip')", "sleeve = "},
@@ -875,6 +881,8 @@ TEST(CaseReader, AMonitorsMaterialIsASoilsAndOnlyAFixedMonitorNamesIt) {
            "poisson_ratio = 0.3\ndensity = 7850.0\n",
        "output.monitor[0].material: no body that is not rigid is made of a material named 'steel'",
        "material = \"steel\""},
+      {"a material named \"\"", valid_case + monitor + "fixed = true\nmaterial = \"\"\n",
+       "output.monitor[0].material: names no material", "material = \"\""},
   });
   const CaseSpec spec =
       read_case_text(valid_case + monitor + "fixed = true\nmaterial = \"soil\"\n", "case.toml");
