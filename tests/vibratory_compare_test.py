@@ -131,16 +131,25 @@ def test_the_monitor_nearest_ppt_a_and_its_pore_pressure_compression_positive(tm
     assert vc.nearest_monitor(run["monitors"], vc.PPT_A) == "ppt_a"
     assert vc.nearest_monitor(run["monitors"], (0.21, 0.3)) == "far"
     rows = vc.pore_rows(run["time"], run["monitors"]["ppt_a"][1])
-    assert [w for w, _, _ in rows] == list(vc.PPT_WINDOWS)
+    assert [w for w, _, _, _ in rows] == list(vc.PPT_WINDOWS)
     # The first window by hand: its first crest is a quarter cycle in (t = 0.01 s), its first
     # trough three quarters (0.03 s), both on rows (every 1 ms from the phase's start).
     assert rows[0][2] == pytest.approx(3.0 + 1.5 * (1.0 - 0.01 / 3.0), abs=1e-9)
     assert rows[0][1] == pytest.approx(3.0 - 1.5 * (1.0 - 0.03 / 3.0), abs=1e-9)
     # Every window against the rows' own extremes in it, compression positive.
-    for (a, b), low, high in rows:
+    omega = 2 * np.pi * FREQUENCY
+
+    def integral(t):  # of 1.5 (1 - t / 3) sin(omega t), kPa s: by parts
+        return 1.5 * (-(1.0 - t / 3.0) * np.cos(omega * t) / omega
+                      - np.sin(omega * t) / (3.0 * omega**2))
+
+    for (a, b), low, high, mean in rows:
         t = np.arange(round(a * 1e3), round(b * 1e3) + 1) * 1e-3
         assert high == pytest.approx(np.max(-pore(t)) / 1e3, abs=1e-6)
         assert low == pytest.approx(np.min(-pore(t)) / 1e3, abs=1e-6)
+        # The closed-form mean over the window; the trapezoid rule on 1 ms rows (40 a cycle) is
+        # within (b - a) h^2 / 12 max|u''| / (b - a) = 1e-6 / 12 x 1.5 omega^2 = 3.1e-3 kPa of it.
+        assert mean == pytest.approx(3.0 + (integral(b) - integral(a)) / (b - a), abs=3.1e-3)
 
 
 def test_main_prints_the_table_beside_the_measured_column(tmp_path, capsys):
@@ -150,7 +159,7 @@ def test_main_prints_the_table_beside_the_measured_column(tmp_path, capsys):
     assert "| 0.50 | 12 | 29.0 | 21.4 | 32.8 | 1.36 |" in out
     assert "| 3.00 | 75 | 172.8 (2.980 s) | 174.5 | 168.5 | 0.99 |" in out
     assert "monitor 'ppt_a'" in out
-    assert "| 0-0.5 | 1.5 / 4.5 | 1.6 / 4.8 | 1.2 / 4.8 |" in out
+    assert "| 0-0.5 | 1.5 / 4.5 | 3.0 | 1.6 / 4.8 | 1.2 / 4.8 |" in out
 
 
 def test_expect_passes_within_its_band_and_fails_outside_it_or_short(tmp_path, capsys):

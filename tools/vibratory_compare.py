@@ -142,15 +142,18 @@ def nearest_monitor(monitors, point):
 
 
 def pore_rows(time, pore):
-    """(window, least, greatest) of the pore pressure, compression positive, kPa, per window."""
+    """(window, least, greatest, mean) of the pore pressure, compression positive, kPa, per window;
+    the mean by the trapezoid rule over the rows inside (they need not be evenly spaced: a phase's
+    end adds one)."""
     rows = []
     for a, b in PPT_WINDOWS:
         inside = (time >= a) & (time <= b) & np.isfinite(pore)
-        if b > time[-1] + 1e-9 or not np.any(inside):
-            rows.append(((a, b), None, None))
+        if b > time[-1] + 1e-9 or np.count_nonzero(inside) < 2:
+            rows.append(((a, b), None, None, None))
             continue
-        u = -pore[inside] / 1e3
-        rows.append(((a, b), float(u.min()), float(u.max())))
+        t, u = time[inside], -pore[inside] / 1e3
+        mean = float(np.sum(0.5 * (u[1:] + u[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+        rows.append(((a, b), float(u.min()), float(u.max()), mean))
     return rows
 
 
@@ -221,12 +224,13 @@ def main(argv=None):
           f"{1e3 * math.dist((r, y), tuple(args.ppt_a)):.1f} mm from PPT A's assumed "
           f"({args.ppt_a[0]:g}, {args.ppt_a[1]:g}); compression positive, kPa:")
     print()
-    print("| t (s) | computed min / max | measured min / max | CEL mu = 0.25 min / max |")
-    print("|---|---|---|---|")
-    for ((a, b), low, high), measured, cel in zip(pore_rows(run["time"], pore), PPT_MEASURED_KPA,
-                                                  PPT_CEL_KPA):
-        print(f"| {a:g}-{b:g} | {fmt(low)} / {fmt(high)} | {measured[0]:.1f} / {measured[1]:.1f} | "
-              f"{cel[0]:.1f} / {cel[1]:.1f} |")
+    print("| t (s) | computed min / max | computed mean | measured min / max | "
+          "CEL mu = 0.25 min / max |")
+    print("|---|---|---|---|---|")
+    for ((a, b), low, high, mean), measured, cel in zip(pore_rows(run["time"], pore),
+                                                        PPT_MEASURED_KPA, PPT_CEL_KPA):
+        print(f"| {a:g}-{b:g} | {fmt(low)} / {fmt(high)} | {fmt(mean)} | "
+              f"{measured[0]:.1f} / {measured[1]:.1f} | {cel[0]:.1f} / {cel[1]:.1f} |")
     return 0
 
 
