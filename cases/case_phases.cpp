@@ -1,7 +1,10 @@
 #include "cases/case_phases.hpp"
 
+#include "cases/plausibility.hpp"
 #include "solver/diagnostics.hpp"
+#include "solver/simulation_error.hpp"
 
+#include <sstream>
 #include <utility>
 
 namespace mpile {
@@ -49,6 +52,17 @@ void CasePhases::set_up(ExplicitSolver& solver, std::size_t p, double start) con
   const double elastic_before = elastic_energy(scene_);
   apply_k0(scene_, spec_, spec_.phases[p]);
   if (!spec_.phases[p].k0.empty()) {
+    // The sand has moved since the start's check: a phase's own K0 stresses (a surcharge added)
+    // may put it where no sand exists at its void ratio now. The run stops there, its outputs
+    // kept, rather than go on in a state the material's equations do not cover.
+    if (const auto found = first_inadmissible_particle(spec_, scene_)) {
+      std::ostringstream s;
+      s << spec_.file << ": phase '" << spec_.phases[p].name << "' (phases." << p
+        << "), its k0 at t = " << start
+        << " s: gives a state the material does not admit: " << found->key_and_reason << "; in "
+        << found->particle << ", the first such";
+      throw SimulationError(s.str());
+    }
     solver.account_for_stress_reset(elastic_before);
   }
   solver.change_settings(settings(p));

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace mpile {
@@ -43,7 +44,8 @@ std::size_t stiffest_particle(const CaseSpec& spec, const Scene& scene) {
 
 } // namespace
 
-void refuse_inadmissible_states(const CaseSpec& spec, const Scene& scene) {
+std::optional<InadmissibleParticle> first_inadmissible_particle(const CaseSpec& spec,
+                                                                const Scene& scene) {
   const Particles& p = scene.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.material[i] >= spec.materials.size()) {
@@ -56,14 +58,23 @@ void refuse_inadmissible_states(const CaseSpec& spec, const Scene& scene) {
     }
     const MaterialSpec& material = spec.materials[p.material[i]];
     const auto written = material.where.find(why.key);
-    std::ostringstream s;
-    s << (written != material.where.end()
-              ? written->second
-              : spec.file + ": materials." + material.name + "." + why.key)
-      << ": " << why.reason << "; found at the start in particle " << i << " of body '"
-      << scene.body_names[p.body[i]] << "' at (r, y) = (" << p.r[i] << ", " << p.y[i]
-      << "), the first such";
-    throw CaseError(s.str());
+    std::ostringstream where;
+    where << (written != material.where.end()
+                  ? written->second
+                  : spec.file + ": materials." + material.name + "." + why.key)
+          << ": " << why.reason;
+    std::ostringstream particle;
+    particle << "particle " << i << " of body '" << scene.body_names[p.body[i]] << "' at (r, y) = ("
+             << p.r[i] << ", " << p.y[i] << ")";
+    return InadmissibleParticle{where.str(), particle.str()};
+  }
+  return std::nullopt;
+}
+
+void refuse_inadmissible_states(const CaseSpec& spec, const Scene& scene) {
+  if (const auto found = first_inadmissible_particle(spec, scene)) {
+    throw CaseError(found->key_and_reason + "; found at the start in " + found->particle +
+                    ", the first such");
   }
 }
 

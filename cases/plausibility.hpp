@@ -3,6 +3,9 @@
 #include "cases/case_spec.hpp"
 #include "engine/scene.hpp"
 
+#include <optional>
+#include <string>
+
 namespace mpile {
 
 /// The most steps a run may need at its first stable step: about a day at the engine's speed on
@@ -17,6 +20,19 @@ inline constexpr double max_run_steps = 1e9;
 /// the cell that set the step, and the keys to check. Needs the particles located in their cells.
 /// First refuses, through refuse_inadmissible_states, a start no material admits.
 void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double first_step);
+
+/// A particle whose stress and state its material does not admit: the parameter's location in the
+/// case with why ("file:line: materials.sand.void_ratio: ..."), and the particle ("particle 12 of
+/// body 'sand' at (r, y) = (...)").
+struct InadmissibleParticle {
+  std::string key_and_reason;
+  std::string particle;
+};
+
+/// The first particle of the case's materials (a rigid body's left out) in a state its material
+/// does not admit, if any.
+std::optional<InadmissibleParticle> first_inadmissible_particle(const CaseSpec& spec,
+                                                                const Scene& scene);
 
 /// Refuses (CaseError) particles whose initial stress and state their material does not admit
 /// (a hypoplastic sand looser than its loosest state at its pressure: a void ratio or a stress off

@@ -11,6 +11,7 @@
 #include "engine/materials/hypoplastic.hpp"
 #include "engine/materials/material_registry.hpp"
 #include "engine/materials/principal_stress.hpp"
+#include "solver/simulation_error.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
 
@@ -688,6 +689,38 @@ TEST(Hypoplastic, AStartLooserThanTheLoosestStateAtItsPressureIsRefused) {
               std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("of body 'sand'"), std::string::npos) << e.what();
+  }
+
+  // A later phase's own K0 stresses are judged as it begins, on the void ratio the sand has then:
+  // a second phase loading the ring by 100e6 stops the run there (its outputs kept), naming the
+  // phase; by 200e3 it goes on.
+  const auto second_phase = [](const std::string& text) {
+    const CaseSpec spec = read_case_text(text, "ring.toml");
+    const std::unique_ptr<Scene> scene = build_scene(spec);
+    RunProgress progress;
+    RunLog log;
+    const CasePhases phases(spec, *scene);
+    const auto solver = phases.start(progress, log);
+    solver->step();
+    phases.set_up(*solver, 1, solver->time());
+  };
+  const auto overload = [&](const std::string& surcharge) {
+    return ring +
+           "\n[[phases]]\nname = \"overload\"\nduration = 0.1\ngravity = false\nk0 = "
+           "[{ material = \"sand\", surface = 1.0, k0 = 1.0, surcharge = " +
+           surcharge + " }]\n";
+  };
+  EXPECT_NO_THROW(second_phase(overload("200e3")));
+  try {
+    second_phase(overload("100e6"));
+    ADD_FAILURE() << "a later phase's K0 looser than e_i(p) went on";
+  } catch (const SimulationError& e) {
+    EXPECT_NE(std::string(e.what()).find("ring.toml: phase 'overload' (phases.1), its k0 at t = "),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find(": materials.sand.void_ratio: void_ratio 0.85"),
+              std::string::npos)
+        << e.what();
   }
 
   // An element test's initial stress likewise (e0 = 0.8: p* = 51.5 MPa; 30 MPa passes).
