@@ -628,6 +628,12 @@ TEST(Hypoplastic, ParametersOutsideTheModelsRangeAreRefusedByName) {
   p = karlsruhe_fine_sand(0.8, true);
   p.m_t = 3.0;
   refused(p, "m_r");
+  // A misplaced digit: m_R = 1e5 would shorten the step 140 times (hypoplastic.cpp's ranges).
+  p = karlsruhe_fine_sand(0.8, true);
+  p.m_r = 1e5;
+  refused(p, "m_r must lie in [1, 20]");
+  p.m_r = 20.0; // the bound itself is admitted
+  EXPECT_NO_THROW(Hypoplastic{p});
   p = karlsruhe_fine_sand(0.8, true);
   p.critical_friction_angle = 0.58; // radians typed for degrees
   refused(p, "critical_friction_angle");

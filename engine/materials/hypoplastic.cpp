@@ -85,7 +85,10 @@ std::span<const HypoplasticField> hypoplastic_fields() {
   // meaning and typical values), and the intergranular strain's (Niemunis and Herle 1997: m_R >=
   // m_T > 1, R of order 1e-5 to 1e-4). R is bounded below an order under the smallest published
   // calibration: at R = 1e-100 the intergranular strain's substeps, error relative to R, fell to
-  // their floor and one simple-shear path ran past a minute (at 1e-20, 0.17 s).
+  // their floor and one simple-shear path ran past a minute (at 1e-20, 0.17 s). m_R and m_T are
+  // bounded above at 20, four times the largest published (5 and 2, Niemunis and Herle 1997; the
+  // Karlsruhe fine sand's 2.2 and 1.1): the explicit step shrinks as 1 / sqrt(m_R), so a misplaced
+  // digit (m_R = 1e5) would make a run 140 times longer than 5 does and look hung.
   static const HypoplasticField fields[] = {
       {"critical_friction_angle", &HypoplasticParameters::critical_friction_angle, false, "degrees",
        between(10.0, true, 60.0, true), "phi_c, the critical state friction angle"},
@@ -109,9 +112,9 @@ std::span<const HypoplasticField> hypoplastic_fields() {
        between(0.0, true, 1.0, true), "1: with the intergranular strain, 0: without"},
       {"r_max", &HypoplasticParameters::r_max, true, "-", between(1e-6, true, 1e-2, true),
        "R, the size of the intergranular strain's elastic range"},
-      {"m_r", &HypoplasticParameters::m_r, true, "-", at_least(1.0),
+      {"m_r", &HypoplasticParameters::m_r, true, "-", between(1.0, true, 20.0, true),
        "m_R, the stiffness multiplier after a 180 degree reversal, at least m_T"},
-      {"m_t", &HypoplasticParameters::m_t, true, "-", at_least(1.0),
+      {"m_t", &HypoplasticParameters::m_t, true, "-", between(1.0, true, 20.0, true),
        "m_T, the stiffness multiplier after a 90 degree change of direction"},
       {"beta_r", &HypoplasticParameters::beta_r, true, "-", above(0.0),
        "beta_R, the evolution exponent of the intergranular strain"},
