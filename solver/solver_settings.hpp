@@ -70,7 +70,7 @@ struct SolverSettings {
   /// Soil stretched to under half its material's density whose centre lies inside a rigid body's
   /// outline carries no stress there and sets no time step (solver/rigid_interiors.hpp says why).
   /// Off: with the step held it leaves a resolved pile wall's forces as they are, and the longer
-  /// step it allows moves them as any other perturbation of the step does (docs/results.md).
+  /// step it allows moves them as any other perturbation of the step does (docs/resolution.md).
   bool stress_free_inside_rigid = false;
   /// How particles reach the grid: bilinear at their centre, or GIMP over their domain.
   ShapeFunctions shape_functions = ShapeFunctions::linear;

@@ -18,7 +18,7 @@ the pile tip's cell (wall_thickness / wall_cells); given its sweep file, the too
 
 Runs joined by '+' before the ':H' are an ensemble at one resolution: runs of the same case that
 differ only by a perturbation (the Courant number, the seeding). Where pile forces respond to
-such perturbations (resolved pile walls: docs/results.md), one run's value is a draw, and the
+such perturbations (resolved pile walls: docs/resolution.md), one run's value is a draw, and the
 ensemble's mean is the value, the standard deviation of its members' values (n - 1) the scatter,
 and the sum of their wall times its cost.
 
