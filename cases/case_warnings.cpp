@@ -303,7 +303,7 @@ void note_one_cell_wall(const TomlTable& table, int wall_cells,
   }
   add(warnings, CaseWarning::Kind::resolution, table, "wall_cells",
       "the wall is one cell wide: tip and shaft forces depend on where the grid lines fall "
-      "(docs/resolution.md: at 0.1 m the quick jacked tip carries 15.1 kN/rad against 19.0 +- 1.2 "
+      "(docs/resolution.md: at 0.1 m the quick jacked tip carries 15.1 kN/rad against 17.2 +- 0.6 "
       "converged with 3 to 4 cells across the wall); set wall_cells = 3 or more for forces");
 }
 

@@ -3,7 +3,8 @@
 
 f(h) = f0 + C h^p with p = 1.5 at three unevenly refined cell sizes must give p and f0 to the
 bisection's precision (1e-9 relative: 200 halvings leave far less, round-off remains); values
-that oscillate with refinement must be reported as having no observed order. End to end, three
+that oscillate with refinement must be reported as having no observed order, their value the
+finest run's with half the range as its band. End to end, three
 synthetic histories with such forces must be read at a penetration and extrapolated the same way,
 the body's whole axial force (total_Fy) and tip plus inner wall (base_Fy) likewise, and an
 ensemble of three runs at the finest resolution, offset by -0.3, 0 and +0.3, must give the same
@@ -107,9 +108,20 @@ def main():
     ok &= check("error band", abs(band - 1.25 * abs(f[0] - F0)) < 1e-9 * abs(f[0] - F0))
     wobble = [F0 + 0.1, F0 - 0.2, F0 + 0.4]
     ok &= check("oscillation has no order", convergence.observed_order(H, wobble) is None)
-    _, band2, p2, observed2 = convergence.extrapolate(H, wobble, 1.0)
-    ok &= check("oscillation falls back to the assumed order and safety 3",
-                not observed2 and p2 == 1.0 and abs(band2 - 3.0 * 0.3 / (H[1] / H[0] - 1.0)) < 1e-12)
+    # Oscillating, the finest value stands, +- half the three's range: (0.4 - -0.2) / 2 = 0.3 (the
+    # fallback's Richardson would have given f0 - 0.3 / 0.325 = 11.68 +- 2.8, past every value).
+    f02, band2, p2, observed2 = convergence.extrapolate(H, wobble, 1.0)
+    ok &= check("oscillation: the finest value +- half the range",
+                not observed2 and np.isnan(p2) and f02 == wobble[0] and abs(band2 - 0.3) < 1e-12)
+    # Monotone, but converging faster than h^4 (no order in range): the assumed order, safety 3.
+    steep = [F0, F0 + 0.01, F0 + 1.0]
+    ok &= check("monotone without an order in range has none",
+                convergence.observed_order(H, steep) is None)
+    f03, band3, p3, observed3 = convergence.extrapolate(H, steep, 1.0)
+    ratio = H[1] / H[0] - 1.0
+    ok &= check("and falls back to the assumed order and safety 3",
+                not observed3 and p3 == 1.0 and abs(f03 - (F0 - 0.01 / ratio)) < 1e-12
+                and abs(band3 - 3.0 * 0.01 / ratio) < 1e-12)
     with tempfile.TemporaryDirectory() as directory:
         specs = []
         for k, h in enumerate(H):

@@ -34,8 +34,10 @@ finest runs give the observed order p of f(h) = f0 + C h^p (the root of the rati
 differences, which allows any refinement ratios) and the extrapolated f0; the error band is Roache's
 grid convergence index of the finest run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where no order can
 be observed (the values oscillate with refinement, or their differences do not shrink as h^p with
-p in [0.5, 4]), the table says which, takes p = --order (default 1, the order of the contact and
-GIMP transfer) and widens the safety factor to 3, as for two runs. Each run's error is then
+p in [0.5, 4]), the table says which. Where the three finest oscillate, there is nothing to
+extrapolate: the value is the finest run's, its band half the range of the three (Stern et al.
+2001's estimate for oscillatory convergence). Otherwise it takes p = --order (default 1, the order
+of the contact and GIMP transfer) and widens the safety factor to 3, as for two runs. Each run's error is then
 |f - f0|, plotted against its wall time (the history's wall_time) on log-log axes, one line per
 quantity and penetration. Where the two finest runs differ by less than the larger of their
 scatters, the table says so: the extrapolation then rests on noise, and the honest statement is
@@ -234,9 +236,19 @@ def observed_order(h, f):
     return 0.5 * (low + high)
 
 
+def oscillates(f):
+    """Whether three values, finest first, change direction with refinement."""
+    return len(f) >= 3 and (f[1] - f[0]) * (f[2] - f[1]) <= 0.0
+
+
 def extrapolate(h, f, fallback_order):
     """(f0, band, p, observed) from runs sorted finest first: Richardson on the two finest with the
-    observed order of the three finest where there is one, else with the fallback order."""
+    observed order of the three finest where there is one; where those oscillate, the finest value
+    +- half their range (p NaN: an oscillating sequence has no order, and the fallback's
+    extrapolation of the finest two's difference would run past the values, its band with it);
+    else Richardson with the fallback order."""
+    if oscillates(f[:3]):
+        return f[0], 0.5 * (max(f[:3]) - min(f[:3])), float("nan"), False
     p = observed_order(h[:3], f[:3]) if len(h) >= 3 else None
     observed = p is not None
     if not observed:
@@ -301,7 +313,10 @@ def main():
             f = [run[3][(quantity, depth)][0] for run in runs]
             scatter = max(run[3][(quantity, depth)][1] for run in runs[:2])
             f0, band, p, observed = extrapolate(h, f, args.order)
-            if not observed and abs(f[0] - f[1]) < scatter:
+            if oscillates(f):
+                # Half the range, but not below the noise one run's value carries.
+                band = max(band, scatter)
+            elif not observed and abs(f[0] - f[1]) < scatter:
                 # No order, and the finest two apart by less than the noise: extrapolating that
                 # difference would amplify noise. The finest run is the value, its error the
                 # larger of the scatter and the difference.
@@ -323,6 +338,8 @@ def main():
         within = abs(row[3] - row[4]) < scatter
         if observed:
             order = f"{p:.2f}"
+        elif oscillates(row[3:6]):
+            order = "none (oscillates with refinement; the finest run's value +- half the three's range)"
         elif within:
             order = f"none ({reason}; the finest run's value, not extrapolated)"
         else:
