@@ -22,27 +22,27 @@ such perturbations (resolved pile walls: docs/resolution.md), one run's value is
 ensemble's mean is the value, the standard deviation of its members' values (n - 1) the scatter,
 and the sum of their wall times its cost.
 
-For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the soil's force on
-the pile in kN/rad, tip_qb for the tip's unit end resistance in MPa, or total_Fy for the soil's
-whole axial force on the body, /bodies/<body>/contact_F_y, which the surfaces' F_y add up to;
-base_Fy for tip plus internal shaft F_y, the load the annulus and the soil plug take together,
-which varies less with the mesh than their split) and penetration, the value
-of each run is the mean over the installation rows within --window of that penetration (default
-10 mm: stick-slip makes pile forces scatter by several per cent from row to row, so a single row
-is no value to extrapolate), and its scatter the standard deviation there. The three
-finest runs give the observed order p of f(h) = f0 + C h^p (the root of the ratio of successive
-differences, which allows any refinement ratios) and the extrapolated f0; the error band is Roache's
-grid convergence index of the finest run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where no order can
-be observed (the values oscillate with refinement, or their differences do not shrink as h^p with
-p in [0.5, 4]), the table says which. Where the three finest oscillate, there is nothing to
-extrapolate: the value is the finest run's, its band half the range of the three (Stern et al.
-2001's estimate for oscillatory convergence). Otherwise it takes p = --order (default 1, the order
-of the contact and GIMP transfer) and widens the safety factor to 3, as for two runs. Each run's error is then
-|f - f0|, plotted against its wall time (the history's wall_time) on log-log axes, one line per
-quantity and penetration. Where the two finest runs differ by less than the larger of their
-scatters, the table says so: the extrapolation then rests on noise, and the honest statement is
-the scatter itself. If in addition no order is observed, the value given is the finest run's,
-with the larger of the scatter and the finest two's difference as its band (no extrapolation).
+For each quantity (SURFACE_COMPONENT: tip, ext or int, and Fr, Fy or Ft for the soil's force on the
+pile in kN/rad, tip_qb for the tip's unit end resistance in MPa, or total_Fy for the soil's whole
+axial force on the body, /bodies/<body>/contact_F_y, which the surfaces' F_y add up to; base_Fy for
+tip plus internal shaft F_y, the load the annulus and the soil plug take together, which varies less
+with the mesh than their split) and penetration, the value of each run is the mean over the
+installation rows within --window of that penetration (default 10 mm: stick-slip makes pile forces
+scatter by several per cent from row to row, so a single row is no value to extrapolate), and its
+scatter the standard deviation there. The three finest runs give the observed order p of f(h) = f0 +
+C h^p (the root of the ratio of successive differences, which allows any refinement ratios) and the
+extrapolated f0; the error band is Roache's grid convergence index of the finest run, 1.25 |f1 - f2|
+/ ((h2 / h1)^p - 1). Where no order can be observed (the values oscillate with refinement, or their
+differences do not shrink as h^p with p in [0.5, 4]), the table says which. Where the three finest
+oscillate, there is nothing to extrapolate: the value is the finest run's, its band half the range
+of the three (Stern et al. 2001's estimate for oscillatory convergence). Otherwise it takes p =
+--order (default 1, the order of the contact and GIMP transfer) and widens the safety factor to 3,
+as for two runs. Each run's error is then |f - f0|, plotted against its wall time (the history's
+wall_time) on log-log axes, one line per quantity and penetration. Where the two finest runs differ
+by less than the larger of their scatters, the table says so: the extrapolation then rests on noise,
+and the honest statement is the scatter itself. If in addition no order is observed, the value given
+is the finest run's, with the larger of the scatter and the finest two's difference as its band (no
+extrapolation).
 
 Uses Debian's python3-h5py, python3-numpy and python3-matplotlib (tools/setup.sh).
 """
@@ -338,8 +338,9 @@ def main():
         within = abs(row[3] - row[4]) < scatter
         if observed:
             order = f"{p:.2f}"
-        elif oscillates(row[3:6]):
-            order = "none (oscillates with refinement; the finest run's value +- half the three's range)"
+        elif oscillates(row[3:3 + len(h)]):
+            order = ("none (oscillates with refinement; the finest run's value +- half the "
+                     "three's range)")
         elif within:
             order = f"none ({reason}; the finest run's value, not extrapolated)"
         else:
