@@ -29,10 +29,10 @@ tip plus internal shaft F_y, the load the annulus and the soil plug take togethe
 with the mesh than their split) and penetration, the value of each run is the mean over the
 installation rows within --window of that penetration (default 10 mm: stick-slip makes pile forces
 scatter by several per cent from row to row, so a single row is no value to extrapolate), and its
-scatter the standard deviation there. The three finest runs give the observed order p of f(h) = f0 +
-C h^p (the root of the ratio of successive differences, which allows any refinement ratios) and the
-extrapolated f0; the error band is Roache's grid convergence index of the finest run, 1.25 |f1 - f2|
-/ ((h2 / h1)^p - 1). Where no order can be observed (the values oscillate with refinement, or their
+scatter the standard deviation there. The three finest runs give the observed order p of
+f(h) = f0 + C h^p (the root of the ratio of successive differences, which allows any refinement
+ratios) and the extrapolated f0; the error band is Roache's grid convergence index of the finest
+run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where no order can be observed (the values oscillate with refinement, or their
 differences do not shrink as h^p with p in [0.5, 4]), the table says which. Where the three finest
 oscillate, there is nothing to extrapolate: the value is the finest run's, its band half the range
 of the three (Stern et al. 2001's estimate for oscillatory convergence). Otherwise it takes p =
@@ -212,14 +212,17 @@ def sweep_groups(target, mpile, cores, out, running):
     return sorted(groups.items())
 
 
+def oscillates(f):
+    """Whether three values, finest first, change direction with refinement."""
+    return len(f) >= 3 and (f[1] - f[0]) * (f[2] - f[1]) <= 0.0
+
+
 def observed_order(h, f):
     """p of f = f0 + C h^p through three points (h[0] < h[1] < h[2]), or None where the differences
     change sign (no monotone convergence) or no p in ORDER_RANGE fits."""
-    d21 = f[1] - f[0]
-    d32 = f[2] - f[1]
-    if d21 == 0.0 or d32 == 0.0 or (d21 > 0.0) != (d32 > 0.0):
+    if oscillates(f):
         return None
-    target = d32 / d21
+    target = (f[2] - f[1]) / (f[1] - f[0])
 
     def residual(p):
         return (h[2] ** p - h[1] ** p) / (h[1] ** p - h[0] ** p) - target
@@ -234,11 +237,6 @@ def observed_order(h, f):
         else:
             low = middle
     return 0.5 * (low + high)
-
-
-def oscillates(f):
-    """Whether three values, finest first, change direction with refinement."""
-    return len(f) >= 3 and (f[1] - f[0]) * (f[2] - f[1]) <= 0.0
 
 
 def extrapolate(h, f, fallback_order):
@@ -329,12 +327,9 @@ def main():
     for row in table:
         values = "  ".join(f"{x:.4g}" for x in row[3:3 + len(h)])
         p, observed, f0, band, scatter = row[3 + len(h):8 + len(h)]
-        if len(h) < 3:
-            reason = "two runs"
-        elif (row[4] - row[3]) * (row[5] - row[4]) <= 0.0:
-            reason = "oscillates with refinement"
-        else:
-            reason = f"differences shrink as no h^p, {ORDER_RANGE[0]:g} <= p <= {ORDER_RANGE[1]:g}"
+        # Oscillating runs have their own line below; what else leaves no order is said here.
+        reason = ("two runs" if len(h) < 3 else
+                  f"differences shrink as no h^p, {ORDER_RANGE[0]:g} <= p <= {ORDER_RANGE[1]:g}")
         within = abs(row[3] - row[4]) < scatter
         if observed:
             order = f"{p:.2f}"
