@@ -32,10 +32,11 @@ scatter by several per cent from row to row, so a single row is no value to extr
 scatter the standard deviation there. The three finest runs give the observed order p of
 f(h) = f0 + C h^p (the root of the ratio of successive differences, which allows any refinement
 ratios) and the extrapolated f0; the error band is Roache's grid convergence index of the finest
-run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where no order can be observed (the values oscillate with refinement, or their
-differences do not shrink as h^p with p in [0.5, 4]), the table says which. Where the three finest
-oscillate, there is nothing to extrapolate: the value is the finest run's, its band half the range
-of the three (Stern et al. 2001's estimate for oscillatory convergence). Otherwise it takes p =
+run, 1.25 |f1 - f2| / ((h2 / h1)^p - 1). Where no order can be observed (the values oscillate
+with refinement, or their differences do not shrink as h^p with p in [0.5, 4]), the table says
+which. Where the three finest oscillate, there is nothing to extrapolate: the value is the finest
+run's, its band half the range of the three (Stern et al. 2001's estimate for oscillatory
+convergence), or the scatter where that is larger. Otherwise it takes p =
 --order (default 1, the order of the contact and GIMP transfer) and widens the safety factor to 3,
 as for two runs. Each run's error is then |f - f0|, plotted against its wall time (the history's
 wall_time) on log-log axes, one line per quantity and penetration. Where the two finest runs differ
@@ -335,7 +336,7 @@ def main():
             order = f"{p:.2f}"
         elif oscillates(row[3:3 + len(h)]):
             order = ("none (oscillates with refinement; the finest run's value +- half the "
-                     "three's range)")
+                     "three's range or the scatter)")
         elif within:
             order = f"none ({reason}; the finest run's value, not extrapolated)"
         else:
