@@ -243,7 +243,7 @@ TEST(CaseFormat, ARangeOrChoiceOutsideTheDeclarationNamesFileLineKeyAndBound) {
   std::string bad = block;
   bad.replace(bad.find("poisson_ratio = 0.3"), 19, "poisson_ratio = 0.7");
   EXPECT_EQ(format_error_of(bad), "case.toml:9: materials.steel.poisson_ratio: linear_elastic: "
-                           "poisson_ratio must lie in (-1, 0.5), got 0.7");
+                                  "poisson_ratio must lie in (-1, 0.5), got 0.7");
 }
 
 TEST(CaseFormat, AnUnknownKeyListsTheKeysOfItsTable) {

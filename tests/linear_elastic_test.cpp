@@ -6,7 +6,8 @@
 namespace mpile {
 namespace {
 
-Stress update_elastic_once(const LinearElastic& material, Stress stress, const StrainIncrement& de) {
+Stress update_elastic_once(const LinearElastic& material, Stress stress,
+                           const StrainIncrement& de) {
   const double modulus = update_single_point(material, stress, nullptr, de);
   EXPECT_DOUBLE_EQ(modulus, material.lame_lambda() + 2.0 * material.shear_modulus());
   return stress;
@@ -18,7 +19,7 @@ TEST(LinearElastic, IncrementFollowsHookesLawWithEngineeringShear) {
   ASSERT_DOUBLE_EQ(material.lame_lambda(), 40e6);
   ASSERT_DOUBLE_EQ(material.shear_modulus(), 40e6);
   const Stress s = update_elastic_once(material, Stress{1.0, 2.0, 3.0, 4.0, 5.0, 6.0},
-                               StrainIncrement{1e-4, -2e-4, 3e-4, 1e-4, 2e-4, -3e-4});
+                                       StrainIncrement{1e-4, -2e-4, 3e-4, 1e-4, 2e-4, -3e-4});
   const double volumetric = 40e6 * 2e-4;
   EXPECT_DOUBLE_EQ(s[RR], 1.0 + volumetric + 80e6 * 1e-4);
   EXPECT_DOUBLE_EQ(s[YY], 2.0 + volumetric - 80e6 * 2e-4);

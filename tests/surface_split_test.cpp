@@ -15,7 +15,7 @@ using Force = std::array<double, 3>;
 using Normal = std::array<double, 2>;
 
 std::vector<Force> split_surface_force(const Force& f, const std::vector<double>& share,
-                         const std::vector<Normal>& normal, bool* solved = nullptr) {
+                                       const std::vector<Normal>& normal, bool* solved = nullptr) {
   std::vector<Force> part(share.size());
   const bool ok = split_over_surfaces(f, share, normal, part);
   if (solved != nullptr) {
@@ -85,7 +85,8 @@ TEST(SurfaceSplit, OpposedFacesSplitTheForceByShares) {
   // is defined, and the parts are the shares of the force (still adding up to it).
   bool solved = true;
   const Force f{2.0, -1.0, 0.3};
-  const auto part = split_surface_force(f, {0.5, 0.5}, {Normal{1.0, 0.0}, Normal{-1.0, 0.0}}, &solved);
+  const auto part =
+      split_surface_force(f, {0.5, 0.5}, {Normal{1.0, 0.0}, Normal{-1.0, 0.0}}, &solved);
   EXPECT_FALSE(solved);
   for (std::size_t d = 0; d < 3; ++d) {
     EXPECT_DOUBLE_EQ(part[0][d], 0.5 * f[d]);

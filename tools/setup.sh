@@ -12,6 +12,7 @@ packages=(
   python3-pandas python3-xarray python3-h5netcdf python3-pytest python3-venv python3-setuptools python3-pip
   python3-jsonschema python3-scipy python3-mpmath
   snakemake slurm-wlm munge
+  clang-format
   xvfb xauth
 )
 
