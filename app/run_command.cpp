@@ -248,6 +248,15 @@ private:
       err_ << "mpile: " << e.what() << '\n';
       return exit_failure;
     }
+    // Found now, not when the first checkpoint is due (at the end, where checkpoint_interval is
+    // 0): a run of hours would be lost to a path the user can clear before it starts.
+    if (std::filesystem::exists(checkpoint_path_, error) &&
+        !std::filesystem::is_regular_file(checkpoint_path_, error)) {
+      err_ << "mpile: " << checkpoint_path_
+           << " is not a file (a directory?): the run writes its checkpoint there; remove it or "
+              "choose another --out\n";
+      return exit_bad_input;
+    }
     // Appended to by a restart, flushed line by line.
     log_file_.open(directory_ + "/run.log", restarting() ? std::ios::app : std::ios::trunc);
     if (log_file_) {

@@ -42,6 +42,35 @@ std::size_t stiffest_particle(const CaseSpec& spec, const Scene& scene) {
   return found;
 }
 
+/// Particle i's initial stress if a component is past max_initial_stress or not a number. Beyond
+/// it the models' invariants overflow (a stress squared past 1e308) and hide the stress: at a K0
+/// surcharge of 1e200 Pa the moduli fell to their floor, the first step looked plausible, and the
+/// first stress update iterated for minutes on every particle.
+std::optional<InadmissibleParticle> stress_past_any_material(const CaseSpec& spec,
+                                                             const Scene& scene, std::size_t i) {
+  const Particles& p = scene.particles;
+  const Stress& stress = p.stress[i];
+  double largest = 0.0;
+  for (const double component : stress) {
+    if (std::isnan(component)) {
+      largest = component;
+      break;
+    }
+    largest = std::abs(component) > std::abs(largest) ? component : largest;
+  }
+  if (std::abs(largest) <= max_initial_stress) {
+    return std::nullopt;
+  }
+  std::ostringstream where;
+  where << spec.file << ": an initial stress of " << largest
+        << " Pa, past any material's (more than " << max_initial_stress
+        << " Pa): check the phases' k0 (its surcharge, surface and k0)";
+  std::ostringstream particle;
+  particle << "particle " << i << " of body '" << scene.body_names[p.body[i]] << "' at (r, y) = ("
+           << p.r[i] << ", " << p.y[i] << ")";
+  return InadmissibleParticle{where.str(), particle.str()};
+}
+
 } // namespace
 
 std::optional<InadmissibleParticle> first_inadmissible_particle(const CaseSpec& spec,
@@ -50,6 +79,9 @@ std::optional<InadmissibleParticle> first_inadmissible_particle(const CaseSpec& 
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.material[i] >= spec.materials.size()) {
       continue; // a rigid body's
+    }
+    if (const auto past = stress_past_any_material(spec, scene, i)) {
+      return past;
     }
     const Material::Inadmissible why = scene.materials[p.material[i]]->inadmissible_state(
         p.stress[i], p.state.data() + i * static_cast<std::size_t>(p.state_stride));
@@ -90,6 +122,14 @@ void refuse_implausible_run(const CaseSpec& spec, const Scene& scene, double fir
       << run / snapshot_interval << " steps (more than " << max_run_steps
       << ") and as many snapshots; the first stable step is " << first_step
       << " s (0 writes the first and last snapshots only)";
+    throw CaseError(s.str());
+  }
+  if (snapshot_interval > 0.0 && !(run / snapshot_interval <= max_snapshots)) {
+    std::ostringstream s;
+    s << spec.file << ": output.snapshot_interval = " << snapshot_interval << " s: the phases' "
+      << run << " s would write about " << run / snapshot_interval << " snapshots (more than "
+      << max_snapshots << ", each a file of every particle); a longer interval, or "
+      << "output.snapshot_times at the moments wanted";
     throw CaseError(s.str());
   }
   const double steps = run / first_step;

@@ -4,7 +4,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -42,17 +41,27 @@ OutputLock::~OutputLock() {
 
 namespace {
 
-/// The file names a ParaView collection lists (its DataSet elements' file attributes).
+/// The file names a ParaView collection lists (its DataSet elements' file attributes). A plain
+/// search, not a regular expression: libstdc++'s matcher recurses once per character and a
+/// foreign index with a 30 000-character name overflowed the stack.
 std::vector<std::string> listed_files(const std::filesystem::path& collection) {
   std::ifstream in(collection);
   std::stringstream text;
   text << in.rdbuf();
   const std::string content = text.str();
-  static const std::regex file_attribute("file=\"([^\"]+)\"");
+  const std::string attribute = "file=\"";
   std::vector<std::string> files;
-  for (auto it = std::sregex_iterator(content.begin(), content.end(), file_attribute);
-       it != std::sregex_iterator(); ++it) {
-    files.push_back((*it)[1].str());
+  for (std::size_t at = content.find(attribute); at != std::string::npos;
+       at = content.find(attribute, at)) {
+    at += attribute.size();
+    const std::size_t end = content.find('"', at);
+    if (end == std::string::npos) {
+      break;
+    }
+    if (end > at) {
+      files.push_back(content.substr(at, end - at));
+    }
+    at = end + 1;
   }
   return files;
 }
@@ -78,11 +87,13 @@ void remove_earlier_outputs(const std::string& directory) {
     for (const std::string& name : listed_files(collection)) {
       // Only a plain name in this directory: an index edited to point elsewhere deletes nothing
       // outside it.
+      // A name longer than a file name can be is none this program wrote.
       const std::filesystem::path file(name);
-      if (file.has_parent_path() || name == "." || name == "..") {
+      if (file.has_parent_path() || name == "." || name == ".." || name.size() > 255) {
         continue;
       }
-      if (std::filesystem::is_regular_file(dir / file)) {
+      std::error_code error;
+      if (std::filesystem::is_regular_file(dir / file, error)) {
         remove_file(dir / file);
       }
     }

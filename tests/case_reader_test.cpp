@@ -1047,6 +1047,68 @@ TEST(CaseReader, AnImplausibleRunBesideARigidBodyNamesTheCasesOwnMaterial) {
   EXPECT_NE(err.str().find("check materials.block"), std::string::npos) << err.str();
 }
 
+TEST(CaseReader, AnInitialStressPastAnyMaterialsIsRefusedNotIteratedForEver) {
+  // VHS's K0 surcharge at 1e200 Pa: the principal stresses overflowed (a stress squared), the
+  // Hardening Soil moduli fell to their floor, the first step looked plausible (1e-3 s) and each
+  // of the first steps iterated on every particle (168 s for check and run of 32 particles; the
+  // monopile's geostatic phase did not end in minutes and a SIGTERM waited for the step). Past a
+  // terapascal a start is refused, naming the k0 keys.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_initial_stress_test";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const std::string path = (directory / "vhs.toml").string();
+  const std::string vhs = read_text(source / "cases/verification/hs_oedometer.toml");
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  const std::string k0 = "surcharge = 100e3, k0 = 0.5";
+  for (const char* edit : {"surcharge = 1e200, k0 = 0.5", "surcharge = 1e13, k0 = 0.5",
+                           "surcharge = 100e3, k0 = 1e300"}) {
+    std::ofstream(path) << replaced(vhs, k0, edit);
+    std::ostringstream out, err;
+    EXPECT_EQ(check_case(options, out, err), exit_bad_input) << edit;
+    EXPECT_NE(err.str().find("vhs.toml: an initial stress of -"), std::string::npos) << err.str();
+    EXPECT_NE(err.str().find(" Pa, past any material's (more than 1e+12 Pa): check the phases' k0 "
+                             "(its surcharge, surface and k0); found at the start in particle "),
+              std::string::npos)
+        << err.str();
+    EXPECT_NE(err.str().find("of body 'sample' at (r, y) = ("), std::string::npos) << err.str();
+    std::ostringstream run_out, run_err;
+    EXPECT_EQ(run_case(options, run_out, run_err), exit_bad_input) << edit;
+    EXPECT_FALSE(std::filesystem::exists(directory / "out")) << edit;
+  }
+  // A tenth of the bound is a start the model evaluates: checked, not refused.
+  std::ofstream(path) << replaced(vhs, k0, "surcharge = 1e11, k0 = 0.5");
+  std::ostringstream out, err;
+  EXPECT_EQ(check_case(options, out, err), exit_success) << err.str();
+}
+
+TEST(CaseReader, ASnapshotIntervalThatWouldWriteMoreThanATenthOfAMillionFilesIsRefused) {
+  // 1e-6 s over this case's 0.2 s: 2e5 steps, a run of seconds, but as many snapshot files (the
+  // steps land on them); 5e-6 s, 4e4 files, is a debugging run's and allowed.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_snapshot_count_test";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const std::string path = (directory / "case.toml").string();
+  std::ofstream(path) << edited("snapshot_interval = 0.05", "snapshot_interval = 1e-6");
+  RunOptions options;
+  options.case_path = path;
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(check_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find("case.toml: output.snapshot_interval = 1e-06 s: the phases' 0.2 s "
+                           "would write about 200000 snapshots (more than 100000"),
+            std::string::npos)
+      << err.str();
+  std::ostringstream run_out, run_err;
+  EXPECT_EQ(run_case(options, run_out, run_err), exit_bad_input);
+  EXPECT_FALSE(std::filesystem::exists(directory / "out"));
+  std::ofstream(path) << edited("snapshot_interval = 0.05", "snapshot_interval = 5e-6");
+  const CaseSpec spec = read_case_file(path);
+  const auto scene = build_scene(spec);
+  EXPECT_NO_THROW(refuse_implausible_run(spec, *scene, 1e-3));
+}
+
 /// The reader's message for a case text, or "accepted".
 std::string reader_verdict(const std::string& text) {
   try {

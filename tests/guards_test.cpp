@@ -211,6 +211,47 @@ TEST(Guards, AnOutputThatCannotBeWrittenIsNamedWithTheSystemsReason) {
   EXPECT_FALSE(std::filesystem::exists(directory / "out" / "particles.pvd.tmp"));
 }
 
+TEST(Guards, AForeignIndexWithAHugeFileNameIsReplacedNotAStackOverflow) {
+  // A fresh run removes the files an earlier run's particles.pvd lists. A foreign index naming a
+  // file of 30 000 characters overflowed the stack of the regular expression that read it
+  // (SIGSEGV); one of 300 characters ended the run with the library's "File name too long". Such
+  // a name is none this program wrote: it is left alone and the index replaced.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_foreign_pvd";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory / "out");
+  std::ofstream(directory / "out" / "particles.pvd")
+      << "<VTKFile><Collection><DataSet file=\"" << std::string(30000, 'a')
+      << "\"/><DataSet file=\"" << std::string(300, 'b') << ".vtu\"/></Collection></VTKFile>\n";
+  const auto path = directory / "column.toml";
+  std::ofstream(path) << column;
+  RunOptions options;
+  options.case_path = path.string();
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_success) << err.str();
+  EXPECT_EQ(read_text(directory / "out" / "particles.pvd").find("aaaa"), std::string::npos);
+}
+
+TEST(Guards, ADirectoryWhereTheCheckpointGoesIsRefusedBeforeTheRun) {
+  // Found only when the checkpoint was due (the end of the run, at checkpoint_interval 0): the
+  // whole run lost and the advice "once there is room" wrong. Now bad input before the first step.
+  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_checkpoint_dir";
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory / "out" / "checkpoint.h5");
+  const auto path = directory / "column.toml";
+  std::ofstream(path) << column;
+  RunOptions options;
+  options.case_path = path.string();
+  options.output_directory = (directory / "out").string();
+  std::ostringstream out, err;
+  EXPECT_EQ(run_case(options, out, err), exit_bad_input);
+  EXPECT_NE(err.str().find((directory / "out" / "checkpoint.h5").string() +
+                           " is not a file (a directory?): the run writes its checkpoint there"),
+            std::string::npos)
+      << err.str();
+  EXPECT_FALSE(std::filesystem::exists(directory / "out" / "history.h5"));
+}
+
 TEST(Guards, EnergyResidualPastTheLimitStopsTheRun) {
   // The column under suddenly applied gravity closes its energy balance to O(omega dt) (a few
   // 1e-3 here), never exactly: a limit of 1e-9 is passed from the first rows on, and the run must
