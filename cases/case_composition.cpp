@@ -290,6 +290,41 @@ void apply_override(TomlValue& root, const std::string& assignment) {
   }
 }
 
+std::string canonical_key(const TomlValue& root, const std::string& key) {
+  const TomlValue* node = &root;
+  std::string canonical;
+  for (const std::string& part : split_key(key)) {
+    std::string written = part;
+    const TomlValue* next = nullptr;
+    if (node != nullptr && node->is_array()) {
+      const auto& array = node->as_array();
+      if (is_index(part)) {
+        const std::size_t index = std::stoul(part);
+        written = std::to_string(index); // phases.00 is phases.0
+        next = index < array.size() ? &array[index] : nullptr;
+      }
+      for (std::size_t i = 0; next == nullptr && i < array.size(); ++i) {
+        const TomlValue& item = array[i];
+        if (!item.is_table()) {
+          continue;
+        }
+        const auto name = item.as_table().find("name");
+        if (name != item.as_table().end() && name->second.is_string() &&
+            name->second.as_string().str == part) {
+          written = std::to_string(i);
+          next = &item;
+        }
+      }
+    } else if (node != nullptr && node->is_table()) {
+      const auto found = node->as_table().find(part);
+      next = found == node->as_table().end() ? nullptr : &found->second;
+    }
+    canonical += (canonical.empty() ? "" : ".") + written;
+    node = next;
+  }
+  return canonical;
+}
+
 ComposedCase compose_case(const std::string& path, const std::vector<std::string>& overrides) {
   ComposedCase composed;
   std::vector<std::string> ancestors;

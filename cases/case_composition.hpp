@@ -38,6 +38,12 @@ TomlValue merge_over(const TomlValue& base, const TomlValue& top);
 /// Tables on the path are made when absent; the strict reader then refuses an unknown key.
 void apply_override(TomlValue& root, const std::string& assignment);
 
+/// A --set key path as it lands in `root`: an element of an array of tables by its index without
+/// leading zeros, whether written by index or by name (phases.installation.duration and
+/// phases.01.duration are both phases.1.duration where phase 1 is "installation"). Parts that
+/// name nothing in `root` are kept as written.
+std::string canonical_key(const TomlValue& root, const std::string& key);
+
 /// Reads a case file with its bases and applies the overrides, in the order given.
 ComposedCase compose_case(const std::string& path, const std::vector<std::string>& overrides);
 

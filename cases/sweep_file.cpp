@@ -9,11 +9,10 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 
 namespace mpile {
-
-namespace {} // namespace
 
 std::string toml_text(const TomlValue& value) {
   if (value.is_floating()) {
@@ -145,6 +144,63 @@ std::vector<GatherSpec> read_gather(TomlTable& top) {
   return gather;
 }
 
+/// Whether two TOML values are one value written two ways: 1 and 1.0, 0.0 and -0.0, and arrays
+/// of such; any other pair by its text.
+bool same_value(const TomlValue& a, const TomlValue& b) {
+  const auto number = [](const TomlValue& v) -> std::optional<double> {
+    if (v.is_integer()) {
+      return static_cast<double>(v.as_integer());
+    }
+    if (v.is_floating()) {
+      return v.as_floating();
+    }
+    return std::nullopt;
+  };
+  if (const auto x = number(a), y = number(b); x && y) {
+    return *x == *y;
+  }
+  if (a.is_array() && b.is_array()) {
+    const auto& x = a.as_array();
+    const auto& y = b.as_array();
+    return x.size() == y.size() &&
+           std::equal(x.begin(), x.end(), y.begin(),
+                      [](const TomlValue& u, const TomlValue& v) { return same_value(u, v); });
+  }
+  return toml_text(a) == toml_text(b);
+}
+
+/// Whether two key paths set one value: equal, or one a table holding the other.
+bool keys_overlap(const std::string& a, const std::string& b) {
+  const auto inside = [](const std::string& outer, const std::string& inner) {
+    return outer == inner ||
+           (inner.size() > outer.size() && inner.compare(0, outer.size(), outer) == 0 &&
+            inner[outer.size()] == '.');
+  };
+  return inside(a, b) || inside(b, a);
+}
+
+/// Refuses a parameter `key` (its message prefix `where`) whose key, as `canonical` maps it,
+/// overlaps an earlier parameter's or a fixed `set`'s: which value a variant ran with would depend
+/// on the order they were applied in.
+template <typename Canonical>
+void refuse_overlaps(const std::string& where, const std::string& key,
+                     const std::vector<SweepParameter>& earlier,
+                     const std::vector<std::string>& sets, const Canonical& canonical) {
+  const std::string mine = canonical(key);
+  for (const SweepParameter& other : earlier) {
+    if (other.key != key && keys_overlap(mine, canonical(other.key))) {
+      throw CaseError(where + "overlaps the parameter \"" + other.key +
+                      "\": a key is swept by one entry only");
+    }
+  }
+  for (const std::string& assignment : sets) {
+    if (keys_overlap(mine, canonical(assignment.substr(0, assignment.find('='))))) {
+      throw CaseError(where + "overlaps set's \"" + assignment +
+                      "\": a swept key is not also set for every variant");
+    }
+  }
+}
+
 } // namespace
 
 SweepSpec read_sweep_file(const std::string& path) {
@@ -204,36 +260,22 @@ SweepSpec read_sweep_file(const std::string& path) {
     if (parameter.values.empty()) {
       throw CaseError(where + "the list of values is empty");
     }
+    std::vector<TomlValue> parsed;
+    for (const std::string& written : parameter.values) {
+      parsed.push_back(parse_toml("value = " + written, path).as_table().at("value"));
+    }
     for (std::size_t i = 0; i < parameter.values.size(); ++i) {
       for (std::size_t j = 0; j < i; ++j) {
-        if (parameter.values[i] == parameter.values[j]) {
-          throw CaseError(where + "the value " + parameter.values[i] +
-                          " is listed twice: its variants would run twice");
+        if (same_value(parsed[i], parsed[j])) {
+          const std::string as =
+              parameter.values[i] == parameter.values[j] ? "" : " (as " + parameter.values[j] + ")";
+          throw CaseError(where + "the value " + parameter.values[i] + " is listed twice" + as +
+                          ": its variants would run twice");
         }
       }
     }
-    // One key set by two entries (a parameter and a fixed `set`, or a table and a key inside
-    // it): which value a variant ran with would depend on the order they were applied in.
-    const auto overlaps = [&](const std::string& other) {
-      const auto inside = [](const std::string& a, const std::string& b) {
-        return a == b ||
-               (b.size() > a.size() && b.compare(0, a.size(), a) == 0 && b[a.size()] == '.');
-      };
-      return inside(key, other) || inside(other, key);
-    };
-    for (const SweepParameter& earlier : sweep.parameters) {
-      if (overlaps(earlier.key)) {
-        throw CaseError(where + "overlaps the parameter \"" + earlier.key +
-                        "\": a key is swept by one entry only");
-      }
-    }
-    for (const std::string& assignment : sweep.sets) {
-      const std::string set_key = assignment.substr(0, assignment.find('='));
-      if (overlaps(set_key)) {
-        throw CaseError(where + "overlaps set's \"" + assignment +
-                        "\": a swept key is not also set for every variant");
-      }
-    }
+    refuse_overlaps(where, key, sweep.parameters, sweep.sets,
+                    [](const std::string& k) { return k; });
     sweep.parameters.push_back(parameter);
     table.raw(key);
   }
@@ -279,6 +321,22 @@ std::vector<CaseWarning> validate_sweep(const SweepSpec& sweep) {
   const std::string case_path = (std::filesystem::path(sweep.file).parent_path() / sweep.case_path)
                                     .lexically_normal()
                                     .string();
+  // Keys written two ways (a phase by name and by index, an index with a leading zero) set one
+  // value: compared as they land in the case's tree, which read_sweep_file does not open. A case
+  // that cannot be read is named by the variants' reading below.
+  TomlValue root;
+  try {
+    root = compose_case(case_path, sweep.sets).root;
+  } catch (const CaseError&) {
+  }
+  const auto canonical = [&](const std::string& key) { return canonical_key(root, key); };
+  for (std::size_t p = 0; p < sweep.parameters.size(); ++p) {
+    const SweepParameter& parameter = sweep.parameters[p];
+    refuse_overlaps(sweep.file + ":" + std::to_string(parameter.line) + ": parameters.\"" +
+                        parameter.key + "\": ",
+                    parameter.key, {sweep.parameters.begin(), sweep.parameters.begin() + p},
+                    sweep.sets, canonical);
+  }
   // Each warning's text once, in the order first met, with the variants that have it.
   std::vector<std::pair<CaseWarning, std::vector<std::string>>> seen;
   for (const SweepVariant& variant : sweep.variants) {

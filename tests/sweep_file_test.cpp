@@ -128,6 +128,15 @@ TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
        "\"solver.courant_number\" = [0.1, 0.2, 0.1]",
        ":7: parameters.\"solver.courant_number\": the value 0.1 is listed twice: its variants "
        "would run twice"},
+      // One value written two ways ran identical variants under two labels.
+      {"a value twice in two spellings", "\"solver.courant_number\" = [0.1]",
+       "\"solver.courant_number\" = [1, 0.5, 1.0]",
+       ":7: parameters.\"solver.courant_number\": the value 1.0 is listed twice (as 1): its "
+       "variants would run twice"},
+      {"a vector twice, zero signed", "\"bodies.0.velocity\" = [[0.1, 0.0, 0.0], [0.3, 0.0, 0.0]]",
+       "\"bodies.0.velocity\" = [[0.1, 0.0, 0.0], [0.1, -0.0, 0.0]]",
+       ":6: parameters.\"bodies.0.velocity\": the value [0.1, -0.0, 0.0] is listed twice (as "
+       "[0.1, 0.0, 0.0]): its variants would run twice"},
       {"a swept key also set", "\"solver.courant_number\" = [0.1]",
        "\"phases.0\" = [{ name = \"a\", duration = 0.1 }]",
        ":7: parameters.\"phases.0\": overlaps set's \"phases.0.duration=0.5\": a swept key is not "
@@ -158,6 +167,46 @@ TEST(SweepFile, TwoParametersSweepingOneKeyAreRefused) {
     EXPECT_NE(error.find(": overlaps the parameter \"bodies.0.velocity"), std::string::npos)
         << error;
     EXPECT_NE(error.find("a key is swept by one entry only"), std::string::npos) << error;
+  }
+}
+
+TEST(SweepFile, OneKeyWrittenTwoWaysIsOneKey) {
+  // V2's phase 0 is "vibrate": phases.vibrate.duration and phases.0.duration (or phases.00) set
+  // one value, so variants labelled 2.0 ran 1.0 and the table mislabelled them. The reader alone
+  // cannot know the names; the sweep's check against the case refuses them at the later line.
+  const auto refused = [](const std::string& name, const std::string& from, const std::string& to,
+                          const std::string& message) {
+    const std::string path = write_sweep(name, replaced(good, from, to));
+    const SweepSpec sweep = read_sweep_file(path);
+    try {
+      validate_sweep(sweep);
+      ADD_FAILURE() << name << ": accepted";
+    } catch (const CaseError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + message, 0), 0u) << name << ": " << e.what();
+    }
+  };
+  refused("by_name", "\"solver.courant_number\" = [0.1]",
+          "\"solver.courant_number\" = [0.1]\n\"phases.vibrate.duration\" = [1.0, 2.0]",
+          ":8: parameters.\"phases.vibrate.duration\": overlaps set's \"phases.0.duration=0.5\": "
+          "a swept key is not also set for every variant");
+  const std::string unset = replaced(good, "set = [\"phases.0.duration=0.5\"]\n", "");
+  for (const char* second : {"phases.00.duration", "phases.vibrate.duration"}) {
+    const std::string path = write_sweep(
+        "two_ways", replaced(unset, "\"solver.courant_number\" = [0.1]",
+                             "\"solver.courant_number\" = [0.1]\n\"phases.0.duration\" = [1.0, "
+                             "2.0]\n\"" +
+                                 std::string(second) + "\" = [1.0, 3.0]"));
+    try {
+      validate_sweep(read_sweep_file(path));
+      ADD_FAILURE() << second << ": accepted";
+    } catch (const CaseError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(path + ":8: parameters.\"" + second +
+                                                "\": overlaps the parameter \"phases.0.duration\": "
+                                                "a key is swept by one entry only",
+                                            0),
+                0u)
+          << e.what();
+    }
   }
 }
 
