@@ -182,7 +182,8 @@ int main(int argc, char** argv) {
       ->add_option("--ppc", options.particles_per_direction,
                    "particles per cell direction (default: the case file's)")
       ->check(count_within(1, 8)); // as particles_per_cell in a case file: 100 000 filled memory
-  verify->add_option("--bbar", options.bbar, "B-bar on (1) or off (0); default on");
+  verify->add_option("--bbar", options.bbar, "B-bar on (1) or off (0); default on")
+      ->check(CLI::IsMember({"0", "1"})); // as a bool CLI11 takes 7 and -1 for on
   verify->add_option("--flip", options.flip_fraction, "FLIP fraction in [0, 1]")
       ->check(finite_within(0.0, 1.0));
   verify

@@ -684,6 +684,10 @@ void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigi
   for (TomlTable& table : top.tables("phases")) {
     PhaseSpec phase;
     table.read_into(phase);
+    // The name heads the phase's log lines and outputs, and `--set phases.<name>` finds it.
+    if (phase.name.empty()) {
+      table.fail<PhaseSpec>(&PhaseSpec::name, "a phase needs a name (\"\" names none)");
+    }
     if (!names.insert(phase.name).second) {
       table.fail<PhaseSpec>(&PhaseSpec::name, "a phase named '" + phase.name + "' already exists");
     }

@@ -207,6 +207,8 @@ std::vector<BadInput> bad_inputs() {
                               "[0.5, 1.0], y = [0.0, 0.5] }\n\n[boundaries]"),
        "bodies[1].name: a body named 'block' already exists",
        "name = \"block\"\nmaterial = \"soil\"\nregion = { r = [0.5"},
+      {"a phase named \"\"", edited("name = \"settle\"", "name = \"\""),
+       "phases[0].name: a phase needs a name (\"\" names none)", "name = \"\""},
       {"a condition on the axis",
        edited("y_min = \"fixed\"", "y_min = \"fixed\"\nr_min = \"roller\""),
        "boundaries.r_min: the grid starts on the axis", "r_min = \"roller\""},

@@ -48,6 +48,17 @@ TEST(CommandLine, VerifyOptionsRefuseNanAndValuesOutOfRange) {
   }
 }
 
+TEST(CommandLine, VerifyBbarIsZeroOrOne) {
+  // Read as a bool, --bbar took 7 and -1 for "on" although the help says 0 or 1.
+  const auto directory = fresh_directory("verify_bbar");
+  for (const std::string value : {"7", "-1", "on"}) {
+    const Finished verify = run_mpile({"verify", "V2", "--bbar", value}, 0, directory / "err.txt");
+    ASSERT_TRUE(verify.exited) << value;
+    EXPECT_EQ(verify.status, 2) << value;
+    EXPECT_EQ(verify.err.rfind("--bbar: " + value + " not in {0,1}", 0), 0u) << verify.err;
+  }
+}
+
 TEST(CommandLine, ARunHasTheWorkersAskedForEvenAboveTheCores) {
   // The default arena holds one thread a core whatever max_allowed_parallelism allows: `--threads
   // 6` on two cores ran on two while the log and the history said six. One thread more than the
