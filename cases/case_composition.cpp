@@ -276,7 +276,9 @@ void apply_override(TomlValue& root, const std::string& assignment) {
     auto& table = node->as_table();
     auto found = table.find(part);
     if (found == table.end()) {
-      found = table.emplace(part, TomlValue(TomlValue::table_type{})).first;
+      // Made where the --set is, so that an error about it names the --set, not the case file.
+      found = table.emplace(part, parse_toml("value = {}", "--set " + key).as_table().at("value"))
+                  .first;
     }
     node = &found->second;
   }

@@ -528,7 +528,14 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key) {
   const auto& items = v.as_array();
   for (std::size_t i = 0; i < items.size(); ++i) {
     if (!items[i].is_table()) {
-      fail(key, "expected tables, found " + type_name(items[i]) + " in the array");
+      // At the element's own place: one a --set replaced names the --set, not the case's array.
+      const toml::source_location at = items[i].location();
+      const std::string& name = at.file_name();
+      throw CaseError(
+          (name.empty() || name == "unknown file" ? file_of(key) : name) + ":" +
+          std::to_string(name.empty() || name == "unknown file" ? line_of(key) : at.line()) + ": " +
+          key_path(key) + "[" + std::to_string(i) + "]: expected a table, found " +
+          type_name(items[i]));
     }
     out.emplace_back(items[i], key_path(key) + "[" + std::to_string(i) + "]", file_,
                      child_spec(key));

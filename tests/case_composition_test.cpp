@@ -362,6 +362,15 @@ TEST(CaseComposition, BadSetValuesAreRefusedNamingTheAssignment) {
   EXPECT_EQ(composition_error_of(path, {"phases.0.duration=2.0\n[solver]\ngravity = [0.0, 0.0]"}),
             composition_error_of(path, {"phases.0.duration=2.0\nphases = 3"}));
   EXPECT_EQ(composition_error_of(path, {"solver.gravity=[0.0,\n-9.81] # a comment\n"}), "accepted");
+  // An element replaced by a non-table, and a table a --set path made, were blamed on the case
+  // file's array and its first line.
+  EXPECT_EQ(composition_error_of(path, {"phases.0=1"}),
+            "--set phases.0:1: phases[0]: expected a table, found an integer");
+  EXPECT_EQ(
+      composition_error_of(path, {"output.monitor.0.name=\"x\""})
+          .rfind("--set output.monitor.0.name:1: output.monitor: expected an array of tables", 0),
+      0u)
+      << composition_error_of(path, {"output.monitor.0.name=\"x\""});
   const std::string unquoted = composition_error_of(path, {"title=a column"});
   EXPECT_EQ(unquoted.rfind("--set title=a column: the value is not TOML (text needs quotes: "
                            "title=\"text\"):",
