@@ -384,8 +384,8 @@ std::string describe_tables(const std::string& table) {
       return out.str();
     }
   }
-  throw CaseError("mpile describe: no table or material type '" + table + "' (the format has " +
-                  table_list() + ")");
+  throw CaseError("no table or material type '" + table + "' (the format has " + table_list() +
+                  ")");
 }
 
 std::string case_json_schema() {
@@ -518,7 +518,7 @@ int describe_command(const DescribeOptions& options, std::ostream& out, std::ost
     out << describe_tables(options.table);
     return exit_success;
   } catch (const CaseError& e) {
-    err << e.what() << '\n';
+    err << "mpile describe: " << e.what() << '\n';
     return exit_bad_input;
   }
 }

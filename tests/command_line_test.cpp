@@ -117,5 +117,22 @@ TEST(CommandLine, DescribeReadsOnlyARegularFileAsItsPage) {
   }
 }
 
+TEST(CommandLine, DescribeNamesItselfInEveryError) {
+  // A page without the generated blocks, and an unknown table: the page's errors began with the
+  // page's name alone, unlike every other describe error.
+  const auto directory = fresh_directory("describe_errors");
+  std::ofstream(directory / "page.md") << "# A page\n\nNo generated block.\n";
+  const std::string page = (directory / "page.md").string();
+  for (const auto& [arguments, start] :
+       std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"describe", "--check-doc", page}, "mpile describe: " + page + ": no generated block"},
+           {{"describe", "nosuch"}, "mpile describe: no table or material type 'nosuch'"}}) {
+    const Finished describe = run_mpile(arguments, 0, directory / "err.txt");
+    ASSERT_TRUE(describe.exited);
+    EXPECT_EQ(describe.status, 2) << describe.err;
+    EXPECT_EQ(describe.err.rfind(start, 0), 0u) << describe.err;
+  }
+}
+
 } // namespace
 } // namespace mpile
