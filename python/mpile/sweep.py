@@ -11,12 +11,14 @@ which writes
 A quantity the sweep file gathers is read from the variant's history.h5: `series` (a path in the
 file) where a body first reaches `at_penetration` (interpolated between rows), at `at_time`, or
 reduced over the run or one phase (last, max, min, mean, max_abs). It is NaN where the run did not
-get there; `status` says whether the variant finished.
+get there; `status` says whether the variant finished. A series no variant's history holds is a
+misspelt path and fails the gathering, naming the nearest paths.
 
     import mpile
     table = mpile.open_sweep("out/sweeps/gdp_torque")            # xarray Dataset
     frame = mpile.open_sweep("out/sweeps/gdp_torque", form="pandas")
 """
+import difflib
 import math
 import os
 import tomllib
@@ -150,6 +152,10 @@ def table(directory):
     sweep = read_sweep(directory)
     check_gather_names(sweep, directory / "sweep.toml")
     rows, units = [], {}
+    # A series found in no readable history is a misspelt path, not an unreached value: said so
+    # with the nearest names, where a column of NaN would pass for a result.
+    found = {spec["name"]: False for spec in sweep.get("gather", [])}
+    names = set()
     for variant in sweep["variants"]:
         run = directory / "variants" / variant["id"]
         row = {"variant": variant["id"]}
@@ -161,13 +167,21 @@ def table(directory):
         if history_file.exists():
             try:
                 with read_only(history_file) as history:
+                    history.visit(names.add)
                     for spec in sweep.get("gather", []):
+                        found[spec["name"]] |= spec["series"].lstrip("/") in history
                         row[spec["name"]], unit = quantity(history, spec)
                         if unit:
                             units[spec["name"]] = unit
             except OSError:
                 pass  # a history the failed run left unreadable: its quantities stay NaN
         rows.append(row)
+    for number, spec in enumerate(sweep.get("gather", []), start=1):
+        if names and not found[spec["name"]]:
+            near = difflib.get_close_matches(spec["series"].lstrip("/"), sorted(names), n=3)
+            raise RunFileError(f"{directory / 'sweep.toml'}: [[gather]] number {number} (name = "
+                               f"{spec['name']!r}): series {spec['series']!r} is in no variant's "
+                               f"history.h5" + (f"; nearest: {', '.join(near)}" if near else ""))
     return pd.DataFrame(rows), units
 
 

@@ -115,3 +115,17 @@ def test_gather_name_that_cannot_be_a_column_is_refused(tmp_path, name, problem)
                                          f"the name {problem}")
     assert {k: v for k, v in results(directory).items() if k != "sweep.toml"} == \
         {k: v for k, v in before.items() if k != "sweep.toml"}
+
+
+def test_a_series_in_no_history_is_refused_naming_the_nearest(tmp_path):
+    """A misspelt series gave a column of NaN, as if no variant had reached it: a series that no
+    readable history holds is refused, naming the entry and the nearest paths, before anything is
+    written."""
+    directory = sweep_directory(tmp_path / "sweep")
+    text = (directory / "sweep.toml").read_text()
+    (directory / "sweep.toml").write_text(text.replace('series = "energy/kinetic"\nreduce = "max"',
+                                                       'series = "energy/kinetc"\nreduce = "max"'))
+    with pytest.raises(RunFileError, match=r"\[\[gather\]\] number 2 \(name = 'kinetic_max'\): "
+                       r"series 'energy/kinetc' is in no variant's history.h5; nearest: energy/kinetic"):
+        sweep.gather(directory)
+    assert not (directory / "results.csv").exists()
