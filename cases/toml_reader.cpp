@@ -530,12 +530,11 @@ std::vector<TomlTable> TomlTable::tables(const std::string& key) {
     if (!items[i].is_table()) {
       // At the element's own place: one a --set replaced names the --set, not the case's array.
       const toml::source_location at = items[i].location();
-      const std::string& name = at.file_name();
-      throw CaseError(
-          (name.empty() || name == "unknown file" ? file_of(key) : name) + ":" +
-          std::to_string(name.empty() || name == "unknown file" ? line_of(key) : at.line()) + ": " +
-          key_path(key) + "[" + std::to_string(i) + "]: expected a table, found " +
-          type_name(items[i]));
+      const bool placed = !at.file_name().empty() && at.file_name() != "unknown file";
+      throw CaseError((placed ? at.file_name() : file_of(key)) + ":" +
+                      std::to_string(placed ? static_cast<int>(at.line()) : line_of(key)) + ": " +
+                      key_path(key) + "[" + std::to_string(i) + "]: expected a table, found " +
+                      type_name(items[i]));
     }
     out.emplace_back(items[i], key_path(key) + "[" + std::to_string(i) + "]", file_,
                      child_spec(key));

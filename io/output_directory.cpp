@@ -86,8 +86,7 @@ void remove_earlier_outputs(const std::string& directory) {
     }
     for (const std::string& name : listed_files(collection)) {
       // Only a plain name in this directory: an index edited to point elsewhere deletes nothing
-      // outside it.
-      // A name longer than a file name can be is none this program wrote.
+      // outside it, and a name longer than a file name can be is none this program wrote.
       const std::filesystem::path file(name);
       if (file.has_parent_path() || name == "." || name == ".." || name.size() > 255) {
         continue;
