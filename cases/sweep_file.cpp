@@ -72,6 +72,11 @@ std::vector<std::string> range_values(TomlTable range) {
   for (long i = 0; i < count; ++i) {
     const double s = static_cast<double>(i) / static_cast<double>(count - 1);
     const double x = scale == "log" ? from * std::pow(to / from, s) : from + s * (to - from);
+    if (!std::isfinite(x)) {
+      // to / from or to - from past the largest double (1e-300 to 1e300 on a log scale)
+      range.fail("to", "the range from " + toml_text(TomlValue(from)) + " to " +
+                           toml_text(TomlValue(to)) + " overflows between its ends");
+    }
     values.push_back(toml_text(TomlValue(i == count - 1 ? to : x)));
   }
   return values;

@@ -128,6 +128,11 @@ TEST(SweepFile, BadInputsAreRefusedWithFileLineAndKey) {
        "\"solver.courant_number\" = [0.1, 0.2, 0.1]",
        ":7: parameters.\"solver.courant_number\": the value 0.1 is listed twice: its variants "
        "would run twice"},
+      // Its ratio past the largest double: refused as a variant's inf, not at the range.
+      {"a log range overflowing", "from = 1.0, to = 100.0, count = 3",
+       "from = 1e-300, to = 1e300, count = 3",
+       ":5: parameters.materials.spring.young_modulus.to: the range from 1e-300 to 1e+300 "
+       "overflows between its ends"},
       // One value written two ways ran identical variants under two labels.
       {"a value twice in two spellings", "\"solver.courant_number\" = [0.1]",
        "\"solver.courant_number\" = [1, 0.5, 1.0]",
