@@ -8,12 +8,11 @@ with its line; a file outside the checked folders is not read.
 
 import pathlib
 import shutil
-import subprocess
 import sys
-import tempfile
+
+from tree_check import report, run_on_tree
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-CHECKER = ROOT / "tools" / "check_format.py"
 
 FORMATTED = "int twice(int x) {\n  return 2 * x;\n}\n"
 # As a rename leaves it: the continuation still aligned under the old, shorter name's parenthesis.
@@ -21,15 +20,8 @@ LEFT_BEHIND = ("void add_displacement_increment(const std::vector<double>& first
                "                  const std::vector<double>& second_argument_of_the_call);\n")
 
 
-def check(files: dict[str, str]) -> subprocess.CompletedProcess:
-    with tempfile.TemporaryDirectory() as root:
-        shutil.copy(ROOT / ".clang-format", root)
-        for name, text in files.items():
-            path = pathlib.Path(root) / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text)
-        return subprocess.run([sys.executable, str(CHECKER), "--root", root],
-                              capture_output=True, text=True)
+def check(files: dict[str, str]):
+    return run_on_tree("check_format.py", files, copies=(ROOT / ".clang-format",))
 
 
 def main() -> int:
@@ -45,12 +37,7 @@ def main() -> int:
         failures.append(f"the left-behind line was not named: {dirty.stdout}")
     if "engine/a.cpp" in dirty.stdout:
         failures.append(f"the formatted file was named: {dirty.stdout}")
-    for failure in failures:
-        print(failure)
-    if failures:
-        return 1
-    print("all ok")
-    return 0
+    return report(failures)
 
 
 if __name__ == "__main__":

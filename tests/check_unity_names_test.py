@@ -6,22 +6,13 @@ string literals, in two different folders, or of member functions do not count.
     tests/check_unity_names_test.py   prints "all ok" at the end
 """
 
-import pathlib
-import subprocess
 import sys
-import tempfile
 
-CHECKER = pathlib.Path(__file__).resolve().parent.parent / "tools" / "check_unity_names.py"
+from tree_check import report, run_on_tree
 
 
-def check(files: dict[str, str]) -> subprocess.CompletedProcess:
-    with tempfile.TemporaryDirectory() as root:
-        for name, text in files.items():
-            path = pathlib.Path(root) / name
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_text(text)
-        return subprocess.run([sys.executable, str(CHECKER), "--root", root],
-                              capture_output=True, text=True)
+def check(files: dict[str, str]):
+    return run_on_tree("check_unity_names.py", files)
 
 
 def main() -> int:
@@ -52,12 +43,7 @@ def main() -> int:
         if result.returncode != 1 or expected not in result.stdout:
             failures.append(f"{name} clash not named: {result.stdout}{result.stderr}")
 
-    for failure in failures:
-        print("FAIL:", failure)
-    if failures:
-        return 1
-    print("all ok")
-    return 0
+    return report(failures)
 
 
 if __name__ == "__main__":

@@ -191,17 +191,25 @@ TEST(Guards, UnstableRunStopsAndLeavesAReadableHistory) {
   EXPECT_TRUE(std::filesystem::exists(directory / "out" / "checkpoint.h5"));
 }
 
+/// The column case written into a fresh temporary directory `name`, to run into `name`/out; the
+/// directory, for a test to put an obstacle into out/ first.
+RunOptions column_run(const std::string& name, std::filesystem::path& directory) {
+  directory = std::filesystem::temp_directory_path() / name;
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory / "out");
+  std::ofstream(directory / "column.toml") << column;
+  RunOptions options;
+  options.case_path = (directory / "column.toml").string();
+  options.output_directory = (directory / "out").string();
+  return options;
+}
+
 TEST(Guards, AnOutputThatCannotBeWrittenIsNamedWithTheSystemsReason) {
   // particles.pvd is a directory: the snapshot index cannot replace it. The message names the file
   // and the reason, not the library's "filesystem error: cannot rename".
-  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_write";
-  std::filesystem::remove_all(directory);
+  std::filesystem::path directory;
+  const RunOptions options = column_run("mpile_test_guard_write", directory);
   std::filesystem::create_directories(directory / "out" / "particles.pvd" / "inside");
-  const auto path = directory / "column.toml";
-  std::ofstream(path) << column;
-  RunOptions options;
-  options.case_path = path.string();
-  options.output_directory = (directory / "out").string();
   std::ostringstream out, err;
   EXPECT_EQ(run_case(options, out, err), exit_failure);
   const std::string expected =
@@ -216,17 +224,11 @@ TEST(Guards, AForeignIndexWithAHugeFileNameIsReplacedNotAStackOverflow) {
   // file of 30 000 characters overflowed the stack of the regular expression that read it
   // (SIGSEGV); one of 300 characters ended the run with the library's "File name too long". Such
   // a name is none this program wrote: it is left alone and the index replaced.
-  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_foreign_pvd";
-  std::filesystem::remove_all(directory);
-  std::filesystem::create_directories(directory / "out");
+  std::filesystem::path directory;
+  const RunOptions options = column_run("mpile_test_guard_foreign_pvd", directory);
   std::ofstream(directory / "out" / "particles.pvd")
       << "<VTKFile><Collection><DataSet file=\"" << std::string(30000, 'a')
       << "\"/><DataSet file=\"" << std::string(300, 'b') << ".vtu\"/></Collection></VTKFile>\n";
-  const auto path = directory / "column.toml";
-  std::ofstream(path) << column;
-  RunOptions options;
-  options.case_path = path.string();
-  options.output_directory = (directory / "out").string();
   std::ostringstream out, err;
   EXPECT_EQ(run_case(options, out, err), exit_success) << err.str();
   EXPECT_EQ(read_text(directory / "out" / "particles.pvd").find("aaaa"), std::string::npos);
@@ -235,14 +237,9 @@ TEST(Guards, AForeignIndexWithAHugeFileNameIsReplacedNotAStackOverflow) {
 TEST(Guards, ADirectoryWhereTheCheckpointGoesIsRefusedBeforeTheRun) {
   // Found only when the checkpoint was due (the end of the run, at checkpoint_interval 0): the
   // whole run lost and the advice "once there is room" wrong. Now bad input before the first step.
-  const auto directory = std::filesystem::temp_directory_path() / "mpile_test_guard_checkpoint_dir";
-  std::filesystem::remove_all(directory);
+  std::filesystem::path directory;
+  const RunOptions options = column_run("mpile_test_guard_checkpoint_dir", directory);
   std::filesystem::create_directories(directory / "out" / "checkpoint.h5");
-  const auto path = directory / "column.toml";
-  std::ofstream(path) << column;
-  RunOptions options;
-  options.case_path = path.string();
-  options.output_directory = (directory / "out").string();
   std::ostringstream out, err;
   EXPECT_EQ(run_case(options, out, err), exit_bad_input);
   EXPECT_NE(err.str().find((directory / "out" / "checkpoint.h5").string() +
