@@ -13,9 +13,9 @@ namespace mpile {
 /// of ten) and would step for ever.
 inline constexpr double max_run_steps = 1e9;
 
-/// The largest initial stress a particle may start at: a terapascal, three orders past the
-/// strongest steel and past any soil, yet far enough below 1e154 that the models' invariants
-/// (squares of stress) stay finite.
+/// The largest initial stress a particle may start at: a terapascal, hundreds of times the
+/// strongest steel's and past any soil's, yet far below 1e154, past which the models' invariants
+/// (squares of stress) overflow.
 inline constexpr double max_initial_stress = 1e12;
 
 /// The most snapshots a run may write: each is a file of every particle, and a ParaView series of
