@@ -186,6 +186,16 @@ TomlValue read_with_bases(const std::string& path, int depth, std::vector<std::s
 
 namespace {
 
+/// The `name` of an element of an array of tables, or nullptr (not a table, or no name text).
+const std::string* name_of(const TomlValue& item) {
+  if (!item.is_table()) {
+    return nullptr;
+  }
+  const auto name = item.as_table().find("name");
+  return name != item.as_table().end() && name->second.is_string() ? &name->second.as_string().str
+                                                                   : nullptr;
+}
+
 /// The element of an array of tables a --set path names: by its index (phases.1) or by its
 /// `name` (phases.installation), with the names it has and the nearest one when none matches.
 TomlValue& element(TomlValue::array_type& array, const std::string& part, const std::string& origin,
@@ -200,21 +210,17 @@ TomlValue& element(TomlValue::array_type& array, const std::string& part, const 
   std::string names, nearest;
   std::size_t nearest_edits = 3; // a suggestion within two edits, as for keys
   for (TomlValue& item : array) {
-    if (!item.is_table()) {
+    const std::string* text = name_of(item);
+    if (text == nullptr) {
       continue;
     }
-    const auto name = item.as_table().find("name");
-    if (name == item.as_table().end() || !name->second.is_string()) {
-      continue;
-    }
-    const std::string text = name->second.as_string().str;
-    if (text == part) {
+    if (*text == part) {
       return item;
     }
-    names += (names.empty() ? "" : ", ") + text;
-    if (const std::size_t edits = edit_distance(part, text); edits < nearest_edits) {
+    names += (names.empty() ? "" : ", ") + *text;
+    if (const std::size_t edits = edit_distance(part, *text); edits < nearest_edits) {
       nearest_edits = edits;
-      nearest = text;
+      nearest = *text;
     }
   }
   throw CaseError(origin + ": " + path + ": no element is named '" + part + "'" +
@@ -305,16 +311,10 @@ std::string canonical_key(const TomlValue& root, const std::string& key) {
         written = std::to_string(index); // phases.00 is phases.0
         next = index < array.size() ? &array[index] : nullptr;
       }
-      for (std::size_t i = 0; next == nullptr && i < array.size(); ++i) {
-        const TomlValue& item = array[i];
-        if (!item.is_table()) {
-          continue;
-        }
-        const auto name = item.as_table().find("name");
-        if (name != item.as_table().end() && name->second.is_string() &&
-            name->second.as_string().str == part) {
+      for (std::size_t i = 0; !is_index(part) && next == nullptr && i < array.size(); ++i) {
+        if (const std::string* name = name_of(array[i]); name != nullptr && *name == part) {
           written = std::to_string(i);
-          next = &item;
+          next = &array[i];
         }
       }
     } else if (node != nullptr && node->is_table()) {

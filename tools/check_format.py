@@ -17,7 +17,7 @@ import shutil
 import subprocess
 import sys
 
-FOLDERS = ["engine", "solver", "cases", "io", "app", "tools", "tests"]
+from check_unity_names import FOLDERS  # the folders that hold the project's C++
 
 
 def main() -> int:
