@@ -23,8 +23,7 @@ ExplicitSolver::ExplicitSolver(Scene& scene, SolverSettings settings, RunLog& lo
     : scene_(scene), settings_(settings), log_(log) {
   prepare();
   sort_particles_by_cell();
-  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
-                        settings_.max_time_step);
+  stable_dt_ = std::min(settings_.courant_number * first_crossing_time(), settings_.max_time_step);
   // A thousandth of the first step: a run that needs steps that short has gone wrong.
   min_dt_ = settings_.min_time_step > 0.0 ? settings_.min_time_step : 1e-3 * stable_dt_;
   step_report_below_ = 0.5 * stable_dt_;
@@ -124,8 +123,7 @@ void ExplicitSolver::change_settings(const SolverSettings& settings) {
     bins_.configure(scene_.grid.cells_r(), scene_.grid.cells_y(), settings_.block_cells);
     rebin();
   }
-  stable_dt_ = std::min(settings_.courant_number * passes::min_crossing_time(scene_, settings_),
-                        settings_.max_time_step);
+  stable_dt_ = std::min(settings_.courant_number * first_crossing_time(), settings_.max_time_step);
   // A fall is measured from the new phase's own step: mass scaling or another Courant number moves
   // the step at once, and a fall from there would otherwise go unreported.
   step_report_below_ = 0.5 * stable_dt_;
@@ -223,6 +221,29 @@ void ExplicitSolver::set_stable_time_step(double step_crossing_time, double cros
     report_step_limit(2.0 * step_report_below_);
     step_report_below_ = 0.5 * stable_dt_;
   }
+}
+
+double ExplicitSolver::first_crossing_time() const {
+  const double crossing_time = passes::min_crossing_time(scene_, settings_);
+  if (!std::isnan(crossing_time)) {
+    return crossing_time;
+  }
+  // A NaN would pass every std::min after it and the step would come from the other particles:
+  // the particle would then fail in the stress pass, or run on with a stiffness nobody checked.
+  const passes::StepLimit limit = passes::step_limit(scene_, settings_);
+  const Particles& p = scene_.particles;
+  const std::size_t i = limit.particle;
+  const Material& material = *scene_.materials[p.material[i]];
+  std::ostringstream s;
+  s << at_step(steps_, time_) << particle_position(p, i) << " of body '"
+    << scene_.body_names.at(p.body[i])
+    << "' has no finite crossing time, so the stable time step cannot be set: wave speed "
+    << limit.wave_speed << " m/s from its material's (" << material.type()
+    << ") constrained modulus of "
+    << material.constrained_modulus(p.stress[i],
+                                    p.state.data() + i * static_cast<std::size_t>(p.state_stride))
+    << " Pa at its stress, velocity " << limit.speed << " m/s";
+  throw SimulationError(s.str());
 }
 
 void ExplicitSolver::report_step_limit(double earlier_step) {

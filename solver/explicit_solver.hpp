@@ -136,6 +136,9 @@ private:
   /// the step just taken was longer than the material allows now in the cells the step was
   /// computed in (Courant number above 1) or the step collapsed.
   void set_stable_time_step(double step_crossing_time, double crossing_time, double dt_taken);
+  /// The smallest crossing time over the particles, for a phase's first step; stops the run,
+  /// naming the particle, where a material reports no finite modulus.
+  double first_crossing_time() const;
   void report_step_limit(double earlier_step);
   void sort_particles_by_cell();
   /// Removes the rigid bodies' particles the stress pass found outside the grid (cell_r = -1).

@@ -259,7 +259,7 @@ void ExplicitSolver::stop_if_failed(const StepFailure& failure, long step, doubl
       << scene_.grid.node_y(node) << ") has a non-finite velocity: the run went unstable";
   } else if (failure.particle_nonfinite >= 0) {
     s << particle_position(scene_.particles, static_cast<std::size_t>(failure.particle_nonfinite))
-      << " has a non-finite stress or velocity: the run went unstable";
+      << " has a non-finite stress, velocity or wave speed: the run went unstable";
   } else if (failure.particle_outside >= 0) {
     s << particle_position(scene_.particles, static_cast<std::size_t>(failure.particle_outside))
       << " left the grid";

@@ -229,11 +229,13 @@ NodeBox block_node_box(const Grid& grid, const ParticleBins& bins, int block);
 /// to the nodes its blocks' particles can touch. Called whenever the particles are binned anew.
 void find_structure_reach(Scene& scene, ParticleBins& bins);
 
-/// min over particles of h_cell / (c_p + |v_p|) from the materials' current stiffness.
+/// min over particles of h_cell / (c_p + |v_p|) from the materials' current stiffness; NaN if any
+/// particle's is (its material reports no finite modulus there).
 double min_crossing_time(const Scene& scene, const SolverSettings& settings);
 
 /// The particle min_crossing_time's limit comes from, and what sets it there: for the log when
-/// the step falls (a scan of every particle, done once for each halving of the step).
+/// the step falls (a scan of every particle, done once for each halving of the step), and the
+/// first particle whose crossing time is NaN if one is.
 struct StepLimit {
   std::size_t particle = 0;
   double crossing_time = 0.0; // h / (c + |v|), s

@@ -270,6 +270,11 @@ void move_particles(const Grid& grid, Particles& p, const ParticleBins& bins, in
       speed += p.v_theta[i] * p.v_theta[i];
     }
     const double particle_speed = wave_speed + std::sqrt(speed);
+    // A modulus the update returned as NaN: std::min below would pass over it and the step would
+    // come from the other particles, with this one's stiffness unchecked.
+    if (std::isnan(particle_speed)) {
+      out.first_nonfinite = std::min(out.first_nonfinite, static_cast<std::int64_t>(i));
+    }
     if (!signal_speed.empty()) {
       signal_speed[i] = particle_speed;
     }

@@ -35,6 +35,12 @@ StepLimit crossing_of(const Scene& scene, const SolverSettings& settings,
   return {i, h / (wave_speed + velocity), wave_speed, p.mass[i] / p.volume[i], velocity, h};
 }
 
+/// The smaller crossing time, NaN where either is: std::min passes over a NaN (its comparison is
+/// false), and a particle whose material reports no finite modulus would then set no step at all.
+double smaller_crossing(double a, double b) {
+  return std::isnan(a) || a < b ? a : b;
+}
+
 } // namespace
 
 double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
@@ -43,11 +49,11 @@ double min_crossing_time(const Scene& scene, const SolverSettings& settings) {
       scene.particles.size(), std::numeric_limits<double>::infinity(),
       [&](std::size_t begin, std::size_t end, double limit) {
         for (std::size_t i = begin; i != end; ++i) {
-          limit = std::min(limit, crossing_of(scene, settings, interiors, i).crossing_time);
+          limit = smaller_crossing(limit, crossing_of(scene, settings, interiors, i).crossing_time);
         }
         return limit;
       },
-      [](double a, double b) { return std::min(a, b); });
+      smaller_crossing);
 }
 
 StepLimit step_limit(const Scene& scene, const SolverSettings& settings) {
@@ -56,6 +62,9 @@ StepLimit step_limit(const Scene& scene, const SolverSettings& settings) {
   limit.crossing_time = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < scene.particles.size(); ++i) {
     const StepLimit here = crossing_of(scene, settings, interiors, i);
+    if (std::isnan(here.crossing_time)) {
+      return here; // the first particle without a finite crossing time is the one to name
+    }
     limit = here.crossing_time < limit.crossing_time ? here : limit;
   }
   return limit;

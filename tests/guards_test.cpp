@@ -166,7 +166,81 @@ TEST(Guards, NonFiniteParticleIsNamedWithItsPosition) {
   std::ostringstream expected;
   expected << "step 1, t = " << run.solver->time() << " s: particle 7 at (r, y) = ("
            << run.scene->particles.r[7] << ", " << run.scene->particles.y[7]
-           << ") has a non-finite stress or velocity";
+           << ") has a non-finite stress, velocity or wave speed";
+  EXPECT_NE(message.find(expected.str()), std::string::npos) << message;
+}
+
+/// Linear elasticity whose stiffness is NaN for one particle, at the start (`at_start`: the
+/// modulus it reports for a stress) or from its stress update, while its stress stays finite.
+class NanModulusAtOneParticle final : public Material {
+public:
+  NanModulusAtOneParticle(std::int32_t particle, bool at_start)
+      : elastic_(10e6, 0.3, 2000.0), particle_(particle), at_start_(at_start) {}
+  std::string_view type() const override { return "nan_modulus"; }
+  double density() const override { return elastic_.density(); }
+  void update_stress(const StressUpdateBatch& batch) const override {
+    elastic_.update_stress(batch);
+    for (std::size_t k = 0; k < batch.particles.size(); ++k) {
+      if (batch.particles[k] == particle_) {
+        batch.constrained_modulus[k] = std::numeric_limits<double>::quiet_NaN();
+      }
+    }
+  }
+  double constrained_modulus(const Stress& s, const double* state) const override {
+    // The stress of particle_ alone is marked (below) so that only it reports NaN.
+    return at_start_ && s[RT] == 1.0 ? std::numeric_limits<double>::quiet_NaN()
+                                     : elastic_.constrained_modulus(s, state);
+  }
+  double shear_modulus(const Stress& s, const double* state) const override {
+    return elastic_.shear_modulus(s, state);
+  }
+  double elastic_energy_density(const Stress& s, const double* state) const override {
+    return elastic_.elastic_energy_density(s, state);
+  }
+
+private:
+  LinearElastic elastic_;
+  std::int32_t particle_;
+  bool at_start_;
+};
+
+TEST(Guards, AParticleWithoutAFiniteModulusAtTheStartIsNamed) {
+  // std::min passes over a NaN: before, the first step came from the other particles and the run
+  // went on with this one's stiffness unchecked. Now the step cannot be set, and the run says why.
+  CaseRun run(column);
+  run.scene->materials[0] = std::make_unique<NanModulusAtOneParticle>(7, true);
+  run.scene->particles.stress[7][RT] = 1.0; // 1 Pa of shear in plane strain: no other effect
+  std::string message;
+  try {
+    [[maybe_unused]] const ExplicitSolver solver(
+        *run.scene, phase_settings(run.spec, run.spec.phases[0]), run.log);
+  } catch (const SimulationError& e) {
+    message = e.what();
+  }
+  // The solver sorts the particles by cell: the marked one is found again by its mark.
+  const Particles& p = run.scene->particles;
+  std::size_t marked = 0;
+  while (marked < p.size() && p.stress[marked][RT] != 1.0) {
+    ++marked;
+  }
+  ASSERT_LT(marked, p.size());
+  std::ostringstream expected;
+  expected << "particle " << marked << " at (r, y) = (" << p.r[marked] << ", " << p.y[marked]
+           << ") of body 'column' has no finite crossing time, so the stable time step cannot be "
+              "set: wave speed nan m/s from its material's (nan_modulus) constrained modulus of "
+              "nan Pa at its stress, velocity 0 m/s";
+  EXPECT_NE(message.find(expected.str()), std::string::npos) << message;
+}
+
+TEST(Guards, AParticleWhoseUpdateReturnsNoFiniteModulusStopsTheRun) {
+  // Its stress and velocity stay finite: only its wave speed shows the update went wrong.
+  CaseRun run(column);
+  run.scene->materials[0] = std::make_unique<NanModulusAtOneParticle>(7, false);
+  const std::string message = stop_message(run);
+  std::ostringstream expected;
+  expected << "step 1, t = " << run.solver->time() << " s: particle 7 at (r, y) = ("
+           << run.scene->particles.r[7] << ", " << run.scene->particles.y[7]
+           << ") has a non-finite stress, velocity or wave speed";
   EXPECT_NE(message.find(expected.str()), std::string::npos) << message;
 }
 
