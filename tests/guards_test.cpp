@@ -128,25 +128,35 @@ TEST(Guards, NonFiniteNodeIsNamedWithItsPosition) {
   EXPECT_TRUE(corner) << message;
 }
 
-/// Linear elasticity that returns a NaN stress for one particle: the constitutive update going
-/// wrong, which only the particle check can see.
+/// What goes wrong for one particle while its material is otherwise linear elastic: its stress
+/// update returns a non-finite stress, or a NaN modulus with a finite stress (which only its wave
+/// speed shows), or the modulus it reports for a marked stress is NaN from the start.
+enum class Fault { stress, update_modulus, start_modulus };
+
 class FailingAtOneParticle final : public Material {
 public:
-  explicit FailingAtOneParticle(std::int32_t particle)
-      : elastic_(10e6, 0.3, 2000.0), particle_(particle) {}
+  FailingAtOneParticle(std::int32_t particle, Fault fault)
+      : elastic_(10e6, 0.3, 2000.0), particle_(particle), fault_(fault) {}
   std::string_view type() const override { return "failing"; }
   double density() const override { return elastic_.density(); }
   void update_stress(const StressUpdateBatch& batch) const override {
     elastic_.update_stress(batch);
-    for (const std::int32_t i : batch.particles) {
-      if (i == particle_) {
+    for (std::size_t k = 0; k < batch.particles.size(); ++k) {
+      const std::int32_t i = batch.particles[k];
+      if (i == particle_ && fault_ == Fault::stress) {
         batch.stress[i][RR] = std::numeric_limits<double>::infinity();
+      } else if (i == particle_ && fault_ == Fault::update_modulus) {
+        batch.constrained_modulus[k] = std::numeric_limits<double>::quiet_NaN();
       }
     }
   }
+  /// The modulus for a stress: NaN for the stress `mark` sets (1 Pa of r-theta shear, which a
+  /// plane-strain column's particles never carry otherwise) under Fault::start_modulus.
   double constrained_modulus(const Stress& s, const double* state) const override {
-    return elastic_.constrained_modulus(s, state);
+    return fault_ == Fault::start_modulus && s[RT] == 1.0 ? std::numeric_limits<double>::quiet_NaN()
+                                                          : elastic_.constrained_modulus(s, state);
   }
+  static void mark(Stress& s) { s[RT] = 1.0; }
   double shear_modulus(const Stress& s, const double* state) const override {
     return elastic_.shear_modulus(s, state);
   }
@@ -157,11 +167,14 @@ public:
 private:
   LinearElastic elastic_;
   std::int32_t particle_;
+  Fault fault_;
 };
 
-TEST(Guards, NonFiniteParticleIsNamedWithItsPosition) {
+/// The column whose particle 7 fails in its first stress update as `fault` says stops there,
+/// naming the particle and where it is.
+void expect_first_update_stops_naming_particle_seven(Fault fault) {
   CaseRun run(column);
-  run.scene->materials[0] = std::make_unique<FailingAtOneParticle>(7);
+  run.scene->materials[0] = std::make_unique<FailingAtOneParticle>(7, fault);
   const std::string message = stop_message(run);
   std::ostringstream expected;
   expected << "step 1, t = " << run.solver->time() << " s: particle 7 at (r, y) = ("
@@ -170,46 +183,16 @@ TEST(Guards, NonFiniteParticleIsNamedWithItsPosition) {
   EXPECT_NE(message.find(expected.str()), std::string::npos) << message;
 }
 
-/// Linear elasticity whose stiffness is NaN for one particle, at the start (`at_start`: the
-/// modulus it reports for a stress) or from its stress update, while its stress stays finite.
-class NanModulusAtOneParticle final : public Material {
-public:
-  NanModulusAtOneParticle(std::int32_t particle, bool at_start)
-      : elastic_(10e6, 0.3, 2000.0), particle_(particle), at_start_(at_start) {}
-  std::string_view type() const override { return "nan_modulus"; }
-  double density() const override { return elastic_.density(); }
-  void update_stress(const StressUpdateBatch& batch) const override {
-    elastic_.update_stress(batch);
-    for (std::size_t k = 0; k < batch.particles.size(); ++k) {
-      if (batch.particles[k] == particle_) {
-        batch.constrained_modulus[k] = std::numeric_limits<double>::quiet_NaN();
-      }
-    }
-  }
-  double constrained_modulus(const Stress& s, const double* state) const override {
-    // The stress of particle_ alone is marked (below) so that only it reports NaN.
-    return at_start_ && s[RT] == 1.0 ? std::numeric_limits<double>::quiet_NaN()
-                                     : elastic_.constrained_modulus(s, state);
-  }
-  double shear_modulus(const Stress& s, const double* state) const override {
-    return elastic_.shear_modulus(s, state);
-  }
-  double elastic_energy_density(const Stress& s, const double* state) const override {
-    return elastic_.elastic_energy_density(s, state);
-  }
-
-private:
-  LinearElastic elastic_;
-  std::int32_t particle_;
-  bool at_start_;
-};
+TEST(Guards, NonFiniteParticleIsNamedWithItsPosition) {
+  expect_first_update_stops_naming_particle_seven(Fault::stress);
+}
 
 TEST(Guards, AParticleWithoutAFiniteModulusAtTheStartIsNamed) {
   // std::min passes over a NaN: before, the first step came from the other particles and the run
   // went on with this one's stiffness unchecked. Now the step cannot be set, and the run says why.
   CaseRun run(column);
-  run.scene->materials[0] = std::make_unique<NanModulusAtOneParticle>(7, true);
-  run.scene->particles.stress[7][RT] = 1.0; // 1 Pa of shear in plane strain: no other effect
+  run.scene->materials[0] = std::make_unique<FailingAtOneParticle>(7, Fault::start_modulus);
+  FailingAtOneParticle::mark(run.scene->particles.stress[7]);
   std::string message;
   try {
     [[maybe_unused]] const ExplicitSolver solver(
@@ -227,21 +210,14 @@ TEST(Guards, AParticleWithoutAFiniteModulusAtTheStartIsNamed) {
   std::ostringstream expected;
   expected << "particle " << marked << " at (r, y) = (" << p.r[marked] << ", " << p.y[marked]
            << ") of body 'column' has no finite crossing time, so the stable time step cannot be "
-              "set: wave speed nan m/s from its material's (nan_modulus) constrained modulus of "
+              "set: wave speed nan m/s from its material's (failing) constrained modulus of "
               "nan Pa at its stress, velocity 0 m/s";
   EXPECT_NE(message.find(expected.str()), std::string::npos) << message;
 }
 
 TEST(Guards, AParticleWhoseUpdateReturnsNoFiniteModulusStopsTheRun) {
   // Its stress and velocity stay finite: only its wave speed shows the update went wrong.
-  CaseRun run(column);
-  run.scene->materials[0] = std::make_unique<NanModulusAtOneParticle>(7, false);
-  const std::string message = stop_message(run);
-  std::ostringstream expected;
-  expected << "step 1, t = " << run.solver->time() << " s: particle 7 at (r, y) = ("
-           << run.scene->particles.r[7] << ", " << run.scene->particles.y[7]
-           << ") has a non-finite stress, velocity or wave speed";
-  EXPECT_NE(message.find(expected.str()), std::string::npos) << message;
+  expect_first_update_stops_naming_particle_seven(Fault::update_modulus);
 }
 
 TEST(Guards, UnstableRunStopsAndLeavesAReadableHistory) {
