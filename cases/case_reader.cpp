@@ -668,6 +668,11 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
                   "it off with absorbing faces");
     }
   }
+  if (s.hold_wall_cells && !s.implicit_pore_pressure) {
+    table->fail(&SolverSettings::hold_wall_cells,
+                "the wall cells are held in the implicit pore pressure's solve: it needs "
+                "implicit_pore_pressure = true");
+  }
   if (s.cell_mean_pore_pressure &&
       std::none_of(spec.materials.begin(), spec.materials.end(),
                    [](const MaterialSpec& m) { return m.water.drainage != Drainage::drained; })) {

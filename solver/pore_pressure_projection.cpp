@@ -117,7 +117,8 @@ ProjectionResult PorePressureProjection::project(Scene& scene, const ParticleBin
                                                  const StepParameters& step) {
   ProjectionResult result;
   result.cells = assemble<mode, shape>(scene, bins, settings, step);
-  if (result.cells == 0 || !solve_with_cavitation(scene.grid, step, result)) {
+  if (result.cells == 0 ||
+      !solve_with_cavitation(scene.grid, step, settings.hold_wall_cells, result)) {
     return result;
   }
   correct_velocities(scene.grid, step, result);
@@ -298,7 +299,7 @@ Eigen::Index PorePressureProjection::assemble(Scene& scene, const ParticleBins& 
 }
 
 bool PorePressureProjection::solve_with_cavitation(const Grid& grid, const StepParameters& step,
-                                                   ProjectionResult& result) {
+                                                   bool hold_wall_cells, ProjectionResult& result) {
   const auto unknowns = static_cast<Eigen::Index>(cell_of_unknown_.size());
   const int cells_r = grid.cells_r();
   const bool structures = !grid.structure_fields.empty();
@@ -320,14 +321,16 @@ bool PorePressureProjection::solve_with_cavitation(const Grid& grid, const StepP
   // ledger ran 17 % out. There the particles are capped after the solve
   // (apply_pore_pressure_from_flow). Undrained soil at a wall is held like any other: left out,
   // the velocities took the suction the capped stress did not keep, and a dilative undrained cone
-  // went unstable within 1 cm.
+  // went unstable within 1 cm. With hold_wall_cells coupled wall cells are held too: under XPIC(2)
+  // and damping after the installation the quick capacity runs stayed stable so
+  // (docs/saturated.md, "Holding the wall cells").
   Eigen::VectorXd limit_increment(unknowns);
   bool cut_off = false;
   for (Eigen::Index u = 0; u < unknowns; ++u) {
     const int c = cell_of_unknown_[static_cast<std::size_t>(u)];
     const CellSums& cell = cells_[static_cast<std::size_t>(c)];
     limit_increment[u] = cell.headroom / cell.storage;
-    if (cell.flowing > 0.0 && std::isfinite(limit_increment[u]) && structures &&
+    if (!hold_wall_cells && cell.flowing > 0.0 && std::isfinite(limit_increment[u]) && structures &&
         at_structure(grid, c % cells_r, c / cells_r, step.mass_floor)) {
       limit_increment[u] = std::numeric_limits<double>::infinity();
     }

@@ -24,8 +24,9 @@
 // cell whose vapour would shrink is let go again. The held cells are found by iteration (a
 // primal-dual active set: solve, hold the cells past the limit, free the held cells whose vapour
 // would shrink, until none changes), so that the velocities take the tension the water carries,
-// not the one it would have carried without the cut-off. A cell a structure occupies is not held
-// (the contact decides there whether the soil leaves the wall): its particles are capped after it.
+// not the one it would have carried without the cut-off. A cell of coupled soil a structure
+// occupies is not held (the contact decides there whether the soil leaves the wall): its particles
+// are capped after it, unless [solver] hold_wall_cells holds it as the others.
 //
 // Reads particle cell, position, volume, body, material, state and stress, grid field 0 and the
 // liquid nodes after the MUSL remap; writes their velocities, the particles' velocities (and
@@ -93,7 +94,7 @@ private:
                         const StepParameters& step);
   /// The increment, with the cells past their cavitation limit held at it (a primal-dual active
   /// set) and the vapour's work; false if a solve failed.
-  bool solve_with_cavitation(const Grid& grid, const StepParameters& step,
+  bool solve_with_cavitation(const Grid& grid, const StepParameters& step, bool hold_wall_cells,
                              ProjectionResult& result);
   /// The nodes' velocities of both phases take the correction -H G^T dp; backward Euler's damping
   /// and Darcy's drag at the corrected velocities.

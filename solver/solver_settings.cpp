@@ -55,6 +55,10 @@ const std::vector<SolverParameter>& solver_parameters() {
               "saturated soil's pore pressure increment solved on the grid each step, implicit in "
               "K_w: the step follows the skeleton (MUSL only)",
               &S::implicit_pore_pressure, {}),
+      setting("hold_wall_cells", "",
+              "with implicit_pore_pressure: coupled soil's cells at a structure's wall held at the "
+              "cavitation limit in the solve as the others, not capped after it",
+              &S::hold_wall_cells, {}),
       setting("jaumann_rate", "", "co-rotate stress with the in-plane spin", &S::jaumann_rate, {}),
       setting("split_particles", "", "split a particle grown longer than its cell into halves",
               &S::split_particles, {}),

@@ -158,10 +158,14 @@ TEST(CaseFormat, EachSolverSettingIsDeclaredOnceAndBoundToItsMember) {
                                       ? p.range.upper->value
                                       : (p.range.lower ? p.range.lower->value : 0.0) + 1.0);
           std::string text = block + "[solver]\n" + p.name + " = " + written + "\n";
-          if (p.name == "implicit_pore_pressure" || p.name == "cell_mean_pore_pressure") {
+          if (p.name == "implicit_pore_pressure" || p.name == "cell_mean_pore_pressure" ||
+              p.name == "hold_wall_cells") {
             // Each needs pore water to act on.
             const std::string wood = "[materials.wood]\n";
             text.insert(text.find(wood) + wood.size(), "drainage = \"undrained\"\n");
+          }
+          if (p.name == "hold_wall_cells") {
+            text += "implicit_pore_pressure = true\n"; // it acts in that solve
           }
           if (p.name == "energy_residual_warning") {
             text += "energy_residual_limit = 5.0\n";
