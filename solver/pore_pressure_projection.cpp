@@ -321,8 +321,8 @@ bool PorePressureProjection::solve_with_cavitation(const Grid& grid, const StepP
   // ledger ran 17 % out. There the particles are capped after the solve
   // (apply_pore_pressure_from_flow). Undrained soil at a wall is held like any other: left out,
   // the velocities took the suction the capped stress did not keep, and a dilative undrained cone
-  // went unstable within 1 cm. With hold_wall_cells coupled wall cells are held too: under XPIC(2)
-  // and damping after the installation the quick capacity runs stayed stable so
+  // went unstable within 1 cm. With hold_wall_cells coupled wall cells are held too; under XPIC(2)
+  // and damping after the installation the quick capacity runs stay stable with them held
   // (docs/saturated.md, "Holding the wall cells").
   Eigen::VectorXd limit_increment(unknowns);
   bool cut_off = false;
