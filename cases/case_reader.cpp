@@ -668,10 +668,10 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
                   "it off with absorbing faces");
     }
   }
-  if (s.hold_wall_cells && !s.implicit_pore_pressure) {
+  if (table->has(&SolverSettings::hold_wall_cells) && !s.implicit_pore_pressure) {
     table->fail(&SolverSettings::hold_wall_cells,
-                "the wall cells are held in the implicit pore pressure's solve: it needs "
-                "implicit_pore_pressure = true");
+                "the wall cells are held or capped in the implicit pore pressure's solve: it "
+                "needs implicit_pore_pressure = true; remove it");
   }
   if (s.cell_mean_pore_pressure &&
       std::none_of(spec.materials.begin(), spec.materials.end(),

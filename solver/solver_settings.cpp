@@ -57,7 +57,8 @@ const std::vector<SolverParameter>& solver_parameters() {
               &S::implicit_pore_pressure, {}),
       setting("hold_wall_cells", "",
               "with implicit_pore_pressure: coupled soil's cells at a structure's wall held at the "
-              "cavitation limit in the solve as the others, not capped after it",
+              "cavitation limit in the solve as the others; false caps their particles after it "
+              "(the treatment before, kept for the cases measured so)",
               &S::hold_wall_cells, {}),
       setting("jaumann_rate", "", "co-rotate stress with the in-plane spin", &S::jaumann_rate, {}),
       setting("split_particles", "", "split a particle grown longer than its cell into halves",

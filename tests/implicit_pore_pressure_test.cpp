@@ -286,20 +286,18 @@ TEST(ImplicitPorePressure, CoupledConeLedgerBooksTheDragWhereThePressureWorks) {
 // cells from about 2 cm on. Capped after the solve, the velocities take suction the capped stress
 // does not keep, and at 4 cm the ledger is 0.722 % off; held in the solve, 0.244 % (measured at
 // 57b859a; without the cut-off it closes to 0.02 to 0.05 % in the quick runs). Within 0.4 %: a
-// third of the way from the held run's to the capped one's, so that capping fails it.
+// third of the way from the held run's to the capped one's, so that capping fails it. Held is the
+// default: the run sets nothing.
 TEST(ImplicitPorePressure, HeldWallCellsCloseTheJackedPilesLedger) {
   const auto directory = fresh_directory("implicit_held_wall_cells");
   RunOptions options;
   options.case_path = (source / "cases/monopile/jacked_quick.toml").string();
   options.output_directory = directory.string();
-  options.overrides = {"materials.sand.drainage=\"coupled\"",
-                       "materials.sand.grain_density=2650.0",
-                       "materials.sand.hydraulic_conductivity=1e-4",
-                       "solver.implicit_pore_pressure=true",
-                       "solver.cell_mean_pore_pressure=true",
-                       "water.cavitation_stress=100e3",
-                       "solver.hold_wall_cells=true",
-                       "phases.installation.stop_at.penetration=0.04"};
+  options.overrides = {
+      "materials.sand.drainage=\"coupled\"",         "materials.sand.grain_density=2650.0",
+      "materials.sand.hydraulic_conductivity=1e-4",  "solver.implicit_pore_pressure=true",
+      "solver.cell_mean_pore_pressure=true",         "water.cavitation_stress=100e3",
+      "phases.installation.stop_at.penetration=0.04"};
   std::ostringstream out, err;
   ASSERT_EQ(run_case(options, out, err), 0) << err.str();
   Hdf5File history((directory / "history.h5").string(), Hdf5File::Mode::read);
@@ -333,24 +331,29 @@ TEST(ImplicitPorePressure, CheckSaysTheStepFollowsTheSkeleton) {
   }
 }
 
-// hold_wall_cells acts in the implicit pore pressure's solve; without it the key would do nothing.
+// hold_wall_cells acts in the implicit pore pressure's solve; without it the key would do nothing,
+// held or capped.
 TEST(ImplicitPorePressure, HoldingWallCellsWithoutItIsRefusedAtTheKey) {
-  const std::string text =
-      saturated_wave_column("drainage = \"undrained\"") + "[solver]\nhold_wall_cells = true\n";
-  std::string message = "no error";
-  try {
-    CaseRun run(text);
-  } catch (const CaseError& e) {
-    message = e.what();
+  for (const char* value : {"true", "false"}) {
+    const std::string text = saturated_wave_column("drainage = \"undrained\"") +
+                             "[solver]\nhold_wall_cells = " + value + "\n";
+    std::string message = "no error";
+    try {
+      CaseRun run(text);
+    } catch (const CaseError& e) {
+      message = e.what();
+    }
+    const auto line =
+        1 + std::count(text.begin(), text.begin() + static_cast<long>(text.find("hold_wall_cells")),
+                       '\n');
+    EXPECT_NE(
+        message.find("test.toml:" + std::to_string(line) +
+                     ": solver.hold_wall_cells: the wall cells are held or capped in the "
+                     "implicit pore pressure's solve: it needs implicit_pore_pressure = true; "
+                     "remove it"),
+        std::string::npos)
+        << message;
   }
-  const auto line =
-      1 + std::count(text.begin(), text.begin() + static_cast<long>(text.find("hold_wall_cells")),
-                     '\n');
-  EXPECT_NE(message.find("test.toml:" + std::to_string(line) +
-                         ": solver.hold_wall_cells: the wall cells are held in the implicit pore "
-                         "pressure's solve: it needs implicit_pore_pressure = true"),
-            std::string::npos)
-      << message;
 }
 
 // The refusals name the file, the line and the key: USL (the solve corrects the remapped
