@@ -49,8 +49,8 @@ struct SolverSettings {
   /// structure's wall at the limit in the solve, as every other cell (docs/saturated.md, "Holding
   /// the wall cells"). Off, their particles are capped after the solve and the velocities take
   /// suction the capped stress does not keep: the quick installations' ledgers close three to
-  /// five times worse and their capacities read 13 to 62 % lower. Off is kept for the cases
-  /// measured so.
+  /// five times worse and the quick saturated capacities read 11 to 47 % lower. Off is kept for the
+  /// cases measured so.
   bool hold_wall_cells = true;
   /// Co-rotate stress with the in-plane spin (Jaumann rate) for large rotations.
   bool jaumann_rate = true;
