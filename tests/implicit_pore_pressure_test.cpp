@@ -16,18 +16,31 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace mpile {
 namespace {
 
 std::string implicit(std::string text) {
   return text + "[solver]\nimplicit_pore_pressure = true\n";
+}
+
+/// The case's sand saturated, its water flowing at k = 1e-4 m/s, the pore pressure solved on the
+/// grid and shared per cell; then `more`.
+std::vector<std::string> coupled_sand_with(std::initializer_list<std::string> more) {
+  std::vector<std::string> overrides{
+      "materials.sand.drainage=\"coupled\"", "materials.sand.grain_density=2650.0",
+      "materials.sand.hydraulic_conductivity=1e-4", "solver.implicit_pore_pressure=true",
+      "solver.cell_mean_pore_pressure=true"};
+  overrides.insert(overrides.end(), more);
+  return overrides;
 }
 
 // V10's checks, unchanged (each with its reason in cases/verification/terzaghi_consolidation.cpp),
@@ -261,11 +274,9 @@ TEST(ImplicitPorePressure, CoupledConeLedgerBooksTheDragWhereThePressureWorks) {
   RunOptions options;
   options.case_path = (source / "cases/cpt/cpt_coarse.toml").string();
   options.output_directory = directory.string();
-  options.overrides = {
-      "materials.sand.drainage=\"coupled\"",        "materials.sand.grain_density=2650.0",
-      "materials.sand.hydraulic_conductivity=1e-4", "solver.implicit_pore_pressure=true",
-      "solver.cell_mean_pore_pressure=true",        "phases.1.mass_scaling=1.0",
-      "phases.1.stop_at.penetration=0.001",         "output.snapshot_penetrations=[]"};
+  options.overrides =
+      coupled_sand_with({"phases.1.mass_scaling=1.0", "phases.1.stop_at.penetration=0.001",
+                         "output.snapshot_penetrations=[]"});
   std::ostringstream out, err;
   ASSERT_EQ(run_case(options, out, err), 0) << err.str();
   Hdf5File history((directory / "history.h5").string(), Hdf5File::Mode::read);
@@ -293,11 +304,8 @@ TEST(ImplicitPorePressure, HeldWallCellsCloseTheJackedPilesLedger) {
   RunOptions options;
   options.case_path = (source / "cases/monopile/jacked_quick.toml").string();
   options.output_directory = directory.string();
-  options.overrides = {
-      "materials.sand.drainage=\"coupled\"",         "materials.sand.grain_density=2650.0",
-      "materials.sand.hydraulic_conductivity=1e-4",  "solver.implicit_pore_pressure=true",
-      "solver.cell_mean_pore_pressure=true",         "water.cavitation_stress=100e3",
-      "phases.installation.stop_at.penetration=0.04"};
+  options.overrides = coupled_sand_with(
+      {"water.cavitation_stress=100e3", "phases.installation.stop_at.penetration=0.04"});
   std::ostringstream out, err;
   ASSERT_EQ(run_case(options, out, err), 0) << err.str();
   Hdf5File history((directory / "history.h5").string(), Hdf5File::Mode::read);
