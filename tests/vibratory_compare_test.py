@@ -47,12 +47,12 @@ def pore(t):
     return -(3.0e3 + 1.5e3 * (1.0 - t / 3.0) * np.sin(2 * np.pi * FREQUENCY * t))
 
 
-def write_history(path, end=START + 3.0, interval=1e-3, case=CASE):
+def write_history(path, end=START + 3.0, interval=1e-3, case=CASE, rate=RATE):
     """Rows every `interval` to `end`, the phase boundary a row of its own, as the engine writes."""
     time = np.unique(np.concatenate((np.arange(0.0, end + 0.5 * interval, interval), [START])))
     t = time - START
     penetration = np.where(t < 0.0, BEFORE * time / START,
-                           BEFORE + RATE * t + AMPLITUDE * np.sin(2 * np.pi * FREQUENCY * t))
+                           BEFORE + rate * t + AMPLITUDE * np.sin(2 * np.pi * FREQUENCY * t))
     with h5py.File(path, "w") as f:
         f.attrs["case_resolved"] = case
         f.attrs["title"] = "synthetic vibratory run"
@@ -191,3 +191,45 @@ def test_the_measured_numbers_are_the_pages(tmp_path):
     cel = next(line for line in page.splitlines() if line.startswith("| CEL mu(t'_N) = 0.25, min"))
     assert [tuple(map(float, c.split("/"))) for c in cel.split("|")[2:-1]] == list(vc.PPT_CEL_KPA)
     assert math.isclose(vc.PPT_A[1], 0.62)
+
+
+def test_resolutions_recover_the_order_and_the_limit_of_a_known_sequence(tmp_path, capsys):
+    """Three runs at cells h = 1, 1/2, 1/3 whose rates are RATE + 0.02 h^2: each row's penetration is
+    t (RATE + 0.02 h^2), so the order must come out 2 and the extrapolation t RATE exactly (the
+    cycle mean of the sine vanishes to rounding; 1e-6 leaves room for the bisection's and the
+    trapezoid's last digits)."""
+    specs = []
+    for h in (1.0, 0.5, 1.0 / 3.0):
+        path = write_history(tmp_path / f"h{h:.3f}.h5", rate=RATE + 0.02 * h ** 2)
+        specs.append((h, vc.read_run(path, "vibration")))
+    h, rows = vc.resolution_rows(specs, 1.0 / FREQUENCY)
+    assert h == sorted(h)
+    assert [t for t, _, _ in rows] == list(vc.TIMES)
+    for t, f, (f0, band, p) in rows:
+        centre = min(t, 3.0 - 0.5 / FREQUENCY)  # the last window moved back to end at 3 s
+        assert p == pytest.approx(2.0, abs=1e-6)
+        assert f0 == pytest.approx(1e3 * RATE * centre, abs=1e-6)
+        assert band == pytest.approx(1.25 * abs(f0 - f[0]), rel=1e-6)
+    args = []
+    for h in (1.0, 0.5, 1.0 / 3.0):
+        args += ["--resolution", f"{tmp_path / f'h{h:.3f}.h5'}:{h!r}"]
+    assert vc.main(args) == 0
+    # At 1 s: 1e3 (RATE + 0.02 h^2) = 60.2, 63.0, 78.0 mm; the limit 58.0, its band 1.25 x 2.2.
+    assert "| 1.00 | 60.2 | 63.0 | 78.0 | 2.00 | 58.0 +- 2.8 | 59.0 | 67.4 |" in capsys.readouterr().out
+
+
+def test_resolutions_whose_differences_do_not_shrink_give_no_extrapolation(tmp_path, capsys):
+    """Rates RATE - 0.02 ln h: the second difference is ln 1.5 / ln 2 = 0.585 of the first, which no
+    order in [0.5, 4] makes (0.5 gives 0.53): the rows say so and extrapolate nothing; fewer than
+    three runs are refused, and so is a run given with --resolution."""
+    args = []
+    for h in (1.0, 0.5, 1.0 / 3.0):
+        path = write_history(tmp_path / f"h{h:.3f}.h5", rate=RATE - 0.02 * math.log(h))
+        args += ["--resolution", f"{path}:{h!r}"]
+    assert vc.main(args) == 0
+    out = capsys.readouterr().out
+    assert out.count("no order: the differences do not shrink as h^p | - |") == len(vc.TIMES)
+    with pytest.raises(SystemExit):
+        vc.main(args[:4])
+    with pytest.raises(SystemExit):
+        vc.main([str(tmp_path / "h1.000.h5")] + args)

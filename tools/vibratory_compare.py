@@ -4,6 +4,8 @@ start of vibration against the measured one, and the pore pressure at the monito
 
     tools/vibratory_compare.py /tmp/vib_runs/run2            # a run's directory or its history.h5
     tools/vibratory_compare.py RUN --phase vibration --ppt-a 0.035 0.62
+    tools/vibratory_compare.py --resolution out/vib_hg:1 --resolution out/vib_fine:0.5 \
+        --resolution out/vib_finer:0.3333333333333333     # H: the cell, in pile radii
 
 Penetration is the rigid body's /bodies/<body>/penetration less its value where the vibration phase
 starts (the jacking or settlement before it is not counted, as [S24] subtracts its pile's
@@ -18,6 +20,12 @@ each 0.5 s of vibration against [S24] Fig. 3's. The monitor is the one whose par
 nearest PPT A's assumed position (--ppt-a; the page: beside the pile, 0.19 m deep, radius not
 given). A monitor follows its particle, the transducer stays put: the columns compare a point
 of the soil with a point in space.
+
+With --resolution RUN:H for each of three or more runs of one case at cell sizes H, the penetration
+at each measured time is extrapolated to a vanishing cell by tools/convergence.py's rules: the
+observed order p of the three finest (f = f0 + C H^p, p in [0.5, 4]), Richardson on the two finest
+and Roache's band 1.25 |f1 - f2| / ((H2 / H1)^p - 1). Where the three oscillate or their
+differences do not shrink as H^p, the row says so and gives no extrapolation.
 """
 import argparse
 import math
@@ -27,6 +35,8 @@ import tomllib
 
 import h5py
 import numpy as np
+
+import convergence
 
 # Staubach P (2024) Hydro-mechanically coupled CEL analyses with effective contact stresses,
 # Int. J. Numer. Anal. Methods Geomech., doi:10.1002/nag.3725 ([S24]), Fig. 2, read to 0.1 mm in
@@ -161,9 +171,59 @@ def fmt(value, digits=1):
     return "-" if value is None else f"{value:.{digits}f}"
 
 
+def resolution_rows(runs, period):
+    """For (h, run) pairs: (t, [mm per run, finest first], (f0, band, p) or a reason) for each
+    measured time all the runs reach."""
+    runs = sorted(runs, key=lambda pair: pair[0])
+    h = [pair[0] for pair in runs]
+    columns = [penetration_rows(run, period) for _, run in runs]
+    rows = []
+    for i, t in enumerate(TIMES):
+        f = [column[i][2] for column in columns]
+        if any(value is None for value in f):
+            continue
+        if convergence.oscillates(f[:3]):
+            rows.append((t, f, "oscillates"))
+            continue
+        p = convergence.observed_order(h[:3], f[:3])
+        if p is None:
+            rows.append((t, f, "no order: the differences do not shrink as h^p"))
+            continue
+        f0, band, p, _ = convergence.extrapolate(h, f, 1.0)
+        rows.append((t, f, (f0, band, p)))
+    return h, rows
+
+
+def print_resolutions(specs, phase, body, frequency):
+    runs = []
+    for spec in specs:
+        path, _, h = spec.rpartition(":")
+        if not path or not h:
+            raise SystemExit(f"--resolution {spec}: give RUN:H (H the cell in pile radii)")
+        runs.append((float(h), read_run(path, phase, body)))
+    if len(runs) < 3:
+        raise SystemExit("--resolution: three runs or more (an order is observed from three)")
+    period = 1.0 / (frequency or drive_frequency(runs[0][1]["case"], phase))
+    h, rows = resolution_rows(runs, period)
+    print("| t (s) | " + " | ".join(f"h = {value:.3g}" for value in h) +
+          " | observed order | extrapolated (mm) | measured | CEL mu = 0.25 |")
+    print("|---|" + "---|" * len(h) + "---|---|---|---|")
+    for t, f, result in rows:
+        if isinstance(result, str):
+            order, value = result, "-"
+        else:
+            order, value = f"{result[2]:.2f}", f"{result[0]:.1f} +- {result[1]:.1f}"
+        print(f"| {t:.2f} | " + " | ".join(fmt(v) for v in f) +
+              f" | {order} | {value} | {fmt(MEASURED_MM.get(t))} | {fmt(CEL_MM.get(t))} |")
+    return 0
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("run", help="the run's output directory or its history.h5")
+    parser.add_argument("run", nargs="?", help="the run's output directory or its history.h5")
+    parser.add_argument("--resolution", action="append", default=[], metavar="RUN:H",
+                        help="instead of one run: three or more of one case at cell size H (pile "
+                             "radii), extrapolated to a vanishing cell")
     parser.add_argument("--phase", default="vibration", help="the vibration phase (default vibration)")
     parser.add_argument("--body", help="the pile (default: the only rigid body)")
     parser.add_argument("--frequency", type=float,
@@ -175,6 +235,12 @@ def main(argv=None):
                              "times) is within BAND of the measured one, |computed / measured - 1| "
                              "<= BAND; prints 'vibratory check: ok' or the failures")
     args = parser.parse_args(argv)
+    if args.resolution:
+        if args.run:
+            parser.error("give a run or --resolution runs, not both")
+        return print_resolutions(args.resolution, args.phase, args.body, args.frequency)
+    if not args.run:
+        parser.error("give a run (or --resolution runs)")
 
     run = read_run(args.run, args.phase, args.body)
     frequency = args.frequency or drive_frequency(run["case"], args.phase)
