@@ -221,7 +221,8 @@ def test_resolutions_recover_the_order_and_the_limit_of_a_known_sequence(tmp_pat
 def test_resolutions_whose_differences_do_not_shrink_give_no_extrapolation(tmp_path, capsys):
     """Rates RATE - 0.02 ln h: the second difference is ln 1.5 / ln 2 = 0.585 of the first, which no
     order in [0.5, 4] makes (0.5 gives 0.53): the rows say so and extrapolate nothing; fewer than
-    three runs are refused, and so is a run given with --resolution."""
+    three runs are refused, and so are a run or --expect beside --resolution and a cell size that
+    is not a positive number."""
     args = []
     for h in (1.0, 0.5, 1.0 / 3.0):
         path = write_history(tmp_path / f"h{h:.3f}.h5", rate=RATE - 0.02 * math.log(h))
@@ -233,3 +234,8 @@ def test_resolutions_whose_differences_do_not_shrink_give_no_extrapolation(tmp_p
         vc.main(args[:4])
     with pytest.raises(SystemExit):
         vc.main([str(tmp_path / "h1.000.h5")] + args)
+    with pytest.raises(SystemExit):
+        vc.main(args + ["--expect", "1.0=0.5"])
+    for size in ("half", "0", "-1", "nan", ""):
+        with pytest.raises(SystemExit, match="a positive number"):
+            vc.main(args[:4] + ["--resolution", f"{tmp_path / 'h1.000.h5'}:{size}"])

@@ -198,9 +198,14 @@ def print_resolutions(specs, phase, body, frequency):
     runs = []
     for spec in specs:
         path, _, h = spec.rpartition(":")
-        if not path or not h:
-            raise SystemExit(f"--resolution {spec}: give RUN:H (H the cell in pile radii)")
-        runs.append((float(h), read_run(path, phase, body)))
+        try:
+            size = float(h)
+        except ValueError:
+            size = float("nan")
+        if not path or not size > 0.0 or not math.isfinite(size):
+            raise SystemExit(f"--resolution {spec}: give RUN:H, H the cell in pile radii (a "
+                             f"positive number)")
+        runs.append((size, read_run(path, phase, body)))
     if len(runs) < 3:
         raise SystemExit("--resolution: three runs or more (an order is observed from three)")
     period = 1.0 / (frequency or drive_frequency(runs[0][1]["case"], phase))
@@ -236,8 +241,8 @@ def main(argv=None):
                              "<= BAND; prints 'vibratory check: ok' or the failures")
     args = parser.parse_args(argv)
     if args.resolution:
-        if args.run:
-            parser.error("give a run or --resolution runs, not both")
+        if args.run or args.expect:
+            parser.error("--resolution compares runs: no run and no --expect beside it")
         return print_resolutions(args.resolution, args.phase, args.body, args.frequency)
     if not args.run:
         parser.error("give a run (or --resolution runs)")
