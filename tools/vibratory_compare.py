@@ -182,15 +182,13 @@ def resolution_rows(runs, period):
         f = [column[i][2] for column in columns]
         if any(value is None for value in f):
             continue
-        if convergence.oscillates(f[:3]):
+        f0, band, p, observed = convergence.extrapolate(h, f, 1.0)
+        if observed:
+            rows.append((t, f, (f0, band, p)))
+        elif convergence.oscillates(f[:3]):
             rows.append((t, f, "oscillates"))
-            continue
-        p = convergence.observed_order(h[:3], f[:3])
-        if p is None:
+        else:  # extrapolate's fallback order is an assumption: none is printed
             rows.append((t, f, "no order: the differences do not shrink as h^p"))
-            continue
-        f0, band, p, _ = convergence.extrapolate(h, f, 1.0)
-        rows.append((t, f, (f0, band, p)))
     return h, rows
 
 
