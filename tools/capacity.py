@@ -12,7 +12,10 @@ pile's weight). With --zone F, a second table: how far the sand the test moved b
 its settlement reaches (below the tip, out from the wall, above the tip outside it) and how much
 of the settlement the plug followed, from the snapshots at the test's start and end. With --installed
 as well, a third: how deep below the final tip and how far out from the wall the installation (the
-phase named installation) moved sand by that same distance.
+phase named installation) moved sand by that same distance. With --record, a table of what each run
+cost and how its ledger closed: the depth and time its installation reached, how long it rested,
+its steps and wall time (across continuations), and its energy residual after the installation and
+at the end.
 
 With --curves DIR each run's curve is also written as DIR/<label>.csv.gz (settlement, load and the
 surfaces' forces, with the run's case and commit in its header); such a CSV is a run too, for
@@ -27,7 +30,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 
 from mpile.capacity import (CAPACITY_SETTLEMENT, installation_reach, load_test, load_test_zone,  # noqa: E402
-                            write_load_test_csv)
+                            run_record, write_load_test_csv)
 from mpile.history import attributes  # noqa: E402
 from mpile.files import RunFileError  # noqa: E402
 
@@ -39,11 +42,13 @@ def main():
     parser.add_argument("--zone", type=float, metavar="F", help="also the zone the test moved by F of its settlement")
     parser.add_argument("--installed", action="store_true",
                         help="with --zone, also where the installation moved the sand by as much")
+    parser.add_argument("--record", action="store_true",
+                        help="also each run's installation, steps, wall time and ledger")
     parser.add_argument("--curves", metavar="DIR", help="also write each history run's curve as DIR/<label>.csv.gz")
     args = parser.parse_args()
     if args.installed and args.zone is None:
         parser.error("--installed measures at the distance --zone F sets: give --zone")
-    tests, zones, reaches = [], [], []
+    tests, zones, reaches, records = [], [], [], []
     try:
         for run in args.runs:
             path, _, label = run.partition(":")
@@ -59,6 +64,8 @@ def main():
                                     f"mpile run {attrs.get('case_file', '?')} {sets} at {attrs.get('commit', '?')}")
             if args.zone is not None:
                 zones.append((tests[-1], load_test_zone(path, args.zone)))
+            if args.record:
+                records.append((tests[-1], run_record(path)))
             if args.zone is not None and args.installed:
                 distance = args.zone * tests[-1].settlement.max()
                 reaches.append((tests[-1], installation_reach(path, distance)))
@@ -89,6 +96,15 @@ def main():
         print("|---|---|---|")
         for t, z in reaches:
             print(f"| {t.label} | {1e3 * z.distance:.1f}: {z.below_tip:.2f} | {z.outside_wall:.2f} |")
+    if records:
+        print()
+        print("| run | installed to (m) at (s) | rest (s) | steps | wall (s) | "
+              "ledger after the installation / at the end |")
+        print("|---|---|---|---|---|---|")
+        for t, r in records:
+            steps, wall = (f"{n:,.0f}".replace(",", " ") for n in (r.steps, r.wall_time))
+            print(f"| {t.label} | {r.depth:.3f} at {r.installed_at:.3f} | {r.rest:.3g} | {steps} | {wall} | "
+                  f"{100 * r.ledger_installed:#.2g} / {100 * r.ledger_end:#.2g} % |")
 
     import matplotlib
     matplotlib.use("Agg")

@@ -37,7 +37,8 @@ class LoadTest:
     surfaces: dict = field(default_factory=dict)  # {surface: upward F_y on it, kN/rad}
 
     def _at(self, values, settlement):
-        if not self.settlement.size or settlement > self.settlement.max():
+        # Not finite: a case without a diameter asked for its capacity.
+        if not self.settlement.size or not np.isfinite(settlement) or settlement > self.settlement.max():
             return np.nan
         # The first passage: a settlement that dips back (unloading) does not count twice.
         first = int(np.flatnonzero(self.settlement >= settlement)[0])
@@ -247,3 +248,42 @@ def moved_reach(first, last, distance, outer):
     below, out = tip - now[zone, 1], now[zone, 0] - outer
     return InstallationReach(distance, float(below.max()) if below.size else 0.0,
                              float(out[out > 0].max()) if (out > 0).any() else 0.0)
+
+
+@dataclass
+class RunRecord:
+    """What a capacity run cost and how well its ledger closed: where and when its installation
+    ended, how long its rest held the pile, its steps and wall time, and the energy residual (over
+    the energy in play, as the run books it) at the installation's end and at the run's end."""
+
+    depth: float  # m, the pile's penetration at the installation's end
+    installed_at: float  # s
+    rest: float  # s the phase named rest lasted (NaN without one)
+    steps: int
+    wall_time: float  # s, across continuations
+    ledger_installed: float  # relative residual at the installation's last row
+    ledger_end: float  # at the run's last step (its last row in a run written without it)
+
+
+def run_record(path, body="pile", phase="installation"):
+    """The `RunRecord` of a run whose phase named `phase` has ended."""
+    history = history_path(path)
+    table = phases(history)
+    named = table[table["name"] == phase]
+    if named.empty or not np.isfinite(float(named["end"].iloc[0])):
+        raise RunFileError(f"{history} has no finished phase named '{phase}'")
+    index = int(named.index[0])
+    series = read_series(history, ["/phase", "/step", f"/bodies/{body}/penetration",
+                                   "/energy/relative_residual"])
+    rows = np.flatnonzero(series["/phase"] == index)
+    if not rows.size:
+        raise RunFileError(f"{history} has no rows of its phase '{phase}'")
+    last = int(rows[-1])
+    rest = table[table["name"] == "rest"]
+    attrs = attributes(history)
+    return RunRecord(depth=float(series[f"/bodies/{body}/penetration"][last]),
+                     installed_at=float(named["end"].iloc[0]),
+                     rest=float(rest["end"].iloc[0] - rest["start"].iloc[0]) if not rest.empty else np.nan,
+                     steps=int(series["/step"][-1]), wall_time=float(attrs.get("wall_time", np.nan)),
+                     ledger_installed=float(series["/energy/relative_residual"][last]),
+                     ledger_end=float(attrs.get("energy_residual_final", series["/energy/relative_residual"][-1])))

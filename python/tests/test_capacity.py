@@ -187,3 +187,37 @@ def test_a_run_without_the_installation_phase_is_refused(tmp_path):
                 {"name": "load_test", "start": 1.0, "end": 2.0}])
     with pytest.raises(RunFileError, match="no finished phase named 'installation'"):
         installation_reach(path, 0.0075)
+
+
+def test_the_run_record_reads_the_installation_rest_cost_and_ledger(tmp_path):
+    # Three phases; the installation's last row (the second) holds its depth and ledger, the
+    # rest lasts 0.5 s, the file's attribute carries the wall time across continuations and the
+    # last step's residual (which a row written before it need not equal).
+    from mpile.capacity import run_record
+    path = write_history(tmp_path / "history.h5", {
+        "/time": ([0.0, 1.0, 1.5, 2.0], "s"), "/phase": (np.array([0, 0, 1, 2]), "-"),
+        "/step": (np.array([0, 40, 60, 1234567]), "-"),
+        "/bodies/pile/penetration": ([0.0, 0.3, 0.3, 0.35], "m"),
+        "/bodies/pile/driving_F_y": ([0.0, 0.0, 0.0, -1e3], "N/rad"),
+        "/energy/relative_residual": ([0.0, 4.6e-4, 1e-3, 4e-3], "-")},
+        attrs={"case_resolved": '[[phases]]\nname = "installation"\n[[phases]]\nname = "rest"\n'
+                                '[[phases]]\nname = "load_test"\n',
+               "wall_time": 10607.8, "energy_residual_final": 5.0e-3, "title": "known"},
+        phases=[{"name": "installation", "start": 0.0, "end": 1.0, "ended": "at pile penetration 0.3 m"},
+                {"name": "rest", "start": 1.0, "end": 1.5, "ended": "after its duration"},
+                {"name": "load_test", "start": 1.5, "end": 2.0, "ended": "at pile settlement 0.05 m"}])
+    record = run_record(path)
+    assert (record.depth, record.installed_at, record.steps) == (0.3, 1.0, 1234567)
+    assert record.rest == pytest.approx(0.5, rel=1e-12)
+    assert (record.wall_time, record.ledger_installed, record.ledger_end) == (10607.8, 4.6e-4, 5.0e-3)
+    # Its case names no diameter: no capacity, and no crash reading one (the tool's row below).
+    assert np.isnan(load_test(path).capacity)
+
+    import subprocess
+    import sys
+    from conftest import REPOSITORY
+    done = subprocess.run([sys.executable, str(REPOSITORY / "tools" / "capacity.py"), f"{path}:GDP, HS",
+                           "--record", "--out", str(tmp_path / "c.png")], capture_output=True, text=True,
+                          check=True)
+    # Two significant digits of each residual in %, the counts in groups of three, the label's comma kept.
+    assert "| GDP, HS | 0.300 at 1.000 | 0.5 | 1 234 567 | 10 608 | 0.046 / 0.50 % |" in done.stdout.splitlines()
