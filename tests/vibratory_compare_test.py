@@ -47,7 +47,16 @@ def pore(t):
     return -(3.0e3 + 1.5e3 * (1.0 - t / 3.0) * np.sin(2 * np.pi * FREQUENCY * t))
 
 
-def write_history(path, end=START + 3.0, interval=1e-3, case=CASE, rate=RATE):
+def tip_force(t):
+    """The soil's upward force on the tip (N/rad) and the pore pressure's part of it: 24 N/rad with
+    a swing of 30 whose mean over each 0.5 s window (12.5 cycles, a cosine: its integral ends where
+    sin vanishes) is zero, the water's part a quarter of it before 1 s of vibration and three
+    quarters after."""
+    total = 24.0 + 30.0 * np.cos(2 * np.pi * FREQUENCY * t)
+    return total, np.where(t < 1.0, 0.25, 0.75) * total
+
+
+def write_history(path, end=START + 3.0, interval=1e-3, case=CASE, rate=RATE, tip=True):
     """Rows every `interval` to `end`, the phase boundary a row of its own, as the engine writes."""
     time = np.unique(np.concatenate((np.arange(0.0, end + 0.5 * interval, interval), [START])))
     t = time - START
@@ -65,6 +74,10 @@ def write_history(path, end=START + 3.0, interval=1e-3, case=CASE, rate=RATE):
             g.attrs["name"] = name
             g.attrs["start"] = start
         f["bodies/pile/penetration"] = penetration
+        if tip:
+            total, water = tip_force(t)
+            f["reactions/pile/tip/F_y"] = total
+            f["reactions/pile/tip/pore_F_y"] = water
         for name, (r, y), pressure in (("far", (0.2, 0.3), np.zeros_like(time)),
                                        ("ppt_a", (0.036, 0.621), np.where(t < 0, -3e3, pore(t)))):
             g = f.create_group(f"monitors/{name}")
@@ -160,6 +173,28 @@ def test_main_prints_the_table_beside_the_measured_column(tmp_path, capsys):
     assert "| 3.00 | 75 | 172.8 (2.980 s) | 174.5 | 168.5 | 0.99 |" in out
     assert "monitor 'ppt_a'" in out
     assert "| 0-0.5 | 1.5 / 4.5 | 3.0 | 1.6 / 4.8 | 1.2 / 4.8 |" in out
+
+
+def test_what_carries_the_tip_per_window(tmp_path, capsys):
+    """Each 0.5 s window: the trend's rate per cycle (the sine is zero at the windows' ends, so the
+    rate is RATE / FREQUENCY exactly), the tip force's mean (the trapezoid rule integrates the
+    cosine exactly there: every odd derivative vanishes at both ends) and the water's share of it,
+    a quarter, then three quarters from 1 s. The window 0.5-1 s ends on the step: its last row
+    (54 N/rad) takes the later share over half of a 1 ms interval, 0.5 x 1e-3 x 0.5 x 54 / (0.5 x
+    24) = 1.125e-3 more share."""
+    run = vc.read_run(write_history(tmp_path / "history.h5"), "vibration")
+    rows = vc.tip_rows(run, 1.0 / FREQUENCY)
+    assert [w for w, _, _, _ in rows] == list(vc.PPT_WINDOWS)
+    for (a, b), rate, total, share in rows:
+        assert rate == pytest.approx(1e3 * RATE / FREQUENCY, abs=1e-9)
+        assert total == pytest.approx(24.0, abs=1e-9)
+        expected = 0.25 if b < 1.0 else 0.25 + 1.125e-3 if b == 1.0 else 0.75
+        assert share == pytest.approx(expected, abs=1e-9)
+    assert vc.main([str(tmp_path)]) == 0
+    assert "| 1.5-2 | 2.32 | 24.0 | 75 % |" in capsys.readouterr().out
+    # Without the tip's record the rate is still there and the forces are not.
+    run = vc.read_run(write_history(tmp_path / "bare.h5", tip=False), "vibration")
+    assert [row[2:] for row in vc.tip_rows(run, 1.0 / FREQUENCY)] == [(None, None)] * 6
 
 
 def test_expect_passes_within_its_band_and_fails_outside_it_or_short(tmp_path, capsys):

@@ -21,6 +21,11 @@ nearest PPT A's assumed position (--ppt-a; the page: beside the pile, 0.19 m dee
 given). A monitor follows its particle, the transducer stays put: the columns compare a point
 of the soil with a point in space.
 
+What carries the tip: for each 0.5 s window, the penetration's rate (mm a cycle), the soil's mean
+upward force on the tip (/reactions/<body>/tip/F_y, N/rad) and the share of it the pore pressure
+carries (pore_F_y over F_y), where the history records them: a pile whose tip stands on water
+rather than on the grains sinks less a cycle.
+
 With --resolution RUN:H for each of three or more runs of one case at cell sizes H, the penetration
 at each measured time is extrapolated to a vanishing cell by tools/convergence.py's rules: the
 observed order p of the three finest (f = f0 + C H^p, p in [0.5, 4]), Richardson on the two finest
@@ -114,6 +119,9 @@ def read_run(path, phase_name, body=None):
             body = bodies[0]
         time = f["time"][()]
         penetration = f[f"bodies/{body}/penetration"][()]
+        tip = f.get(f"reactions/{body}/tip")
+        tip_forces = ((tip["F_y"][()], tip["pore_F_y"][()])
+                      if tip is not None and "F_y" in tip and "pore_F_y" in tip else None)
         monitors = {}
         for name, group in (f["monitors"].items() if "monitors" in f else []):
             if "pore_pressure" not in group:
@@ -129,7 +137,8 @@ def read_run(path, phase_name, body=None):
     return {"history": history, "attrs": attrs, "case": case, "body": body, "start": start,
             "time": time[keep] - start, "penetration": penetration[keep] - start_penetration,
             "start_penetration": start_penetration,
-            "monitors": {n: (pos, p[keep]) for n, (pos, p) in monitors.items()}}
+            "monitors": {n: (pos, p[keep]) for n, (pos, p) in monitors.items()},
+            "tip": None if tip_forces is None else tuple(values[keep] for values in tip_forces)}
 
 
 def penetration_rows(run, period):
@@ -164,6 +173,30 @@ def pore_rows(time, pore):
         t, u = time[inside], -pore[inside] / 1e3
         mean = float(np.sum(0.5 * (u[1:] + u[:-1]) * np.diff(t)) / (t[-1] - t[0]))
         rows.append(((a, b), float(u.min()), float(u.max()), mean))
+    return rows
+
+
+def window_mean(time, values, a, b):
+    """The mean of the piecewise linear `values` over [a, b] exactly: the rows inside and the values
+    interpolated at both ends (a row written a rounding off a window's end is not lost)."""
+    t = np.concatenate(([a], time[(time > a) & (time < b)], [b]))
+    v = np.interp(t, time, values)
+    return float(np.sum(0.5 * (v[1:] + v[:-1]) * np.diff(t)) / (b - a))
+
+
+def tip_rows(run, period):
+    """(window, mm a cycle, mean tip F_y in N/rad, the pore pressure's share of it) per 0.5 s window
+    the run covers, the means by the trapezoid rule; None for the forces without a tip record."""
+    time, pen = run["time"], run["penetration"]
+    rows = []
+    for a, b in PPT_WINDOWS:
+        if b > time[-1] + 1e-9:
+            continue
+        rate = 1e3 * (np.interp(b, time, pen) - np.interp(a, time, pen)) / (b - a) * period
+        total = pore = None
+        if run["tip"] is not None:
+            total, pore = (window_mean(time, values, a, b) for values in run["tip"])
+        rows.append(((a, b), rate, total, None if total is None or total == 0.0 else pore / total))
     return rows
 
 
@@ -287,6 +320,7 @@ def main(argv=None):
     print()
     if name is None:
         print("no monitor records a pore pressure: no PPT A column")
+        print_tip(run, period)
         return 0
     (r, y), pore = run["monitors"][name]
     print(f"pore pressure at monitor {name!r}, started at (r, y) = ({r:.4f}, {y:.4f}) m, "
@@ -300,7 +334,19 @@ def main(argv=None):
                                                         PPT_MEASURED_KPA, PPT_CEL_KPA):
         print(f"| {a:g}-{b:g} | {fmt(low)} / {fmt(high)} | {fmt(mean)} | "
               f"{measured[0]:.1f} / {measured[1]:.1f} | {cel[0]:.1f} / {cel[1]:.1f} |")
+    print_tip(run, period)
     return 0
+
+
+def print_tip(run, period):
+    print()
+    print("what carries the tip (window means):")
+    print()
+    print("| t (s) | mm a cycle | tip F_y (N/rad) | carried by the pore pressure |")
+    print("|---|---|---|---|")
+    for (a, b), rate, total, share in tip_rows(run, period):
+        print(f"| {a:g}-{b:g} | {rate:.2f} | {fmt(total)} | "
+              f"{'-' if share is None else f'{100 * share:.0f} %'} |")
 
 
 if __name__ == "__main__":
