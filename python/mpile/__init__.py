@@ -57,6 +57,8 @@ _EXPORTS = {
     "LoadTestZone": "capacity",
     "installation_reach": "capacity",
     "InstallationReach": "capacity",
+    "run_record": "capacity",
+    "RunRecord": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",
     "Case": "cases",
