@@ -26,6 +26,11 @@ upward force on the tip (/reactions/<body>/tip/F_y, N/rad) and the share of it t
 carries (pore_F_y over F_y), where the history records them: a pile whose tip stands on water
 rather than on the grains sinks less a cycle.
 
+With --tip-zone R, from the run's particle snapshots: the sand within R (the pile's radius) of the
+axis and within R below the tip (the rigid body's lowest particle), its mean void ratio, mean
+effective pressure p' and mean excess pore pressure, at each snapshot of the vibration: whether
+the grains under the tip still carry it.
+
 With --resolution RUN:H for each of three or more runs of one case at cell sizes H, the penetration
 at each measured time is extrapolated to a vanishing cell by tools/convergence.py's rules: the
 observed order p of the three finest (f = f0 + C H^p, p in [0.5, 4]), Richardson on the two finest
@@ -200,6 +205,45 @@ def tip_rows(run, period):
     return rows
 
 
+def tip_zone(snapshot, radius):
+    """(tip's height, particles, mean void ratio, mean p' in kPa, mean excess pore pressure in kPa,
+    compression positive) of the sand within `radius` of the axis and `radius` below the tip in a
+    saturated run's snapshot (positions; arrays material, void_ratio, p, pore_pressure,
+    excess_pore_pressure; material_names, rigid bodies' ending in "(rigid)"); the means None
+    without such sand."""
+    names = snapshot.material_names
+    material = snapshot.arrays["material"].astype(int)
+    rigid = np.isin(material, [k for k, name in enumerate(names) if name.endswith("(rigid)")])
+    r, y = snapshot.positions[:, 0], snapshot.positions[:, 1]
+    tip = float(y[rigid].min())
+    zone = ~rigid & (r < radius) & (y < tip) & (y > tip - radius)
+    if not zone.any():
+        return tip, 0, None, None, None
+    a = snapshot.arrays
+    # A saturated particle's stress is total and p its mean pressure, compression positive; the pore
+    # pressures are written tension positive (physics.md section 9), so p' = p + pore_pressure.
+    effective = a["p"][zone] + a["pore_pressure"][zone]
+    return (tip, int(zone.sum()), float(a["void_ratio"][zone].mean()), float(effective.mean()) / 1e3,
+            float(-a["excess_pore_pressure"][zone].mean()) / 1e3)
+
+
+def print_tip_zone(run, radius):
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "python"))
+    from mpile.snapshots import open_snapshots
+
+    print()
+    print(f"the sand within {1e3 * radius:g} mm of the axis and below the tip (snapshots):")
+    print()
+    print("| t (s) | tip y (m) | particles | void ratio | p' (kPa) | excess pore pressure (kPa) |")
+    print("|---|---|---|---|---|---|")
+    for snapshot in open_snapshots(pathlib.Path(run["history"]).parent):
+        t = snapshot.time - run["start"]
+        if t < -1e-9:
+            continue
+        tip, count, e, p, u = tip_zone(snapshot, radius)
+        print(f"| {t:.2f} | {tip:.4f} | {count} | {fmt(e, 3)} | {fmt(p)} | {fmt(u)} |")
+
+
 def fmt(value, digits=1):
     return "-" if value is None else f"{value:.{digits}f}"
 
@@ -266,6 +310,9 @@ def main(argv=None):
                         help="the cycle's frequency, Hz (default: the phase's harmonic force_y)")
     parser.add_argument("--ppt-a", type=float, nargs=2, default=PPT_A, metavar=("R", "Y"),
                         help=f"PPT A's position, m (default {PPT_A[0]:g} {PPT_A[1]:g}, assumed)")
+    parser.add_argument("--tip-zone", type=float, metavar="R",
+                        help="also the sand within R (m, the pile's radius) of the axis below the tip, "
+                             "from the snapshots")
     parser.add_argument("--expect", action="append", default=[], metavar="T=BAND",
                         help="fail (exit 1) unless the penetration at T s (one of the measured "
                              "times) is within BAND of the measured one, |computed / measured - 1| "
@@ -321,6 +368,8 @@ def main(argv=None):
     if name is None:
         print("no monitor records a pore pressure: no PPT A column")
         print_tip(run, period)
+        if args.tip_zone:
+            print_tip_zone(run, args.tip_zone)
         return 0
     (r, y), pore = run["monitors"][name]
     print(f"pore pressure at monitor {name!r}, started at (r, y) = ({r:.4f}, {y:.4f}) m, "
@@ -335,6 +384,8 @@ def main(argv=None):
         print(f"| {a:g}-{b:g} | {fmt(low)} / {fmt(high)} | {fmt(mean)} | "
               f"{measured[0]:.1f} / {measured[1]:.1f} | {cel[0]:.1f} / {cel[1]:.1f} |")
     print_tip(run, period)
+    if args.tip_zone:
+        print_tip_zone(run, args.tip_zone)
     return 0
 
 
