@@ -8,7 +8,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
+#include <ostream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
