@@ -8,8 +8,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <ostream>
 #include <limits>
+#include <ostream>
 #include <sstream>
 #include <stdexcept>
 
