@@ -290,21 +290,27 @@ def test_the_sand_under_the_tip_its_density_and_what_its_grains_carry():
     """Two rigid particles, the lower at y = 0.5 (the tip); sand at (r, y): two inside the zone (r
     < R = 0.0165 m, 0.5 - R < y < 0.5), one too far out, one too deep, one beside the pile above the
     tip. The saturated stress is total: p' = p + pore_pressure (tension positive), so a particle
-    with p = 30 kPa and pore pressure -10 kPa (10 of compression) carries p' = 20 kPa."""
+    with p = 30 kPa and pore pressure -10 kPa (10 of compression) carries p' = 20 kPa. The two in
+    the zone hold half and all of its volume per radian, R^3 / 2: it is filled 1.5 times (per
+    unit thickness in plane strain, R^2: 0.75 R times)."""
+    third = 0.0165**3 / 2.0
     positions = [(0.005, 0.5), (0.005, 0.55),                   # the pile
                  (0.004, 0.49), (0.012, 0.495),                 # in the zone
                  (0.02, 0.49), (0.004, 0.48), (0.004, 0.51)]    # out, deep, above the tip
-    zone = vc.tip_zone(Snapshot(positions, [1, 1, 0, 0, 0, 0, 0],
-                                void_ratio=[0, 0, 0.6, 0.8, 5, 5, 5],
-                                p=[0, 0, 30e3, 50e3, 9e9, 9e9, 9e9],
-                                pore_pressure=[0, 0, -10e3, 30e3, 9e9, 9e9, 9e9],
-                                excess_pore_pressure=[0, 0, -8e3, 32e3, 9e9, 9e9, 9e9]), 0.0165)
-    tip, count, e, effective, excess = zone
+    snapshot = Snapshot(positions, [1, 1, 0, 0, 0, 0, 0],
+                        volume=[1, 1, 0.5 * third, third, 1, 1, 1],
+                        void_ratio=[0, 0, 0.6, 0.8, 5, 5, 5],
+                        p=[0, 0, 30e3, 50e3, 9e9, 9e9, 9e9],
+                        pore_pressure=[0, 0, -10e3, 30e3, 9e9, 9e9, 9e9],
+                        excess_pore_pressure=[0, 0, -8e3, 32e3, 9e9, 9e9, 9e9])
+    tip, count, filled, e, effective, excess = vc.tip_zone(snapshot, 0.0165)
     assert (tip, count) == (0.5, 2)
+    assert filled == pytest.approx(1.5, rel=1e-12)
+    assert vc.tip_zone(snapshot, 0.0165, axisymmetric=False)[2] == pytest.approx(0.75 * 0.0165, rel=1e-12)
     assert e == pytest.approx(0.7, abs=1e-12)
     assert effective == pytest.approx(0.5 * (20.0 + 80.0), abs=1e-9)   # kPa
     assert excess == pytest.approx(-0.5 * (-8.0 + 32.0), abs=1e-9)    # compression positive
     # No sand there: the means are None.
-    assert vc.tip_zone(Snapshot(positions[:2], [1, 1], void_ratio=[0, 0], p=[0, 0],
+    assert vc.tip_zone(Snapshot(positions[:2], [1, 1], volume=[1, 1], void_ratio=[0, 0], p=[0, 0],
                                 pore_pressure=[0, 0], excess_pore_pressure=[0, 0]), 0.0165)[1:] == (
-        0, None, None, None)
+        0, None, None, None, None)

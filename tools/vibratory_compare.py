@@ -205,12 +205,14 @@ def tip_rows(run, period):
     return rows
 
 
-def tip_zone(snapshot, radius):
-    """(tip's height, particles, mean void ratio, mean p' in kPa, mean excess pore pressure in kPa,
-    compression positive) of the sand within `radius` of the axis and `radius` below the tip in a
-    saturated run's snapshot (positions; arrays material, void_ratio, p, pore_pressure,
-    excess_pore_pressure; material_names, rigid bodies' ending in "(rigid)"); the means None
-    without such sand."""
+def tip_zone(snapshot, radius, axisymmetric=True):
+    """(tip's height, particles, their volumes' sum over the zone's, mean void ratio, mean p' in kPa,
+    mean excess pore pressure in kPa, compression positive) of the sand within `radius` of the
+    axis and `radius` below the tip in a saturated run's snapshot (positions; arrays material,
+    volume, void_ratio, p, pore_pressure, excess_pore_pressure; material_names, rigid bodies'
+    ending in "(rigid)"); all but the first two None without such sand. The zone's volume is
+    radius^3 / 2 per radian (axisymmetric), else radius^2 per unit thickness: particles that keep
+    their volumes and positions consistent fill it about once; crowded particles, more than once."""
     names = snapshot.material_names
     material = snapshot.arrays["material"].astype(int)
     rigid = np.isin(material, [k for k, name in enumerate(names) if name.endswith("(rigid)")])
@@ -218,12 +220,13 @@ def tip_zone(snapshot, radius):
     tip = float(y[rigid].min())
     zone = ~rigid & (r < radius) & (y < tip) & (y > tip - radius)
     if not zone.any():
-        return tip, 0, None, None, None
+        return tip, 0, None, None, None, None
     a = snapshot.arrays
     # A saturated particle's stress is total and p its mean pressure, compression positive; the pore
     # pressures are written tension positive (physics.md section 9), so p' = p + pore_pressure.
     effective = a["p"][zone] + a["pore_pressure"][zone]
-    return (tip, int(zone.sum()), float(a["void_ratio"][zone].mean()), float(effective.mean()) / 1e3,
+    filled = float(a["volume"][zone].sum()) / (0.5 * radius**3 if axisymmetric else radius**2)
+    return (tip, int(zone.sum()), filled, float(a["void_ratio"][zone].mean()), float(effective.mean()) / 1e3,
             float(-a["excess_pore_pressure"][zone].mean()) / 1e3)
 
 
@@ -234,14 +237,16 @@ def print_tip_zone(run, radius):
     print()
     print(f"the sand within {1e3 * radius:g} mm of the axis and below the tip (snapshots):")
     print()
-    print("| t (s) | tip y (m) | particles | void ratio | p' (kPa) | excess pore pressure (kPa) |")
-    print("|---|---|---|---|---|---|")
+    print("| t (s) | tip y (m) | particles | their volume / the zone's | void ratio | p' (kPa) | "
+          "excess pore pressure (kPa) |")
+    print("|---|---|---|---|---|---|---|")
+    axisymmetric = str(run["case"].get("geometry", "axisymmetric")) == "axisymmetric"
     for snapshot in open_snapshots(pathlib.Path(run["history"]).parent):
         t = snapshot.time - run["start"]
         if t < -1e-9:
             continue
-        tip, count, e, p, u = tip_zone(snapshot, radius)
-        print(f"| {t:.2f} | {tip:.4f} | {count} | {fmt(e, 3)} | {fmt(p)} | {fmt(u)} |")
+        tip, count, filled, e, p, u = tip_zone(snapshot, radius, axisymmetric)
+        print(f"| {t:.2f} | {tip:.4f} | {count} | {fmt(filled, 2)} | {fmt(e, 3)} | {fmt(p)} | {fmt(u)} |")
 
 
 def fmt(value, digits=1):
