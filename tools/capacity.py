@@ -8,12 +8,14 @@ settlement of 10 % of the diameter (docs/results.md, "Capacity after installatio
 A run is a directory or history.h5 whose last phase is the load test, optionally with :label
 (default: the run's title). The capacity is in kN/rad and, times 2 pi, in MN for the whole pile;
 beside it the soil's upward force on the tip and each shaft there (their sum is the load plus the
-pile's weight). With --zone F, a second table: how far the sand the test moved by at least F of
-its settlement reaches (below the tip, out from the wall, above the tip outside it) and how much
-of the settlement the plug followed, from the snapshots at the test's start and end. With --installed
-as well, a third: how deep below the final tip and how far out from the wall the installation (the
-phase named installation) moved sand by that same distance. With --record, a table of what each run
-cost and how its ledger closed: the depth and time its installation reached, how long it rested,
+pile's weight). With --zone F, a second table: how far the sand the test moved by at least F of its
+settlement reaches (below the tip, out from the wall, above the tip outside it) and how much of the
+settlement the plug followed, from the snapshots at the test's start and end. With --installed as
+well, a third: how deep below the final tip and how far out from the wall the installation (the
+phase named installation) moved sand by that same distance. With --fill, how many times over the
+soil particles fill the zones a wall thickness below the wall's tip (under it, inside and outside)
+at each snapshot: crowded particles fill them more than once. With --record, a table of what each
+run cost and how its ledger closed: the depth and time its installation reached, how long it rested,
 its steps and wall time (across continuations), and its energy residual after the installation and
 at the end.
 
@@ -30,7 +32,7 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
 
 from mpile.capacity import (CAPACITY_SETTLEMENT, installation_reach, load_test, load_test_zone,  # noqa: E402
-                            run_record, write_load_test_csv)
+                            run_record, wall_tip_fills, write_load_test_csv)
 from mpile.history import attributes  # noqa: E402
 from mpile.files import RunFileError  # noqa: E402
 
@@ -42,13 +44,15 @@ def main():
     parser.add_argument("--zone", type=float, metavar="F", help="also the zone the test moved by F of its settlement")
     parser.add_argument("--installed", action="store_true",
                         help="with --zone, also where the installation moved the sand by as much")
+    parser.add_argument("--fill", action="store_true",
+                        help="also how many times over the particles fill the zones at the wall's tip")
     parser.add_argument("--record", action="store_true",
                         help="also each run's installation, steps, wall time and ledger")
     parser.add_argument("--curves", metavar="DIR", help="also write each history run's curve as DIR/<label>.csv.gz")
     args = parser.parse_args()
     if args.installed and args.zone is None:
         parser.error("--installed measures at the distance --zone F sets: give --zone")
-    tests, zones, reaches, records = [], [], [], []
+    tests, zones, reaches, records, fills = [], [], [], [], []
     try:
         for run in args.runs:
             path, _, label = run.partition(":")
@@ -66,6 +70,8 @@ def main():
                 zones.append((tests[-1], load_test_zone(path, args.zone)))
             if args.record:
                 records.append((tests[-1], run_record(path)))
+            if args.fill:
+                fills.append((tests[-1], wall_tip_fills(path)))
             if args.zone is not None and args.installed:
                 distance = args.zone * tests[-1].settlement.max()
                 reaches.append((tests[-1], installation_reach(path, distance)))
@@ -105,6 +111,14 @@ def main():
             steps, wall = (f"{n:,.0f}".replace(",", " ") for n in (r.steps, r.wall_time))
             print(f"| {t.label} | {r.depth:.3f} at {r.installed_at:.3f} | {r.rest:.3g} | {steps} | {wall} | "
                   f"{100 * r.ledger_installed:#.2g} / {100 * r.ledger_end:#.2g} % |")
+    if fills:
+        print()
+        print("| run | t (s) | the particles fill the zone a wall thickness below the tip: under the wall / "
+              "inside / outside (times) |")
+        print("|---|---|---|")
+        for t, run_fills in fills:
+            for f in run_fills:
+                print(f"| {t.label} | {f.time:.3f} | {f.under:.2f} / {f.inside:.2f} / {f.outside:.2f} |")
 
     import matplotlib
     matplotlib.use("Agg")

@@ -58,6 +58,8 @@ _EXPORTS = {
     "installation_reach": "capacity",
     "InstallationReach": "capacity",
     "run_record": "capacity",
+    "wall_tip_fills": "capacity",
+    "WallTipFill": "capacity",
     "RunRecord": "capacity",
     "Radiation": "vibration",
     "RunFileError": "files",

@@ -287,3 +287,52 @@ def run_record(path, body="pile", phase="installation"):
                      steps=int(series["/step"][-1]), wall_time=float(attrs.get("wall_time", np.nan)),
                      ledger_installed=float(series["/energy/relative_residual"][last]),
                      ledger_end=float(attrs.get("energy_residual_final", series["/energy/relative_residual"][-1])))
+
+
+@dataclass
+class WallTipFill:
+    """How many times over the soil particles fill three zones at the wall's tip, each a wall
+    thickness deep below it: under the wall, beside it inside and beside it outside (each a wall
+    thickness wide). Particles whose volumes and positions agree fill a zone about once; crowded
+    ones, where the grid cannot follow the soil's flow round the tip, more."""
+
+    time: float
+    under: float
+    inside: float
+    outside: float
+
+
+def wall_tip_fill(snapshot, outer, inner):
+    """The `WallTipFill` of one snapshot (positions; arrays material, volume; material_names) of an
+    axisymmetric pile whose wall spans radii inner to outer. Volumes are per radian, as
+    axisymmetric runs write them: a square particle of side s at radius r has r s^2. The tip is
+    the lowest rigid particle's lower edge, half its side below its centre (the centre alone put
+    the zone half a side into the wall, where no soil is: 0.83 before any driving)."""
+    material = snapshot.arrays["material"].astype(int)
+    rigid = np.flatnonzero(np.isin(material, [k for k, name in enumerate(snapshot.material_names)
+                                              if name.endswith("(rigid)")]))
+    lowest = rigid[np.argmin(snapshot.positions[rigid, 1])]
+    r_low, y_low = snapshot.positions[lowest]
+    tip = float(y_low - 0.5 * np.sqrt(snapshot.arrays["volume"][lowest] / r_low))
+    rigid = np.isin(np.arange(material.size), rigid)
+    r, y = snapshot.positions[~rigid, 0], snapshot.positions[~rigid, 1]
+    volume = snapshot.arrays["volume"][~rigid]
+    t = outer - inner
+    below = (y < tip) & (y > tip - t)
+
+    def fill(r1, r2):
+        return float(volume[below & (r > r1) & (r < r2)].sum() / (0.5 * (r2**2 - r1**2) * t))
+    return WallTipFill(snapshot.time, fill(inner, outer), fill(max(inner - t, 0.0), inner), fill(outer, outer + t))
+
+
+def wall_tip_fills(path):
+    """The `WallTipFill` of every particle snapshot of a run of a [monopile] case."""
+    from .snapshots import open_snapshots
+
+    history = history_path(path)
+    monopile = case_of(history).get("monopile", {})
+    outer = 0.5 * float(monopile.get("diameter", np.nan))
+    inner = outer - float(monopile.get("wall_thickness", np.nan))
+    if not (0.0 < inner < outer):
+        raise RunFileError(f"{history}: its case has no [monopile] diameter and wall_thickness")
+    return [wall_tip_fill(snapshot, outer, inner) for snapshot in open_snapshots(history.parent)]

@@ -221,3 +221,34 @@ def test_the_run_record_reads_the_installation_rest_cost_and_ledger(tmp_path):
                           check=True)
     # Two significant digits of each residual in %, the counts in groups of three, the label's comma kept.
     assert "| GDP, HS | 0.300 at 1.000 | 0.5 | 1 234 567 | 10 608 | 0.046 / 0.50 % |" in done.stdout.splitlines()
+
+
+def test_the_fill_at_the_wall_tip_is_once_for_consistent_particles_and_twice_for_crowded_ones():
+    # A 5 mm lattice of particles on 0.3 < r < 0.45 m, 1.9 < y < 2.1 m, each with the volume per
+    # radian of its square, r h^2; the wall's (rigid) span r = 0.35 to 0.37 m above y = 2.0 m,
+    # the lowest centred at 2.0025 m, its lower edge (the tip) at 2.0 m. Each zone, 0.02 m wide
+    # and deep below the tip, holds whole squares, whose midpoint sum of r h^2 is the zone's
+    # integral of r exactly: each is filled once. Doubling the volumes of the particles under the
+    # wall fills that zone twice.
+    from mpile.capacity import wall_tip_fill
+
+    class Lattice:
+        material_names = ["sand", "pile (rigid)"]
+        time = 1.5
+
+        def __init__(self, positions, material, volume):
+            self.positions = positions
+            self.arrays = {"material": material, "volume": volume}
+
+    h = 0.005
+    r, y = (a.ravel() for a in np.meshgrid(0.3 + h * (np.arange(30) + 0.5), 1.9 + h * (np.arange(40) + 0.5)))
+    wall = (r > 0.35) & (r < 0.37) & (y > 2.0)
+    soil_r, soil_y = r[~wall], y[~wall]
+    positions = np.column_stack([np.concatenate([soil_r, r[wall]]), np.concatenate([soil_y, y[wall]])])
+    material = np.concatenate([np.zeros(soil_r.size, int), np.ones(wall.sum(), int)])
+    volume = np.concatenate([soil_r, r[wall]]) * h * h
+    fill = wall_tip_fill(Lattice(positions, material, volume), outer=0.37, inner=0.35)
+    assert (fill.time, fill.under, fill.inside, fill.outside) == pytest.approx((1.5, 1.0, 1.0, 1.0), rel=1e-12)
+    under = (positions[:, 0] > 0.35) & (positions[:, 0] < 0.37) & (positions[:, 1] < 2.0)
+    crowded = np.where(under & (material == 0), 2.0 * volume, volume)
+    assert wall_tip_fill(Lattice(positions, material, crowded), 0.37, 0.35).under == pytest.approx(2.0, rel=1e-12)
