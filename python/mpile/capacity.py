@@ -294,7 +294,7 @@ class WallTipFill:
     """How many times over the soil particles fill three zones at the wall's tip, each a wall
     thickness deep below it: under the wall, beside it inside and beside it outside (each a wall
     thickness wide). Particles whose volumes and positions agree fill a zone about once; crowded
-    ones, where the grid cannot follow the soil's flow round the tip, more."""
+    ones, whose positions and volumes no longer agree, more."""
 
     time: float
     under: float
@@ -309,14 +309,13 @@ def wall_tip_fill(snapshot, outer, inner):
     the lowest rigid particle's lower edge, half its side below its centre (the centre alone put
     the zone half a side into the wall, where no soil is: 0.83 before any driving)."""
     material = snapshot.arrays["material"].astype(int)
-    rigid = np.flatnonzero(np.isin(material, [k for k, name in enumerate(snapshot.material_names)
-                                              if name.endswith("(rigid)")]))
+    is_rigid = np.isin(material, [k for k, name in enumerate(snapshot.material_names) if name.endswith("(rigid)")])
+    rigid = np.flatnonzero(is_rigid)
     lowest = rigid[np.argmin(snapshot.positions[rigid, 1])]
     r_low, y_low = snapshot.positions[lowest]
     tip = float(y_low - 0.5 * np.sqrt(snapshot.arrays["volume"][lowest] / r_low))
-    rigid = np.isin(np.arange(material.size), rigid)
-    r, y = snapshot.positions[~rigid, 0], snapshot.positions[~rigid, 1]
-    volume = snapshot.arrays["volume"][~rigid]
+    r, y = snapshot.positions[~is_rigid, 0], snapshot.positions[~is_rigid, 1]
+    volume = snapshot.arrays["volume"][~is_rigid]
     t = outer - inner
     below = (y < tip) & (y > tip - t)
 
