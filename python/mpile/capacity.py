@@ -260,9 +260,9 @@ class RunRecord:
     installed_at: float  # s
     rest: float  # s the phase named rest lasted (NaN without one)
     steps: int
-    wall_time: float  # s, across continuations
+    wall_time: float  # s, across continuations, at the last row
     ledger_installed: float  # relative residual at the installation's last row
-    ledger_end: float  # at the run's last step (its last row in a run written without it)
+    ledger_end: float  # at the last row (a finished run's last step)
 
 
 def run_record(path, body="pile", phase="installation"):
@@ -273,20 +273,21 @@ def run_record(path, body="pile", phase="installation"):
     if named.empty or not np.isfinite(float(named["end"].iloc[0])):
         raise RunFileError(f"{history} has no finished phase named '{phase}'")
     index = int(named.index[0])
-    series = read_series(history, ["/phase", "/step", f"/bodies/{body}/penetration",
+    # The last row's, not the file's attributes: a run still going (or stopped and to be continued)
+    # wrote those at its last stop.
+    series = read_series(history, ["/phase", "/step", "/wall_time", f"/bodies/{body}/penetration",
                                    "/energy/relative_residual"])
     rows = np.flatnonzero(series["/phase"] == index)
     if not rows.size:
         raise RunFileError(f"{history} has no rows of its phase '{phase}'")
     last = int(rows[-1])
     rest = table[table["name"] == "rest"]
-    attrs = attributes(history)
     return RunRecord(depth=float(series[f"/bodies/{body}/penetration"][last]),
                      installed_at=float(named["end"].iloc[0]),
                      rest=float(rest["end"].iloc[0] - rest["start"].iloc[0]) if not rest.empty else np.nan,
-                     steps=int(series["/step"][-1]), wall_time=float(attrs.get("wall_time", np.nan)),
+                     steps=int(series["/step"][-1]), wall_time=float(series["/wall_time"][-1]),
                      ledger_installed=float(series["/energy/relative_residual"][last]),
-                     ledger_end=float(attrs.get("energy_residual_final", series["/energy/relative_residual"][-1])))
+                     ledger_end=float(series["/energy/relative_residual"][-1]))
 
 
 @dataclass
