@@ -48,6 +48,8 @@ import numpy as np
 
 import convergence
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "python"))
+
 # Staubach P (2024) Hydro-mechanically coupled CEL analyses with effective contact stresses,
 # Int. J. Numer. Anal. Methods Geomech., doi:10.1002/nag.3725 ([S24]), Fig. 2, read to 0.1 mm in
 # docs/vibratory-model-test.md section 3: penetration after the start of vibration (mm, downward
@@ -213,9 +215,9 @@ def tip_zone(snapshot, radius, axisymmetric=True):
     ending in "(rigid)"); all but the first two None without such sand. The zone's volume is
     radius^3 / 2 per radian (axisymmetric), else radius^2 per unit thickness: particles that keep
     their volumes and positions consistent fill it about once; crowded particles, more than once."""
-    names = snapshot.material_names
-    material = snapshot.arrays["material"].astype(int)
-    rigid = np.isin(material, [k for k, name in enumerate(names) if name.endswith("(rigid)")])
+    from mpile.snapshots import rigid_particles
+
+    rigid = rigid_particles(snapshot)
     r, y = snapshot.positions[:, 0], snapshot.positions[:, 1]
     tip = float(y[rigid].min())
     zone = ~rigid & (r < radius) & (y < tip) & (y > tip - radius)
@@ -231,7 +233,6 @@ def tip_zone(snapshot, radius, axisymmetric=True):
 
 
 def print_tip_zone(run, radius):
-    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "python"))
     from mpile.snapshots import open_snapshots
 
     print()

@@ -21,6 +21,7 @@ import numpy as np
 from .files import RunFileError, history_path
 from .history import attributes, case as case_of, list_datasets, read_series
 from .phase_table import last_phase_rows, phases
+from .snapshots import rigid_particles
 
 CAPACITY_SETTLEMENT = 0.1  # of the diameter
 
@@ -188,8 +189,7 @@ def _matched(first, last):
     """The two snapshots' particles matched by id (indices into each) and which are rigid."""
     ids_first, ids_last = first.arrays["id"].astype(np.int64), last.arrays["id"].astype(np.int64)
     _, a, b = np.intersect1d(ids_first, ids_last, return_indices=True)
-    rigid = [k for k, name in enumerate(first.material_names) if name.endswith("(rigid)")]
-    return a, b, np.isin(first.arrays["material"].astype(int)[a], rigid)
+    return a, b, rigid_particles(first)[a]
 
 
 def moved_zone(first, last, fraction, outer, inner):
@@ -309,8 +309,7 @@ def wall_tip_fill(snapshot, outer, inner):
     axisymmetric runs write them: a square particle of side s at radius r has r s^2. The tip is
     the lowest rigid particle's lower edge, half its side below its centre (the centre alone put
     the zone half a side into the wall, where no soil is: 0.83 before any driving)."""
-    material = snapshot.arrays["material"].astype(int)
-    is_rigid = np.isin(material, [k for k, name in enumerate(snapshot.material_names) if name.endswith("(rigid)")])
+    is_rigid = rigid_particles(snapshot)
     rigid = np.flatnonzero(is_rigid)
     lowest = rigid[np.argmin(snapshot.positions[rigid, 1])]
     r_low, y_low = snapshot.positions[lowest]

@@ -249,6 +249,13 @@ class Snapshot(LazyFile):
         return np.array([load[inside & (np.abs(y - h) < 0.5 * slab)].sum() / slab for h in heights])
 
 
+def rigid_particles(snapshot):
+    """A mask over a snapshot's particles (anything with `material_names` and arrays["material"]):
+    those of rigid bodies, whose materials are named "<body> (rigid)"."""
+    rigid = [k for k, name in enumerate(snapshot.material_names) if name.endswith("(rigid)")]
+    return np.isin(snapshot.arrays["material"].astype(int), rigid)
+
+
 class TimeOrdered(list):
     """Snapshots in time order, each with a `time` (s)."""
 
