@@ -2,16 +2,16 @@
 // keys, wrong types and physically invalid values are errors that name file, line, key and reason.
 //
 // Outline:
-//   pieces read in several tables: grid zones, time functions, node lines on grid lines, a
-//     component's index, face conditions
+//   pieces read in several tables: grid zones, node lines on grid lines, a component's index,
+//     face conditions
 //   the tables, each by one function: read_materials, read_bodies (and their rigid drives),
-//     read_contacts, read_affine_motion, read_motions_and_loads, read_solver, read_phases
-//   refuse_past_memory_budget: a case too large for the machine refused before it is built
-//   read_cpt_output, read_output (monitors included)
+//     read_contacts, read_affine_motion, read_motions_and_loads, read_solver; the phases
+//     (phase_reader), the outputs (output_reader), the water (water_reader), a [monopile]
+//     (monopile_reader) read in files of their own
 //   read_pore_water, read_material_table: a material's model, drainage and pore water
 //   CaseSpec::end_time
-//   read_case_text, read_case_tree (the tables in order, [monopile] or the tables it builds, and
-//     the checks across tables), read_case_file (bases and --set overrides)
+//   read_case_text, read_case_tree (the tables in order, [monopile] or the tables it builds, the
+//     memory budget and the checks across tables), read_case_file (bases and --set overrides)
 #include "cases/absorbing_reader.hpp"
 #include "cases/case_builder.hpp"
 #include "cases/case_composition.hpp"
@@ -19,32 +19,29 @@
 #include "cases/case_warnings.hpp"
 #include "cases/dataset_name.hpp"
 #include "cases/face_list_reader.hpp"
+#include "cases/memory_budget.hpp"
 #include "cases/monopile_geometry.hpp"
 #include "cases/monopile_reader.hpp"
+#include "cases/output_reader.hpp"
+#include "cases/phase_reader.hpp"
 #include "cases/region_reader.hpp"
+#include "cases/rigid_drive_reader.hpp"
+#include "cases/time_function_reader.hpp"
 #include "cases/toml_reader.hpp"
 #include "cases/water_reader.hpp"
 #include "engine/particle_bins.hpp"
 #include "engine/structures/contact.hpp"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
-#include <limits>
+#include <optional>
 #include <set>
-#include <sstream>
 #include <stdexcept>
-#include <type_traits>
-#include <variant>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace mpile {
 
@@ -72,73 +69,6 @@ std::vector<AxisZone> read_zones(TomlTable& grid, const std::string& key,
     grid.fail(key, e.what());
   }
   return zones;
-}
-
-TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
-  const TomlValue& raw = parent.raw(key);
-  if (raw.is_floating() || raw.is_integer()) {
-    return TimeFunction::constant(parent.number(key));
-  }
-  TomlTable f = parent.table(key);
-  using Keys = TimeFunctionKeys;
-  Keys k;
-  f.read_members(k, {&Keys::type});
-  TimeFunction result;
-  try {
-    // Each type reads its own keys; another type's is left unread and refused by finish().
-    if (k.type == "constant") {
-      f.read_members(k, {&Keys::value});
-      result = TimeFunction::constant(k.value);
-    } else if (k.type == "ramp") {
-      f.read_members(k, {&Keys::value, &Keys::duration});
-      result = TimeFunction::ramp(k.value, k.duration);
-    } else if (k.type == "table") {
-      const TomlValue& points = f.raw("points");
-      std::vector<std::pair<double, double>> table;
-      bool ok = points.is_array() && !points.as_array().empty();
-      if (ok) {
-        for (const TomlValue& point : points.as_array()) {
-          if (!point.is_array() || point.as_array().size() != 2) {
-            ok = false;
-            break;
-          }
-          const auto& pair = point.as_array();
-          auto number = [&](const TomlValue& v) {
-            if (v.is_integer()) {
-              return static_cast<double>(v.as_integer());
-            }
-            if (!v.is_floating()) {
-              ok = false;
-              return 0.0;
-            }
-            return v.as_floating();
-          };
-          table.emplace_back(number(pair[0]), number(pair[1]));
-        }
-      }
-      if (!ok) {
-        f.fail("points", "expected [[t0, value0], [t1, value1], ...] with numbers");
-      }
-      try {
-        result = TimeFunction::table(std::move(table));
-      } catch (const std::invalid_argument& e) {
-        f.fail("points", e.what());
-      }
-    } else if (k.type == "harmonic") {
-      f.read_members(k, {&Keys::amplitude, &Keys::frequency, &Keys::phase, &Keys::mean});
-      result = TimeFunction::harmonic(k.amplitude, k.frequency, k.phase, k.mean);
-    } else { // "pulse_train", the last of the declared types
-      f.read_members(k, {&Keys::amplitude, &Keys::duration, &Keys::interval});
-      if (k.interval < k.duration) {
-        f.fail(&Keys::interval, "must not be shorter than the pulse duration");
-      }
-      result = TimeFunction::pulse_train(k.amplitude, k.duration, k.interval);
-    }
-  } catch (const std::invalid_argument& e) {
-    f.fail(&Keys::type, e.what());
-  }
-  f.finish();
-  return result;
 }
 
 struct Axes {
@@ -226,11 +156,6 @@ void read_materials(TomlTable& top, CaseSpec& spec) {
   }
 }
 
-/// Where a key's value was written, as a message quotes it ("case.toml:12").
-std::string location(const TomlTable& table, const std::string& key) {
-  return table.file_of(key) + ":" + std::to_string(table.line_of(key));
-}
-
 /// Reads the bodies; returns the [bodies.rigid] tables (by body index), read once the phases are
 /// known, and keeps each body's table in `tables` for the checks that need the moving mesh.
 std::vector<std::pair<std::size_t, TomlTable>>
@@ -245,8 +170,7 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
     if (!names.insert(body.name).second) {
       table.fail(&BodySpec::name, "a body named '" + body.name + "' already exists");
     }
-    if (const auto clash =
-            groups.clash(body.name, location(table, table.key_of(&BodySpec::name)))) {
+    if (const auto clash = groups.clash(body.name, table.location(table.key_of(&BodySpec::name)))) {
       table.fail(&BodySpec::name, *clash);
     }
     const bool known = std::any_of(spec.materials.begin(), spec.materials.end(),
@@ -298,22 +222,6 @@ read_bodies(TomlTable& top, CaseSpec& spec, const Axes& axes, std::vector<TomlTa
   return rigid_tables;
 }
 
-/// The names of the bodies a file declares rigid with a [bodies.rigid] table. Their drives are
-/// read after the phases (a drive names its phase), while the phases' stop criteria and the moving
-/// mesh name them first.
-using RigidNames = std::set<std::string>;
-
-/// `name`, read under `key`, must name a rigid body.
-void check_rigid_body_name(const TomlTable& table, const std::string& key, const std::string& name,
-                           const CaseSpec& spec, const RigidNames& declared_rigid,
-                           const std::string& why) {
-  const auto body = std::find_if(spec.bodies.begin(), spec.bodies.end(),
-                                 [&](const BodySpec& b) { return b.name == name; });
-  if (body == spec.bodies.end() || !(body->rigid || declared_rigid.contains(name))) {
-    table.fail(key, "no rigid body named '" + name + "'" + why);
-  }
-}
-
 /// `phase`, read under `key`, must be empty (the first phase) or name a phase.
 void check_phase_reference(const TomlTable& table, const std::string& key, const std::string& phase,
                            const CaseSpec& spec) {
@@ -323,38 +231,6 @@ void check_phase_reference(const TomlTable& table, const std::string& key, const
   if (!known) {
     table.fail(key, "no phase named '" + phase + "' in [[phases]]");
   }
-}
-
-/// The drive keys of a rigid body's table or a phase's `drive`: per DOF (RigidDof order) a velocity
-/// or a force function, or neither (free).
-std::array<std::optional<RigidDrive>, 3> read_drives(TomlTable& table, const CaseSpec& spec,
-                                                     std::vector<CaseWarning>& warnings) {
-  const bool plane = spec.mode == GeometryMode::plane_strain;
-  const char* velocity_keys[] = {"velocity_r", "velocity_y", "angular_velocity"};
-  const char* force_keys[] = {"force_r", "force_y", "torque"};
-  std::array<std::optional<RigidDrive>, 3> drives;
-  for (std::size_t d = 0; d < 3; ++d) {
-    const bool velocity = table.has(velocity_keys[d]);
-    const bool force = table.has(force_keys[d]);
-    if (velocity && force) {
-      table.fail(force_keys[d], std::string("give either ") + velocity_keys[d] + " or " +
-                                    force_keys[d] + ", not both");
-    }
-    if (d == RIGID_X && !plane && (velocity || force)) {
-      table.fail(velocity ? velocity_keys[d] : force_keys[d],
-                 "an axisymmetric rigid body has no radial motion (zero by symmetry)");
-    }
-    if (velocity || force) {
-      RigidDrive drive;
-      drive.kind = velocity ? RigidDrive::Kind::velocity : RigidDrive::Kind::force;
-      drive.function = read_time_function(table, velocity ? velocity_keys[d] : force_keys[d]);
-      drives[d] = drive;
-      if (d == RIGID_ROTATION && force) {
-        warn_implausible_torque(table, force_keys[d], plane ? "N m/m" : "N m/rad", warnings);
-      }
-    }
-  }
-  return drives;
 }
 
 /// Reads a rigid body's drives (and mass and inertia unless a [monopile] table has derived them
@@ -426,7 +302,7 @@ void read_contacts(TomlTable& top, CaseSpec& spec) {
     std::set<std::string> seen{""};
     for (const std::string& surface : contact.surfaces) {
       if (seen.insert(surface).second) {
-        if (const auto clash = groups.clash(surface, location(table, key))) {
+        if (const auto clash = groups.clash(surface, table.location(key))) {
           table.fail(key, *clash);
         }
       }
@@ -531,7 +407,7 @@ void read_motions_and_loads(TomlTable& top, CaseSpec& spec, const Axes& axes) {
     table.read_into(motion);
     const std::string& name_key = table.key_of(&MotionSpec::name);
     unique_name(table, name_key, motion.name);
-    if (const auto clash = boundaries.clash(motion.name, location(table, name_key))) {
+    if (const auto clash = boundaries.clash(motion.name, table.location(name_key))) {
       table.fail(name_key, *clash);
     }
     motion.nodes = read_node_line(table, axes);
@@ -684,375 +560,6 @@ void read_solver(TomlTable& top, CaseSpec& spec, const Axes& axes) {
   table->finish();
 }
 
-void read_phases(TomlTable& top, CaseSpec& spec, const RigidNames& declared_rigid) {
-  std::set<std::string> names;
-  for (TomlTable& table : top.tables("phases")) {
-    PhaseSpec phase;
-    table.read_into(phase);
-    // The name heads the phase's log lines and outputs, and `--set phases.<name>` finds it.
-    if (phase.name.empty()) {
-      table.fail<PhaseSpec>(&PhaseSpec::name, "a phase needs a name (\"\" names none)");
-    }
-    if (!names.insert(phase.name).second) {
-      table.fail<PhaseSpec>(&PhaseSpec::name, "a phase named '" + phase.name + "' already exists");
-    }
-    {
-      // XPIC replaces the FLIP/PIC blend: the phase may not end up with both.
-      const int order = phase.xpic_order.value_or(spec.solver.xpic_order);
-      const double flip = phase.flip_fraction.value_or(spec.solver.flip_fraction);
-      if (order > 0 && flip != 1.0) {
-        table.fail(phase.flip_fraction ? table.key_of(&PhaseSpec::flip_fraction)
-                                       : table.key_of(&PhaseSpec::xpic_order),
-                   "the phase would run XPIC(" + std::to_string(order) + ") with flip_fraction " +
-                       format_number(flip) +
-                       ": XPIC replaces the FLIP/PIC blend, so set xpic_order = 0 for a blend or "
-                       "leave flip_fraction at 1");
-      }
-    }
-    for (TomlTable& k0 : table.tables("k0")) {
-      // One body, or every body of one material (the monopile's three soil bodies).
-      const bool by_material = k0.has(k0.key_of(&K0Spec::material));
-      if (by_material == k0.has(k0.key_of(&K0Spec::body))) {
-        k0.fail(&K0Spec::body, "give either body or material (every body of that material)");
-      }
-      K0Spec init;
-      k0.read_into(init);
-      k0.finish();
-      const auto named = by_material ? &K0Spec::material : &K0Spec::body;
-      const std::string name = init.*named;
-      bool found = false;
-      for (const BodySpec& body : spec.bodies) {
-        if ((by_material ? body.material : body.name) == name) {
-          init.body = body.name;
-          phase.k0.push_back(init);
-          found = true;
-        }
-      }
-      if (!found) {
-        k0.fail(named,
-                "no body " + std::string(by_material ? "of material '" : "named '") + name + "'");
-      }
-    }
-    if (std::optional<TomlTable> stop = table.optional_table("stop_at")) {
-      PenetrationStop s;
-      stop->read_into(s);
-      check_rigid_body_name(*stop, stop->key_of(&PenetrationStop::body), s.body, spec,
-                            declared_rigid, "");
-      const std::string& penetration = stop->key_of(&PenetrationStop::penetration);
-      const std::string& settlement_key = stop->key_of(&PenetrationStop::settlement);
-      const bool settlement = stop->has(settlement_key);
-      if (settlement == stop->has(penetration)) {
-        stop->fail(penetration, "give either penetration (the total downward displacement) or "
-                                "settlement (the displacement since the phase started)");
-      }
-      if (settlement) {
-        // The deepest an earlier phase stops at, plus the settlement: how far the band must go
-        // at least (an at-rest stop may overshoot; the run then ends the phase at the travel).
-        double before = 0.0;
-        for (const PhaseSpec& earlier : spec.phases) {
-          if (earlier.stop_at && earlier.stop_at->body == s.body) {
-            before = std::max(before, earlier.stop_at->penetration);
-          }
-        }
-        s.penetration = before + s.settlement;
-      }
-      if (spec.moving_mesh && spec.moving_mesh->travel > 0.0 &&
-          s.penetration >= spec.moving_mesh->travel) {
-        // Equal is refused too: the phase stops after the step that reaches the depth, and that
-        // step has already carried the band past its travel.
-        std::ostringstream why;
-        if (settlement) {
-          why << "with the " << s.penetration - s.settlement
-              << " m an earlier phase stops at, reaches the travel of the moving band ("
-              << spec.moving_mesh->travel << " m); settle less";
-        } else {
-          why << "reaches the travel of the moving band (" << spec.moving_mesh->travel
-              << " m): below that depth the soil is seeded for coarser cells than the band's, and "
-                 "the step that reaches it carries the band past it; stop short of it";
-        }
-        why << " or raise " << (top.has("monopile") ? "[monopile]" : "[moving_mesh]") << " travel";
-        stop->fail(settlement ? settlement_key : penetration, why.str());
-      }
-      stop->finish();
-      phase.stop_at = s;
-    }
-    if (std::optional<TomlTable> drive = table.optional_table("drive")) {
-      PhaseDrive d;
-      drive->read_into(d);
-      check_rigid_body_name(*drive, drive->key_of(&PhaseDrive::body), d.body, spec, declared_rigid,
-                            "");
-      d.drive = read_drives(*drive, spec, spec.warnings);
-      drive->finish();
-      phase.drive = d;
-    }
-    table.finish();
-    spec.phases.push_back(std::move(phase));
-  }
-  if (spec.phases.empty()) {
-    top.missing("phases", "at least one [[phases]] table with a duration");
-  }
-}
-
-/// The memory a case will take, from its grid and its bodies' regions before anything is
-/// allocated: refused past the machine's physical memory with the key that drives it (a mistyped
-/// cell size or zone took 15 GB and ended in std::bad_alloc).
-void refuse_past_memory_budget(TomlTable& top, const CaseSpec& spec, const Axes& axes,
-                               std::vector<TomlTable>& body_tables) {
-  // Per node: the 64-byte node and its constraint mask, per field; a contact pair's arrays take
-  // about 100 bytes more. Per particle: its arrays with a Hardening Soil state, about 300 bytes.
-  constexpr double node_bytes = 65.0, pair_node_bytes = 100.0, particle_bytes = 300.0;
-  const double nodes =
-      static_cast<double>(axes.r.node_count()) * static_cast<double>(axes.y.node_count());
-  const auto structures = static_cast<double>(spec.contacts.size());
-  const double grid_bytes =
-      nodes * (node_bytes * (1.0 + structures) + pair_node_bytes * structures);
-  // Particles: the cells of each region's bounding box times the particles per cell (an upper
-  // bound short of the graded band's extra seeding).
-  std::vector<double> body_bytes;
-  double particles_bytes = 0.0;
-  for (const BodySpec& body : spec.bodies) {
-    const Rectangle& box = body.region.bounds();
-    auto cells = [](const GradedAxis& axis, double from, double to) {
-      const double a = std::max(from, axis.start()), b = std::min(to, axis.end());
-      if (!(b > a)) {
-        return 0.0;
-      }
-      const int first = axis.locate(a);
-      const int last = b >= axis.end() ? axis.cell_count() - 1 : axis.locate(b);
-      return static_cast<double>(last - first + 1);
-    };
-    const double n = cells(axes.r, box.r_min, box.r_max) * cells(axes.y, box.y_min, box.y_max) *
-                     body.particles_per_direction * body.particles_per_direction;
-    body_bytes.push_back(n * particle_bytes);
-    particles_bytes += body_bytes.back();
-  }
-  double physical =
-      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
-  // A process limited in address space (ulimit -v, a batch system's memory limit) has less: the
-  // budget is three quarters of the limit, the rest left to the program, its libraries and the
-  // threads' stacks.
-  std::string whose = "this machine's";
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
-      0.75 * static_cast<double>(limit.rlim_cur) < physical) {
-    physical = 0.75 * static_cast<double>(limit.rlim_cur);
-    whose = "three quarters of this process's address-space limit,";
-  }
-  // A budget set for this process (a machine shared with others, or a sanitizer build, whose
-  // address space cannot be limited) bounds it further.
-  if (const char* budget = std::getenv("MPILE_MEMORY_BUDGET_MIB")) {
-    char* end = nullptr;
-    const double mib = std::strtod(budget, &end);
-    // A budget that does not parse is an error, not no budget: "2MiB" or "0" switched it off
-    // without a word.
-    if (end == budget || *end != '\0' || !std::isfinite(mib) || !(mib > 0.0)) {
-      throw CaseError(top.file() + ": MPILE_MEMORY_BUDGET_MIB = '" + budget +
-                      "' is not a memory budget: give a number of MiB above zero (for example "
-                      "2048), or unset it for none");
-    }
-    if (mib * 1048576.0 < physical) {
-      physical = mib * 1048576.0;
-      whose = "MPILE_MEMORY_BUDGET_MIB's";
-    }
-  }
-  const double total = grid_bytes + particles_bytes;
-  if (!(physical > 0.0) || total <= physical) {
-    return;
-  }
-  std::ostringstream why;
-  why << std::setprecision(3) << "the case needs about " << total / 1e9 << " GB ("
-      << axes.r.cell_count() << " x " << axes.y.cell_count() << " cells: " << grid_bytes / 1e9
-      << " GB; particles: " << particles_bytes / 1e9 << " GB), more than " << whose << " "
-      << physical / 1e9 << " GB";
-  if (grid_bytes >= particles_bytes || grid_bytes > physical) {
-    if (top.has("monopile")) {
-      top.table("monopile")
-          .fail(&MonopileParameters::fine_cell, why.str() + "; check the cell sizes and extents");
-    }
-    const bool r_larger = axes.r.cell_count() >= axes.y.cell_count();
-    top.table("grid").fail(r_larger ? "r" : "y", why.str() + "; check the zones' cells and ends");
-  }
-  const auto largest = static_cast<std::size_t>(
-      std::max_element(body_bytes.begin(), body_bytes.end()) - body_bytes.begin());
-  if (largest < body_tables.size()) {
-    body_tables[largest].fail("region",
-                              why.str() + "; body '" + spec.bodies[largest].name +
-                                  "' takes the most: check its region, the cells there and "
-                                  "particles_per_cell");
-  }
-  top.table("monopile").fail(&MonopileSetup::particles_per_cell, why.str());
-}
-
-/// [output.cpt]: the cone and sleeve must be surfaces of a structure's outline with the areas
-/// their resistances are quoted over.
-OutputSpec::Cpt read_cpt_output(TomlTable& table, const CaseSpec& spec) {
-  OutputSpec::Cpt cpt;
-  std::vector<std::string> outlined;
-  for (const ContactSpec& c : spec.contacts) {
-    if (c.outline) {
-      outlined.push_back(c.structure);
-    }
-  }
-  table.read_into(cpt);
-  if (!table.has(&OutputSpec::Cpt::body)) {
-    cpt.body = outlined.size() == 1 ? outlined[0] : "";
-  }
-  table.finish(); // a misspelt key is named before what its absence caused
-  // "" marks an edge that is no contact surface: a cone named so would read the force on none.
-  for (std::string OutputSpec::Cpt::*surface : {&OutputSpec::Cpt::cone, &OutputSpec::Cpt::sleeve}) {
-    if ((cpt.*surface).empty()) {
-      table.fail(surface, "names no surface (\"\" marks an edge that is no contact surface)");
-    }
-  }
-  if (spec.mode != GeometryMode::axisymmetric) {
-    table.fail(&OutputSpec::Cpt::cone, "a cone penetration test is axisymmetric: set geometry to "
-                                       "\"axisymmetric\"");
-  }
-  const auto contact = std::find_if(spec.contacts.begin(), spec.contacts.end(),
-                                    [&](const ContactSpec& c) { return c.structure == cpt.body; });
-  if (contact == spec.contacts.end() || !contact->outline) {
-    table.fail(&OutputSpec::Cpt::body,
-               "must name the contact structure that is the cone, with outline normals" +
-                   std::string(cpt.body.empty() ? "" : " (got '" + cpt.body + "')"));
-  }
-  if (cpt.cone == cpt.sleeve) {
-    table.fail(&OutputSpec::Cpt::sleeve,
-               "must be another surface than the cone's ('" + cpt.cone + "')");
-  }
-  // Surface 0 is the cone, 1 the sleeve, -1 every other edge.
-  std::vector<int> edges;
-  for (const std::string& name : contact->surfaces) {
-    edges.push_back(name == cpt.cone ? 0 : name == cpt.sleeve ? 1 : -1);
-  }
-  const BodySpec& body = *std::find_if(spec.bodies.begin(), spec.bodies.end(),
-                                       [&](const BodySpec& b) { return b.name == cpt.body; });
-  const std::vector<SurfaceAreas> areas =
-      surface_areas(region_outline(body.region, spec.mode, edges), 2, spec.mode);
-  if (!(areas[0].plan > 0.0)) {
-    table.fail(&OutputSpec::Cpt::cone,
-               "'" + cpt.cone + "' is no surface of '" + cpt.body +
-                   "' with a plan area (its horizontal projection, over which q_c is "
-                   "quoted)");
-  }
-  if (!(areas[1].side > 0.0)) {
-    table.fail(&OutputSpec::Cpt::sleeve,
-               "'" + cpt.sleeve + "' is no surface of '" + cpt.body +
-                   "' with a side area (its vertical projection, over which f_s is "
-                   "quoted)");
-  }
-  return cpt;
-}
-
-MonitorSpec read_monitor(TomlTable& table, const Axes& axes, const CaseSpec& spec,
-                         const std::vector<MonitorSpec>& earlier) {
-  MonitorSpec monitor;
-  table.read_into(monitor); // its name and particle
-  const bool dataset_safe =
-      !monitor.name.empty() && std::all_of(monitor.name.begin(), monitor.name.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
-      });
-  if (!dataset_safe) {
-    table.fail(&MonitorSpec::name, "use letters, digits and underscores (it names "
-                                   "/monitors/<name> in history.h5)");
-  }
-  for (const MonitorSpec& other : earlier) {
-    if (other.name == monitor.name) {
-      table.fail(&MonitorSpec::name, "another monitor is named '" + monitor.name + "'");
-    }
-  }
-  const std::string& particle = table.key_of(&MonitorSpec::particle);
-  if (table.has("position") == table.has(particle)) {
-    table.fail("position", "give either position = [r, y] (the soil particle nearest it at the "
-                           "start) or particle = <id>");
-  }
-  const std::string key = monitor.particle ? particle : "position";
-  if (!monitor.particle) {
-    const std::vector<double> at = table.numbers("position", 2);
-    if (!(at[0] >= axes.r.start() && at[0] <= axes.r.end() && at[1] >= axes.y.start() &&
-          at[1] <= axes.y.end())) {
-      table.fail("position", "lies outside the grid");
-    }
-    monitor.position = std::array<double, 2>{at[0], at[1]};
-  } else if (*monitor.particle > std::numeric_limits<std::int32_t>::max()) {
-    table.fail(particle,
-               "must be a particle id (0 or more), got " + std::to_string(*monitor.particle));
-  }
-  if (monitor.fixed && monitor.particle) {
-    table.fail(table.key_of(&MonitorSpec::fixed),
-               "a fixed monitor is a point in space: give position = [r, y], not particle");
-  }
-  if (table.has(&MonitorSpec::material) && monitor.material.empty()) {
-    table.fail(&MonitorSpec::material, "names no material (leave it out for the one nearest "
-                                       "position at the start)");
-  }
-  if (!monitor.material.empty()) {
-    if (!monitor.fixed) {
-      table.fail(&MonitorSpec::material,
-                 "names the material of a fixed monitor (fixed = true); a followed one reads its "
-                 "particle's");
-    }
-    // Only a deformable body's particles carry the stress and state a monitor records.
-    const bool soil = std::any_of(spec.bodies.begin(), spec.bodies.end(), [&](const BodySpec& b) {
-      return b.material == monitor.material && !b.rigid;
-    });
-    if (!soil) {
-      table.fail(&MonitorSpec::material, "no body that is not rigid is made of a material named '" +
-                                             monitor.material + "'");
-    }
-  }
-  monitor.where = location(table, key) + ": " + table.key_path(key);
-  table.finish();
-  return monitor;
-}
-
-void read_output(TomlTable& top, CaseSpec& spec, const Axes& axes) {
-  std::optional<TomlTable> table = top.optional_table("output");
-  if (!table) {
-    return;
-  }
-  OutputSpec& out = spec.output;
-  table->read_into(out);
-  table->check_path(&OutputSpec::directory, out.directory);
-  out.snapshot_times = table->numbers_or("snapshot_times", {});
-  for (const double t : out.snapshot_times) {
-    if (t < 0.0) {
-      table->fail("snapshot_times", "times must not be negative");
-    }
-  }
-  out.snapshot_penetrations = table->numbers_or("snapshot_penetrations", {});
-  if (!out.snapshot_penetrations.empty()) {
-    for (const double depth : out.snapshot_penetrations) {
-      if (!(depth > 0.0)) {
-        table->fail("snapshot_penetrations", "penetrations must be positive (m)");
-      }
-    }
-    std::sort(out.snapshot_penetrations.begin(), out.snapshot_penetrations.end());
-    std::vector<std::string> rigid;
-    for (const BodySpec& body : spec.bodies) {
-      if (body.rigid) {
-        rigid.push_back(body.name);
-      }
-    }
-    if (!table->has(&OutputSpec::penetration_body)) {
-      out.penetration_body = rigid.size() == 1 ? rigid[0] : "";
-    }
-    if (std::find(rigid.begin(), rigid.end(), out.penetration_body) == rigid.end()) {
-      table->fail(&OutputSpec::penetration_body,
-                  "must name the rigid body whose penetration counts");
-    }
-  } else if (table->has(&OutputSpec::penetration_body)) {
-    table->fail(&OutputSpec::penetration_body,
-                "given without snapshot_penetrations, the penetrations it counts");
-  }
-  if (std::optional<TomlTable> cpt = table->optional_table("cpt")) {
-    out.cpt = read_cpt_output(*cpt, spec);
-  }
-  for (TomlTable& monitor : table->tables("monitor")) {
-    out.monitors.push_back(read_monitor(monitor, axes, spec, out.monitors));
-  }
-  table->finish();
-}
-
 /// A material's drainage and its pore water's parameters, which only a saturated (undrained or
 /// coupled) material may give; the hydraulic conductivity only a coupled one, which must.
 void read_pore_water(TomlTable& table, MaterialSpec& material) {
@@ -1116,7 +623,7 @@ MaterialSpec read_material_table(TomlTable& table, const std::string& name) {
       }
       material.parameters[parameter.name] = x;
       material.where[parameter.name] =
-          location(table, parameter.name) + ": " + table.key_path(parameter.name);
+          table.location(parameter.name) + ": " + table.key_path(parameter.name);
     } else if (!parameter.default_value) {
       table.missing(parameter.name, parameter.meaning + ", in " + parameter.unit);
     }
@@ -1279,7 +786,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   // The moving mesh before the phases, so that a stop_at penetration is checked against its
   // travel whichever way the geometry is given.
   read_moving_mesh(top, spec, axes, declared_rigid);
-  refuse_past_memory_budget(top, spec, axes, body_tables);
+  refuse_past_memory_budget(top, spec, axes.r, axes.y, body_tables);
   for (std::size_t b = 0; b < body_tables.size(); ++b) {
     const BodySpec& body = spec.bodies[b];
     if (count_body_particles(spec, body) == 0) {
@@ -1338,7 +845,7 @@ CaseSpec read_case_tree(const TomlValue& root, const std::string& text, const st
   read_contacts(top, spec);
   read_motions_and_loads(top, spec, axes);
   read_affine_motion(top, spec);
-  read_output(top, spec, axes);
+  read_output(top, spec, axes.r, axes.y);
   top.finish();
   return spec;
 }

@@ -39,10 +39,8 @@ constexpr const char* modulus_keys[] = {"young_modulus", "e50_ref", "eoed_ref", 
 
 void add(std::vector<CaseWarning>& warnings, CaseWarning::Kind kind, const TomlTable& table,
          const std::string& key, const std::string& message) {
-  warnings.push_back({kind,
-                      table.file_of(key) + ":" + std::to_string(table.line_of(key)) + ": " +
-                          table.key_path(key) + ": " + message,
-                      key, message});
+  warnings.push_back(
+      {kind, table.location(key) + ": " + table.key_path(key) + ": " + message, key, message});
 }
 
 std::string fixed(double x, int digits) {

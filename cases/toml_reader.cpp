@@ -328,19 +328,21 @@ std::string TomlTable::nearest_key(const std::string& key,
   return nearest;
 }
 
+std::string TomlTable::location(const std::string& key) const {
+  return file_of(key) + ":" + std::to_string(line_of(key));
+}
+
 std::string TomlTable::value_and_place(const std::string& key) const {
   if (!has(key)) {
     const KeySpec* k = spec_ != nullptr ? spec_->key(key) : nullptr;
     const bool given = k != nullptr && !std::holds_alternative<std::monostate>(k->fallback);
     return given ? k->default_description() + ", its default" : "its default";
   }
-  return toml::format(table_->as_table().at(key)) + " at " + file_of(key) + ":" +
-         std::to_string(line_of(key));
+  return toml::format(table_->as_table().at(key)) + " at " + location(key);
 }
 
 void TomlTable::fail(const std::string& key, const std::string& message) const {
-  throw CaseError(file_of(key) + ":" + std::to_string(line_of(key)) + ": " + key_path(key) + ": " +
-                  message);
+  throw CaseError(location(key) + ": " + key_path(key) + ": " + message);
 }
 
 void TomlTable::type_error(const std::string& key, const std::string& expected) const {

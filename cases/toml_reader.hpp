@@ -103,6 +103,8 @@ public:
   int line_of(const std::string& key) const;
   /// The file a key's value came from (a base case file, or "--set ..."), else this table's file.
   std::string file_of(const std::string& key) const;
+  /// Where a key's value was written, as a message quotes it: "case.toml:12".
+  std::string location(const std::string& key) const;
   const std::string& file() const { return file_; }
   /// The declaration this table is read against, or nullptr.
   const TableSpec* spec() const { return spec_; }
