@@ -184,25 +184,15 @@ void read_path(TomlTable& top, ElementTestSpec& spec) {
     }
   } else if (type == "strain_table") {
     spec.path = ElementPath::strain_table;
-    const TomlValue& raw = table.raw("strain_increments");
-    bool ok = raw.is_array() && !raw.as_array().empty();
-    if (ok) {
-      for (const TomlValue& row : raw.as_array()) {
-        if (!row.is_array() || row.as_array().size() != 6) {
-          ok = false;
-          break;
-        }
-        std::array<double, 6> values{};
-        for (std::size_t c = 0; c < 6 && ok; ++c) {
-          const TomlValue& v = row.as_array()[c];
-          ok = v.is_floating() || v.is_integer();
-          if (ok) {
-            values[c] = v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer());
-            ok = std::isfinite(values[c]) && std::abs(values[c]) < 1.0;
-          }
-        }
-        spec.strain_increments.push_back(values);
+    const auto rows = table.number_rows("strain_increments", 6);
+    bool ok = rows.has_value();
+    for (std::size_t r = 0; ok && r < rows->size(); ++r) {
+      std::array<double, 6> values{};
+      for (std::size_t c = 0; c < 6 && ok; ++c) {
+        values[c] = (*rows)[r][c];
+        ok = std::isfinite(values[c]) && std::abs(values[c]) < 1.0;
       }
+      spec.strain_increments.push_back(values);
     }
     if (!ok) {
       table.fail("strain_increments",

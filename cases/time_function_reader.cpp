@@ -27,31 +27,13 @@ TimeFunction read_time_function(TomlTable& parent, const std::string& key) {
       f.read_members(k, {&Keys::value, &Keys::duration});
       result = TimeFunction::ramp(k.value, k.duration);
     } else if (k.type == "table") {
-      const TomlValue& points = f.raw("points");
-      std::vector<std::pair<double, double>> table;
-      bool ok = points.is_array() && !points.as_array().empty();
-      if (ok) {
-        for (const TomlValue& point : points.as_array()) {
-          if (!point.is_array() || point.as_array().size() != 2) {
-            ok = false;
-            break;
-          }
-          const auto& pair = point.as_array();
-          auto number = [&](const TomlValue& v) {
-            if (v.is_integer()) {
-              return static_cast<double>(v.as_integer());
-            }
-            if (!v.is_floating()) {
-              ok = false;
-              return 0.0;
-            }
-            return v.as_floating();
-          };
-          table.emplace_back(number(pair[0]), number(pair[1]));
-        }
-      }
-      if (!ok) {
+      const auto rows = f.number_rows("points", 2);
+      if (!rows) {
         f.fail("points", "expected [[t0, value0], [t1, value1], ...] with numbers");
+      }
+      std::vector<std::pair<double, double>> table;
+      for (const std::vector<double>& row : *rows) {
+        table.emplace_back(row[0], row[1]);
       }
       try {
         result = TimeFunction::table(std::move(table));

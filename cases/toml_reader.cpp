@@ -369,6 +369,31 @@ const TomlValue& TomlTable::value(const std::string& key) {
   return table_->as_table().at(key);
 }
 
+std::optional<std::vector<std::vector<double>>> TomlTable::number_rows(const std::string& key,
+                                                                       std::size_t columns) {
+  const TomlValue& value = raw(key);
+  if (!value.is_array() || value.as_array().empty()) {
+    return std::nullopt;
+  }
+  std::vector<std::vector<double>> rows;
+  for (const TomlValue& row : value.as_array()) {
+    if (!row.is_array() || row.as_array().size() != columns) {
+      return std::nullopt;
+    }
+    std::vector<double>& numbers = rows.emplace_back();
+    for (const TomlValue& v : row.as_array()) {
+      if (v.is_integer()) {
+        numbers.push_back(static_cast<double>(v.as_integer()));
+      } else if (v.is_floating()) {
+        numbers.push_back(v.as_floating());
+      } else {
+        return std::nullopt;
+      }
+    }
+  }
+  return rows;
+}
+
 const TomlValue& TomlTable::raw(const std::string& key) {
   declared(key);
   return value(key);

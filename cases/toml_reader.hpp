@@ -53,6 +53,10 @@ public:
   bool boolean_or(const std::string& key, bool fallback);
   std::vector<double> numbers(const std::string& key, std::size_t expected_size = 0);
   std::vector<double> numbers_or(const std::string& key, std::vector<double> fallback);
+  /// A non-empty array of rows of `columns` numbers each ([[t0, v0], [t1, v1]]), integers read as
+  /// doubles; nullopt for any other value, for the caller to refuse with the form it expects.
+  std::optional<std::vector<std::vector<double>>> number_rows(const std::string& key,
+                                                              std::size_t columns);
   TomlTable table(const std::string& key);
   std::optional<TomlTable> optional_table(const std::string& key);
   std::vector<TomlTable> tables(const std::string& key); // array of tables; empty when absent

@@ -335,6 +335,16 @@ std::vector<BadInput> bad_inputs() {
        edited("traction = -1000.0",
               "traction = { type = \"table\", points = [[0.0, 0.0], [0.0, 1.0]] }"),
        "loads[0].traction.points: table times must be strictly increasing", "traction = {"},
+      {"table point without its value",
+       edited("traction = -1000.0",
+              "traction = { type = \"table\", points = [[0.0, 0.0], [1.0]] }"),
+       "loads[0].traction.points: expected [[t0, value0], [t1, value1], ...] with numbers",
+       "traction = {"},
+      {"table point not a number",
+       edited("traction = -1000.0",
+              "traction = { type = \"table\", points = [[0.0, 0.0], [1.0, \"x\"]] }"),
+       "loads[0].traction.points: expected [[t0, value0], [t1, value1], ...] with numbers",
+       "traction = {"},
   };
 }
 
