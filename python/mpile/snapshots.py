@@ -241,9 +241,8 @@ class Snapshot(LazyFile):
                 raise KeyError(f"{self.path} has no point array {name}; it has: " + ", ".join(self.scalars()))
         r, y = self.positions[:, 0], self.positions[:, 1]
         inside = (r >= r_min) & (r < r_max)
-        rigid = [k for k, name in enumerate(self.material_names) if name.endswith("(rigid)")]
-        if rigid and "material" in self.arrays:
-            inside &= ~np.isin(self.arrays["material"].astype(int), rigid)
+        if "material" in self.arrays:
+            inside &= ~rigid_particles(self)
         load = -self.arrays["sigma_yy"] * self.arrays["volume"]
         heights = np.atleast_1d(np.asarray(heights, float))
         return np.array([load[inside & (np.abs(y - h) < 0.5 * slab)].sum() / slab for h in heights])
