@@ -63,7 +63,7 @@ def shaft_bands(path, wall, surface, depths, distances, snapshots=None):
     Refuses bands that are empty or out of order, naming them."""
     import xarray as xr
 
-    from .snapshots import open_snapshots
+    from .snapshots import open_snapshots, rigid_particles
 
     depths = [(float(top), float(bottom)) for top, bottom in depths]
     distances = [float(d) for d in distances]
@@ -79,9 +79,7 @@ def shaft_bands(path, wall, surface, depths, distances, snapshots=None):
     counts, times = [], []
     for snapshot in snapshots:
         arrays = snapshot.arrays
-        materials = snapshot.material_names
-        rigid_materials = [k for k, name in enumerate(materials) if name.endswith("(rigid)")]
-        rigid = np.isin(arrays["material"], rigid_materials) if "material" in arrays else \
+        rigid = rigid_particles(snapshot) if "material" in arrays else \
             np.zeros(len(snapshot.positions), dtype=bool)
         means, count = _band_means(snapshot.positions, arrays, rigid, wall, surface, depths, distances)
         for name, values in series.items():
