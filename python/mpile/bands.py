@@ -79,9 +79,8 @@ def shaft_bands(path, wall, surface, depths, distances, snapshots=None):
     counts, times = [], []
     for snapshot in snapshots:
         arrays = snapshot.arrays
-        rigid = rigid_particles(snapshot) if "material" in arrays else \
-            np.zeros(len(snapshot.positions), dtype=bool)
-        means, count = _band_means(snapshot.positions, arrays, rigid, wall, surface, depths, distances)
+        means, count = _band_means(snapshot.positions, arrays, rigid_particles(snapshot), wall, surface,
+                                   depths, distances)
         for name, values in series.items():
             values.append(means[name])
         counts.append(count)

@@ -241,16 +241,18 @@ class Snapshot(LazyFile):
                 raise KeyError(f"{self.path} has no point array {name}; it has: " + ", ".join(self.scalars()))
         r, y = self.positions[:, 0], self.positions[:, 1]
         inside = (r >= r_min) & (r < r_max)
-        if "material" in self.arrays:
-            inside &= ~rigid_particles(self)
+        inside &= ~rigid_particles(self)
         load = -self.arrays["sigma_yy"] * self.arrays["volume"]
         heights = np.atleast_1d(np.asarray(heights, float))
         return np.array([load[inside & (np.abs(y - h) < 0.5 * slab)].sum() / slab for h in heights])
 
 
 def rigid_particles(snapshot):
-    """A mask over a snapshot's particles (anything with `material_names` and arrays["material"]):
-    those of rigid bodies, whose materials are named "<body> (rigid)"."""
+    """A mask over a snapshot's particles (anything with `positions`, `material_names` and
+    `arrays`): those of rigid bodies, whose materials are named "<body> (rigid)"; none where the
+    snapshot has no material array."""
+    if "material" not in snapshot.arrays:
+        return np.zeros(len(snapshot.positions), dtype=bool)
     rigid = [k for k, name in enumerate(snapshot.material_names) if name.endswith("(rigid)")]
     return np.isin(snapshot.arrays["material"].astype(int), rigid)
 
