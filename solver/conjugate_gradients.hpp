@@ -1,9 +1,8 @@
 #pragma once
 
 // A symmetric positive definite sparse system solved by Eigen's conjugate gradients (Jacobi
-// preconditioned), the pore pressure's on the grid. In a file of its own: GCC 12 sees a null
-// dereference in Eigen's sparse Ref when it inlines the solver's set-up into the passes, a false
-// positive this file alone is compiled past.
+// preconditioned), the pore pressure's on the grid, with the matrix's product run over the rows in
+// parallel: bitwise Eigen's own serial solve, on any number of threads.
 
 #include <Eigen/SparseCore>
 

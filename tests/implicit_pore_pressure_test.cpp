@@ -7,14 +7,20 @@
 #include "cases/case_error.hpp"
 #include "cases/verification/verification_cases.hpp"
 #include "io/hdf5_file.hpp"
+#include "solver/conjugate_gradients.hpp"
 #include "tests/bitwise.hpp"
 #include "tests/case_run.hpp"
+#include "tests/eigen_reference_solve.hpp"
 #include "tests/saturated_column.hpp"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseCore>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <initializer_list>
 #include <iomanip>
@@ -199,9 +205,9 @@ TEST(ImplicitPorePressure, PorePressureFollowsTheVolumeAsKwOverN) {
             << strain_bound << '\n';
 }
 
-// The solve's sums are per cell in the block that holds it and Eigen's conjugate gradients run
-// on one thread: Terzaghi's column (its first 20 ms) is bitwise the same on one, two and three
-// threads, the water's state and the ledger included.
+// The solve's sums are per cell in the block that holds it and the conjugate gradients' product
+// sums each row alone: Terzaghi's column (its first 20 ms) is bitwise the same on one, two and
+// three threads, the water's state and the ledger included.
 TEST(ImplicitPorePressure, ResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
   const std::string text =
       implicit(replaced(read_text(source / "cases/verification/terzaghi_consolidation.toml"),
@@ -224,6 +230,62 @@ TEST(ImplicitPorePressure, ResultsAreBitwiseIdenticalForOneTwoAndThreeThreads) {
     EXPECT_TRUE(bitwise_equal(runs[0].state, runs[k].state));
     const auto begin = ledger.begin() + static_cast<std::ptrdiff_t>(3 * k);
     EXPECT_TRUE(bitwise_equal(first, std::vector<double>(begin, begin + 3)));
+  }
+}
+
+// The conjugate gradients' product runs in parallel over the rows, each row summed in the order
+// Eigen's own row-major product sums it: on a system of the pressure solve's shape (a cell
+// coupled to the 7 x 7 cells whose GIMP nodes it shares, G W G^T with positive weights, plus the
+// storage on the diagonal; 60 x 60 cells, so the rows span many of the loop's chunks) the solution
+// and the iteration count are bitwise Eigen's, on one, two and three threads.
+TEST(ImplicitPorePressure, ParallelConjugateGradientsAreBitwiseEigensOwnOnAnyThreadCount) {
+  constexpr int cells = 60;
+  constexpr int unknowns = cells * cells;
+  std::vector<Eigen::Triplet<double>> entries;
+  std::uint64_t seed = 20261207;
+  const auto uniform = [&seed] { // a fixed sequence on every platform (Knuth's MMIX LCG)
+    seed = 6364136223846793005ULL * seed + 1442695040888963407ULL;
+    return static_cast<double>(seed >> 11) * 0x1.0p-53;
+  };
+  for (int i = 0; i < unknowns; ++i) {
+    const int ci = i % cells;
+    const int cj = i / cells;
+    for (int dj = -3; dj <= 3; ++dj) {
+      for (int di = -3; di <= 3; ++di) {
+        const int ni = ci + di;
+        const int nj = cj + dj;
+        const int k = ni + cells * nj;
+        if (ni < 0 || ni >= cells || nj < 0 || nj >= cells || k <= i) {
+          continue;
+        }
+        const double coupling = -(0.1 + uniform()) / (1.0 + di * di + dj * dj);
+        entries.emplace_back(i, k, coupling);
+        entries.emplace_back(k, i, coupling);
+        entries.emplace_back(i, i, -coupling); // diagonally dominant: positive definite
+        entries.emplace_back(k, k, -coupling);
+      }
+    }
+    entries.emplace_back(i, i, 1e-3 * (1.0 + uniform())); // the storage
+  }
+  Eigen::SparseMatrix<double> a(unknowns, unknowns);
+  a.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXd b(unknowns);
+  for (int i = 0; i < unknowns; ++i) {
+    b[i] = uniform() - 0.5;
+  }
+
+  int iterations = 0;
+  const Eigen::VectorXd expected = eigen_conjugate_gradients(a, b, 1e-10, iterations);
+  ASSERT_GT(iterations, 20); // enough products for a summation order to show
+
+  for (const int threads : compared_thread_counts()) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(unknowns);
+    passes::ConjugateGradientResult result;
+    with_threads(threads, [&] { result = passes::solve_conjugate_gradients(a, b, x, 1e-10); });
+    EXPECT_TRUE(result.converged) << threads << " threads";
+    EXPECT_EQ(result.iterations, iterations) << threads << " threads";
+    EXPECT_EQ(std::memcmp(x.data(), expected.data(), sizeof(double) * unknowns), 0)
+        << threads << " threads: max difference " << (x - expected).cwiseAbs().maxCoeff();
   }
 }
 
