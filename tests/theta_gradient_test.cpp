@@ -21,8 +21,9 @@ Grid annulus_grid() {
 
 template <int count, class Field>
 double slope_of(const Grid& grid, const NodeWeights<count>& w, double r, Field omega_at) {
-  double omega[count];
-  for (int k = 0; k < count; ++k) {
+  // A GIMP domain inside its cell lists 4 or 6 nodes: only the first w.size entries are set.
+  double omega[count] = {};
+  for (int k = 0; k < w.size; ++k) {
     omega[k] = omega_at(grid.node_r(w.node[k]));
   }
   return radial_slope_in_s(grid.r_axis(), w, omega, r);
