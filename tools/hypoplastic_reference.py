@@ -293,7 +293,7 @@ def lode_factor(s_dev_m):
         cos3t = -1.0  # any value: it multiplies tan psi = 0, and F = 1
     else:
         S = tensor(s_dev_m)
-        cos3t = -SQRT6 * float(np.trace(S @ S @ S)) / norm ** 3
+        cos3t = -SQRT6 * float((S @ S @ S).trace()) / norm ** 3
         cos3t = min(1.0, max(-1.0, cos3t))
     denominator = 2.0 + SQRT2 * tan_psi * cos3t
     radicand = -1.0
@@ -336,7 +336,7 @@ def hypoplastic_tensors(params, sigma_m, e):
     a = a_factor(params["phi_c"])
     f_b, f_e, f_d = density_factors(params, e, p)
     c = f_b * f_e / float(s @ s)
-    L = c * (F * F * EYE6 + a * a * np.outer(s, s))
+    L = c * (F * F * EYE6 + a * a * (s[:, None] * s))
     N = (f_d * c * F * a) * (s + s_dev)
     return L, N
 
@@ -352,19 +352,19 @@ def _igs_matrices(params, L, N, h_m):
     rc = rho ** params["chi"]
     base = (rc * params["m_T"] + (1.0 - rc) * params["m_R"]) * L
     L_h = L @ h_hat
-    loading = base + np.outer(rc * (1.0 - params["m_T"]) * L_h + rc * N, h_hat)
-    unloading = base + np.outer(rc * (params["m_R"] - params["m_T"]) * L_h, h_hat)
+    loading = base + (rc * (1.0 - params["m_T"]) * L_h + rc * N)[:, None] * h_hat
+    unloading = base + (rc * (params["m_R"] - params["m_T"]) * L_h)[:, None] * h_hat
     return loading, unloading, h_hat, rho
 
 
-def _rates_m(params, sigma_m, e, h_m, D_m, LN=None):
-    """(sigma_dot, e_dot, h_dot) in Mandel form for a given strain rate D (Mandel); LN: (L, N) at
-    this state if already computed."""
+def _rates_m(params, sigma_m, e, h_m, D_m, LN=None, igs=None):
+    """(sigma_dot, e_dot, h_dot) in Mandel form for a given strain rate D (Mandel); LN: (L, N) and
+    igs: _igs_matrices at this state, if already computed."""
     L, N = hypoplastic_tensors(params, sigma_m, e) if LN is None else LN
     e_dot = (1.0 + e) * (D_m[0] + D_m[1] + D_m[2])
     if not params["igs"]:
         return L @ D_m + N * math.sqrt(float(D_m @ D_m)), e_dot, np.zeros(6)
-    loading, unloading, h_hat, rho = _igs_matrices(params, L, N, h_m)
+    loading, unloading, h_hat, rho = _igs_matrices(params, L, N, h_m) if igs is None else igs
     hd = float(h_hat @ D_m)
     if hd > 0.0:
         return loading @ D_m, e_dot, D_m - (rho ** params["beta_R"] * hd) * h_hat
@@ -408,20 +408,21 @@ class Control:
         self.stress_mask = np.zeros(6, bool) if stress_mask is None else np.asarray(stress_mask, bool)
         self.u = np.flatnonzero(self.stress_mask)  # unknown strain rates
         self.k = np.flatnonzero(~self.stress_mask)  # known ones
+        self.uu, self.uk = np.ix_(self.u, self.u), np.ix_(self.u, self.k)  # their blocks
         self.guess = None  # last solution: the Newton start
 
-    def solve(self, params, L, N, h_m):
+    def solve(self, params, L, N, h_m, igs=None):
         """The full D (Mandel) meeting the controls at a state with hypoplastic tensors L, N and
-        intergranular strain h_m."""
+        intergranular strain h_m (igs: its _igs_matrices, if already computed)."""
         D = np.where(self.stress_mask, 0.0, self.strain_rate)
-        u, k = self.u, self.k
+        u, k, uu, uk = self.u, self.k, self.uu, self.uk
         if u.size == 0:
             return D
         target = self.stress_rate[u]
         if params["igs"]:
-            loading, unloading, h_hat, _ = _igs_matrices(params, L, N, h_m)
+            loading, unloading, h_hat, _ = _igs_matrices(params, L, N, h_m) if igs is None else igs
             for M, is_loading in ((loading, True), (unloading, False)):
-                D[u] = np.linalg.solve(M[np.ix_(u, u)], target - M[np.ix_(u, k)] @ D[k])
+                D[u] = np.linalg.solve(M[uu], target - M[uk] @ D[k])
                 if (float(h_hat @ D) > 0.0) == is_loading:
                     return D
             raise ArithmeticError("mixed control: neither intergranular-strain branch is consistent")
@@ -429,13 +430,13 @@ class Control:
         if self.guess is not None:
             D[u] = self.guess
         else:
-            D[u] = np.linalg.solve(L[np.ix_(u, u)], target - L[np.ix_(u, k)] @ D[k])
-        rhs = target - L[np.ix_(u, k)] @ D[k]
-        Luu = L[np.ix_(u, u)]
+            D[u] = np.linalg.solve(L[uu], target - L[uk] @ D[k])
+        rhs = target - L[uk] @ D[k]
+        Luu = L[uu]
         for _ in range(50):
             norm = math.sqrt(float(D @ D))
             residual = Luu @ D[u] + N[u] * norm - rhs
-            J = Luu + np.outer(N[u], D[u] / norm) if norm > 0.0 else Luu
+            J = Luu + N[u][:, None] * (D[u] / norm) if norm > 0.0 else Luu
             step = np.linalg.solve(J, residual)
             D[u] -= step
             # quadratic convergence: a step of 1e-13 of D leaves an error of order 1e-26
@@ -479,8 +480,10 @@ def _pack(state, eps=None):
 def _rhs(params, control, y):
     sigma_m, e, h_m = y[S_SIG], y[S_E], y[S_H]
     LN = hypoplastic_tensors(params, sigma_m, e)
-    D = control.solve(params, *LN, h_m)
-    sd, ed, hd = _rates_m(params, sigma_m, e, h_m, D, LN)
+    # The intergranular strain's matrices once a stage, for the mixed control and the rates.
+    igs = _igs_matrices(params, *LN, h_m) if params["igs"] else None
+    D = control.solve(params, *LN, h_m, igs)
+    sd, ed, hd = _rates_m(params, sigma_m, e, h_m, D, LN, igs)
     out = np.empty(19)
     out[S_SIG] = sd
     out[S_E] = ed
