@@ -187,11 +187,11 @@ def test_grid_scheme_converges_to_the_series_at_second_order():
 
 def test_the_lid_case_moves_its_top_as_the_series_settles(tmp_path):
     """--write-lid: the shipped lid case is the one the tool writes from the plate case (its
-    numbers to 1e-9 relative: case_numbers.py), and its prescribed velocity integrates to the
-    series' settlement at every interval's end."""
+    numbers to 1e-9 relative, 23 times the 4.3e-11 seen between machines: case_numbers.py), and
+    its prescribed velocity integrates to the series' settlement at every interval's end."""
     out = tmp_path / "lid.toml"
     out.write_text(barron.lid_case_text(PLATE_CASE))
-    assert_same_case(out.read_text(), LID_CASE.read_text())
+    assert_same_case(out.read_text(), LID_CASE.read_text(), relative=1e-9)
     case, text = barron.read_case(out)
     cell, info = barron.from_case(case, text)
     plate, _ = barron.from_case(*barron.read_case(PLATE_CASE))

@@ -348,13 +348,14 @@ def test_stored_energy_and_work_balance_when_drained():
 
 def test_the_lid_case_is_the_one_the_tool_writes_and_moves_as_the_closed_form():
     """cases/verification/mandel_lid.toml is tools/mandel.py --write-lid of the plate case (not
-    stale; its numbers to 1e-9 relative: case_numbers.py). Its prescribed velocity moves the top
-    line as the closed form's plate under the plate case's force: within 1e-7 of the drained
+    stale; its numbers to 1e-11 relative, 50 times the 2e-13 seen between machines:
+    case_numbers.py). Its prescribed velocity moves the top line as the closed form's plate under
+    the plate case's force: within 1e-7 of the drained
     settlement at the intervals' ends (a switch of 2e-7 s between two velocities, half done there,
     is off by a quarter of their difference times 1e-7 s), 2e-4 of it between them."""
     plate = ROOT / "cases/verification/mandel_plate.toml"
     lid = ROOT / "cases/verification/mandel_lid.toml"
-    assert_same_case(mandel.lid_case_text(plate), lid.read_text())
+    assert_same_case(mandel.lid_case_text(plate), lid.read_text(), relative=1e-11)
     with open(plate, "rb") as f:
         plate_case = tomllib.load(f)
     with open(lid, "rb") as f:
